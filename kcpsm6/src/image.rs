@@ -1,0 +1,393 @@
+//! Program images: 4096 18-bit words, read from and written to the formats people bring.
+//!
+//! | format | read | write |
+//! |---|---|---|
+//! | `.psm` | assembled ([`crate::asm`]) | ([`crate::disasm`]) |
+//! | `.hex` | 4096 lines of 5 hex digits (KCPSM6, CR LF or LF) | exactly as KCPSM6 (CR LF) |
+//! | `.mem` | `@address` lines and hex words (opbasm, `$readmemh`) | `@00000000` + 4096 words, LF |
+//! | `.v` | Xilinx-template ROM (INIT_xx / INITP_xx) or our behavioural ROM | [`crate::output::verilog_rom`] |
+//!
+//! ```
+//! use kcpsm6::image::Image;
+//! let mut img = Image::zeroed();
+//! img.words[0] = 0x2D056;
+//! let hex = img.to_hex();
+//! assert_eq!(hex.len(), 28_672);
+//! assert_eq!(Image::parse_hex(std::path::Path::new("x.hex"), &hex).unwrap(), img);
+//! ```
+
+use std::path::Path;
+
+use crate::asm::{self, io_reason, Options};
+use crate::diag::{Diagnostic, Diagnostics, Loc};
+use crate::isa::{ROM_WORDS, WORD_MASK};
+
+/// A full 4K program memory.
+#[derive(Clone, PartialEq, Eq)]
+pub struct Image {
+    pub words: Box<[u32; ROM_WORDS]>,
+}
+
+impl std::fmt::Debug for Image {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let used = self.words.iter().rposition(|&w| w != 0).map_or(0, |i| i + 1);
+        write!(f, "Image({:05X?}", &self.words[..used.min(16)])?;
+        if used > 16 {
+            write!(f, " ... {used} words")?;
+        }
+        write!(f, ")")
+    }
+}
+
+/// The program formats, chosen by file extension.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    Psm,
+    Hex,
+    Mem,
+    Verilog,
+}
+
+impl Format {
+    /// The format for a path's extension (case-insensitive).
+    pub fn of(path: &Path) -> Option<Format> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "psm" => Some(Format::Psm),
+            "hex" => Some(Format::Hex),
+            "mem" => Some(Format::Mem),
+            "v" => Some(Format::Verilog),
+            _ => None,
+        }
+    }
+}
+
+impl Image {
+    pub fn zeroed() -> Image {
+        Image { words: Box::new([0; ROM_WORDS]) }
+    }
+
+    /// An image holding `words` from address 0 (at most 4096, each masked to 18 bits).
+    pub fn from_words(words: &[u32]) -> Image {
+        let mut img = Image::zeroed();
+        for (d, s) in img.words.iter_mut().zip(words) {
+            *d = s & WORD_MASK;
+        }
+        img
+    }
+
+    /// Load a program from `.psm`, `.hex`, `.mem` or `.v`, chosen by extension.
+    pub fn load(path: &Path, opts: &Options) -> Result<Image, Diagnostics> {
+        let fmt = Format::of(path).ok_or_else(|| {
+            Diagnostics::single(Diagnostic::error(
+                Loc::file(path),
+                "unknown program format (expected .psm, .hex, .mem or .v)",
+            ))
+        })?;
+        if fmt == Format::Psm {
+            return asm::assemble_file(path, opts).map(|p| p.image);
+        }
+        let bytes = std::fs::read(path).map_err(|e| {
+            Diagnostics::single(Diagnostic::error(Loc::file(path), format!("cannot read file: {}", io_reason(&e))))
+        })?;
+        let text = String::from_utf8_lossy(&bytes);
+        match fmt {
+            Format::Hex => Image::parse_hex(path, &text),
+            Format::Mem => Image::parse_mem(path, &text),
+            _ => Image::parse_verilog(path, &text),
+        }
+        .map_err(Diagnostics::single)
+    }
+
+    /// KCPSM6 `.hex`: 4096 lines of 5 hex digits (CR LF as written; LF accepted).
+    pub fn parse_hex(path: &Path, text: &str) -> Result<Image, Diagnostic> {
+        let mut img = Image::zeroed();
+        let mut n = 0;
+        for (i, line) in text.lines().enumerate() {
+            let t = line.trim_end_matches('\r').trim();
+            if t.is_empty() {
+                continue;
+            }
+            let loc = Loc::new(path, i + 1, line.find(|c: char| !c.is_whitespace()).map_or(1, |c| c + 1));
+            let w = parse_word(t).map_err(|m| Diagnostic::error(loc.clone(), m))?;
+            if n == ROM_WORDS {
+                return Err(Diagnostic::error(loc, "more than 4096 words (a KCPSM6 .hex has one per address 000-FFF)"));
+            }
+            img.words[n] = w;
+            n += 1;
+        }
+        if n != ROM_WORDS {
+            return Err(Diagnostic::error(
+                Loc::file(path),
+                format!("has {n} words; a KCPSM6 .hex has exactly 4096 (one per address 000-FFF)"),
+            ));
+        }
+        Ok(img)
+    }
+
+    /// `.mem` as `$readmemh` reads it: `@address` lines, hex words, `//` comments.
+    pub fn parse_mem(path: &Path, text: &str) -> Result<Image, Diagnostic> {
+        let mut img = Image::zeroed();
+        let mut addr: usize = 0;
+        let mut any = false;
+        for (i, line) in text.lines().enumerate() {
+            let code = line.split("//").next().unwrap_or("");
+            let mut col = 0;
+            for tok in code.split(|c: char| c.is_whitespace()) {
+                let here = col;
+                col += tok.len() + 1;
+                if tok.is_empty() {
+                    continue;
+                }
+                let loc = Loc::new(path, i + 1, here + 1);
+                if let Some(a) = tok.strip_prefix('@') {
+                    addr = usize::from_str_radix(a, 16)
+                        .ok()
+                        .filter(|&a| a < ROM_WORDS)
+                        .ok_or_else(|| Diagnostic::error(loc, format!("'{tok}' is not an address 000-FFF")))?;
+                    continue;
+                }
+                let w = parse_word(tok).map_err(|m| Diagnostic::error(loc.clone(), m))?;
+                if addr >= ROM_WORDS {
+                    return Err(Diagnostic::error(loc, "word past address FFF"));
+                }
+                img.words[addr] = w;
+                addr += 1;
+                any = true;
+            }
+        }
+        if !any {
+            return Err(Diagnostic::error(Loc::file(path), "no program words found"));
+        }
+        Ok(img)
+    }
+
+    /// A ROM `.v`: a Xilinx template filled by KCPSM6 (INIT_xx/INITP_xx strings, 18-bit or
+    /// 9-bit split BRAMs) or a behavioural ROM written by this toolchain.
+    pub fn parse_verilog(path: &Path, text: &str) -> Result<Image, Diagnostic> {
+        if let Some(img) = parse_init_strings(text) {
+            return img.map_err(|(line, m)| Diagnostic::error(Loc::new(path, line, 0), m));
+        }
+        if let Some(img) = parse_behavioural(path, text) {
+            return img;
+        }
+        Err(Diagnostic::error(
+            Loc::file(path),
+            "no program found: expected INIT_xx/INITP_xx strings (a Xilinx ROM template) or rom[...] = 18'h... lines",
+        ))
+    }
+
+    /// KCPSM6 `.hex` text (28,672 bytes).
+    pub fn to_hex(&self) -> String {
+        let mut s = String::with_capacity(ROM_WORDS * 7);
+        for w in self.words.iter() {
+            s.push_str(&format!("{w:05X}\r\n"));
+        }
+        s
+    }
+
+    /// opbasm-style `.mem` text (24,586 bytes).
+    pub fn to_mem(&self) -> String {
+        let mut s = String::with_capacity(10 + ROM_WORDS * 6);
+        s.push_str("@00000000\n");
+        for w in self.words.iter() {
+            s.push_str(&format!("{w:05X}\n"));
+        }
+        s
+    }
+
+    /// INIT_nn strings for an 18-bit BRAM: `(INIT_nn values, INITP_nn values)` as 64 hex digits.
+    pub fn init_strings(&self, words: usize) -> (Vec<String>, Vec<String>) {
+        let init = (0..words / 16)
+            .map(|n| (0..16).rev().map(|j| format!("{:04X}", self.words[16 * n + j] & 0xFFFF)).collect())
+            .collect();
+        let initp = (0..words / 128)
+            .map(|n| {
+                (0..32)
+                    .rev()
+                    .map(|k| {
+                        let lo = self.words[128 * n + 2 * k] >> 16 & 3;
+                        let hi = self.words[128 * n + 2 * k + 1] >> 16 & 3;
+                        format!("{:X}", hi << 2 | lo)
+                    })
+                    .collect()
+            })
+            .collect();
+        (init, initp)
+    }
+}
+
+/// One hex word of up to 5 digits, at most 3FFFF.
+fn parse_word(t: &str) -> Result<u32, String> {
+    if t.is_empty() || t.len() > 5 || !t.chars().all(|c| c.is_ascii_hexdigit()) {
+        return Err(format!("'{t}' is not an instruction word (up to 5 hex digits)"));
+    }
+    let w = u32::from_str_radix(t, 16).unwrap_or(u32::MAX);
+    if w > WORD_MASK {
+        return Err(format!("'{t}' is larger than the 18-bit maximum 3FFFF"));
+    }
+    Ok(w)
+}
+
+/// One `INIT_nn` / `INITP_nn` value found in a template, with its BRAM's data width.
+struct InitString {
+    parity: bool,
+    index: usize,
+    /// 32 bytes, least significant first.
+    bytes: [u8; 32],
+    width: u32,
+    block: usize,
+    line: usize,
+}
+
+/// Find the INIT strings and group them by BRAM instance. `None` when there are none.
+fn parse_init_strings(text: &str) -> Option<Result<Image, (usize, String)>> {
+    let strings = scan_init_strings(text);
+    if strings.is_empty() {
+        return None;
+    }
+    let mut img = Image::zeroed();
+    let eighteen: Vec<&InitString> = strings.iter().filter(|s| s.width != 9).collect();
+    if !eighteen.is_empty() {
+        let mut seen_init = [false; 128];
+        let mut seen_initp = [false; 16];
+        for s in eighteen {
+            if s.parity {
+                if s.index >= 16 || std::mem::replace(&mut seen_initp[s.index], true) {
+                    continue;
+                }
+                for j in 0..128 {
+                    let bits = (s.bytes[j / 4] >> (2 * (j % 4)) & 3) as u32;
+                    img.words[128 * s.index + j] |= bits << 16;
+                }
+            } else {
+                if s.index >= 128 || std::mem::replace(&mut seen_init[s.index], true) {
+                    continue;
+                }
+                for j in 0..16 {
+                    let low = s.bytes[2 * j] as u32 | (s.bytes[2 * j + 1] as u32) << 8;
+                    img.words[16 * s.index + j] |= low;
+                }
+            }
+        }
+        return Some(Ok(img));
+    }
+    // 9-bit split: the first BRAM holds bits [8:0], the second bits [17:9].
+    let mut blocks: Vec<usize> = strings.iter().map(|s| s.block).collect();
+    blocks.dedup();
+    if blocks.len() < 2 {
+        let line = strings[0].line;
+        return Some(Err((line, "9-bit ROM template with only one BRAM: need the [8:0] and [17:9] halves".into())));
+    }
+    for (half, &block) in blocks.iter().take(2).enumerate() {
+        let shift = 9 * half as u32;
+        for s in strings.iter().filter(|s| s.block == block) {
+            if s.parity {
+                for j in 0..256.min(ROM_WORDS - 256 * s.index.min(15)) {
+                    let bit = (s.bytes[j / 8] >> (j % 8) & 1) as u32;
+                    if let Some(w) = img.words.get_mut(256 * s.index + j) {
+                        *w |= bit << (8 + shift);
+                    }
+                }
+            } else {
+                for j in 0..32 {
+                    if let Some(w) = img.words.get_mut(32 * s.index + j) {
+                        *w |= (s.bytes[j] as u32) << shift;
+                    }
+                }
+            }
+        }
+    }
+    Some(Ok(img))
+}
+
+fn scan_init_strings(text: &str) -> Vec<InitString> {
+    let mut out = Vec::new();
+    let mut block = 0;
+    let mut width = 18;
+    for (ln, line) in text.lines().enumerate() {
+        let code = line.split("//").next().unwrap_or("");
+        for prim in ["RAMB18E1", "RAMB36E1", "RAMB16BWER", "RAMB18", "RAMB36", "RAMB16"] {
+            if code.contains(prim) {
+                block += 1;
+                width = 18;
+                break;
+            }
+        }
+        if let Some(i) = code.find("READ_WIDTH_A").or_else(|| code.find("DATA_WIDTH_A")) {
+            let digits: String =
+                code[i + 12..].chars().skip_while(|c| !c.is_ascii_digit()).take_while(|c| c.is_ascii_digit()).collect();
+            if let Ok(w) = digits.parse() {
+                width = w;
+                for s in out.iter_mut().filter(|s: &&mut InitString| s.block == block) {
+                    s.width = w;
+                }
+            }
+        }
+        let bytes = code.as_bytes();
+        let mut i = 0;
+        while let Some(off) = code[i..].find("INIT") {
+            let start = i + off;
+            i = start + 4;
+            if start > 0 && (bytes[start - 1].is_ascii_alphanumeric() || bytes[start - 1] == b'_') {
+                continue;
+            }
+            let rest = &code[start + 4..];
+            let (parity, rest) = match rest.strip_prefix("P_") {
+                Some(r) => (true, r),
+                None => match rest.strip_prefix('_') {
+                    Some(r) => (false, r),
+                    None => continue,
+                },
+            };
+            let Some(index) = rest.get(..2).and_then(|h| usize::from_str_radix(h, 16).ok()) else { continue };
+            let after = rest[2..].trim_start();
+            let Some(after) = after.strip_prefix('(').or_else(|| after.strip_prefix('=')) else { continue };
+            let after = after.trim_start();
+            let Some(hex) = after.strip_prefix("256'h").or_else(|| after.strip_prefix("256'H")) else { continue };
+            let digits: String = hex.chars().take_while(|c| c.is_ascii_hexdigit()).collect();
+            if digits.len() != 64 {
+                continue;
+            }
+            let mut b = [0u8; 32];
+            for (k, byte) in b.iter_mut().enumerate() {
+                let pos = 62 - 2 * k;
+                *byte = u8::from_str_radix(&digits[pos..pos + 2], 16).unwrap_or(0);
+            }
+            out.push(InitString { parity, index, bytes: b, width, block, line: ln + 1 });
+        }
+    }
+    out
+}
+
+/// Our behavioural ROM: lines `rom[12'hAAA] = 18'hWWWWW;` (and an optional fill value).
+fn parse_behavioural(path: &Path, text: &str) -> Option<Result<Image, Diagnostic>> {
+    let mut img = Image::zeroed();
+    let mut any = false;
+    for (ln, line) in text.lines().enumerate() {
+        let t = line.trim();
+        if let Some(fill) = t.strip_prefix("fill = 18'h").and_then(|r| r.strip_suffix(';')) {
+            match parse_word(fill) {
+                Ok(w) => img.words.iter_mut().for_each(|x| *x = w),
+                Err(m) => return Some(Err(Diagnostic::error(Loc::new(path, ln + 1, 1), m))),
+            }
+            continue;
+        }
+        let Some(rest) = t.strip_prefix("rom[12'h") else { continue };
+        let parsed = rest.split_once("] = 18'h").and_then(|(a, w)| {
+            let w = w.strip_suffix(';')?;
+            Some((usize::from_str_radix(a, 16).ok()?, w))
+        });
+        match parsed {
+            Some((a, w)) if a < ROM_WORDS => match parse_word(w) {
+                Ok(w) => {
+                    img.words[a] = w;
+                    any = true;
+                }
+                Err(m) => return Some(Err(Diagnostic::error(Loc::new(path, ln + 1, 1), m))),
+            },
+            _ => return Some(Err(Diagnostic::error(Loc::new(path, ln + 1, 1), format!("cannot read ROM line '{t}'")))),
+        }
+    }
+    any.then_some(Ok(img))
+}

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs what botsim needs on a fresh Debian machine (bookworm): Verilator 5.006 to build the
+# RTL model, libclang for bindgen, and Icarus Verilog + Yosys for the CI gate.
+# Safe to run twice: it only installs what is missing.
+set -euo pipefail
+
+need=()
+command -v verilator >/dev/null 2>&1 || need+=(verilator)
+command -v iverilog  >/dev/null 2>&1 || need+=(iverilog)
+command -v yosys     >/dev/null 2>&1 || need+=(yosys)
+dpkg -s libclang-dev >/dev/null 2>&1 || need+=(libclang-dev)
+command -v g++       >/dev/null 2>&1 || need+=(g++)
+command -v make      >/dev/null 2>&1 || need+=(make)
+
+if [ ${#need[@]} -gt 0 ]; then
+  echo "setup: installing ${need[*]}"
+  sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo apt-get update -qq
+  $sudo apt-get install -y -qq --no-install-recommends "${need[@]}" >/dev/null
+fi
+
+if ! command -v cargo >/dev/null 2>&1; then
+  echo "setup: cargo not found; install Rust (rustup) first" >&2
+  exit 1
+fi
+echo "setup: $(verilator --version | head -1); $(iverilog -V 2>&1 | head -1); $(yosys -V)"

@@ -203,7 +203,7 @@ impl Image {
             .collect();
         let initp = (0..words / 128)
             .map(|n| {
-                (0..32)
+                (0..64)
                     .rev()
                     .map(|k| {
                         let lo = self.words[128 * n + 2 * k] >> 16 & 3;
@@ -360,7 +360,7 @@ fn scan_init_strings(text: &str) -> Vec<InitString> {
     out
 }
 
-/// Our behavioural ROM: lines `rom[12'hAAA] = 18'hWWWWW;` (and an optional fill value).
+/// Our behavioural ROM: lines `rom[10'hAAA] = 18'hWWWWW;` (and an optional fill value).
 fn parse_behavioural(path: &Path, text: &str) -> Option<Result<Image, Diagnostic>> {
     let mut img = Image::zeroed();
     let mut any = false;
@@ -373,7 +373,8 @@ fn parse_behavioural(path: &Path, text: &str) -> Option<Result<Image, Diagnostic
             }
             continue;
         }
-        let Some(rest) = t.strip_prefix("rom[12'h") else { continue };
+        let Some(rest) = t.strip_prefix("rom[") else { continue };
+        let rest = rest.split_once("'h").map_or("", |(width, r)| if width.parse::<u8>().is_ok() { r } else { "" });
         let parsed = rest.split_once("] = 18'h").and_then(|(a, w)| {
             let w = w.strip_suffix(';')?;
             Some((usize::from_str_radix(a, 16).ok()?, w))

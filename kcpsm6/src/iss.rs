@@ -579,7 +579,7 @@ impl Cpu {
                     self.c = parity;
                     self.z = t == 0;
                 } else {
-                    self.c = parity ^ self.c;
+                    self.c ^= parity;
                     self.z = t == 0 && self.z;
                 }
             }

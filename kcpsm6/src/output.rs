@@ -96,7 +96,7 @@ pub fn verilog_rom(image: &Image, module: &str, source: &str, size: RomSize, def
     ));
     for (a, &w) in image.words.iter().enumerate().take(words) {
         if w != fill {
-            v.push_str(&format!("        rom[12'h{a:03X}] = 18'h{w:05X};\n"));
+            v.push_str(&format!("        rom[{bits}'h{a:03X}] = 18'h{w:05X};\n"));
         }
     }
     let addr = if bits == 12 { "address".to_string() } else { format!("address[{}:0]", bits - 1) };

@@ -104,21 +104,26 @@ fn case_rules() {
 
 #[test]
 fn number_forms() {
-    assert_eq!(words("LOAD s0, 123'd\nLOAD s0, 10100011'b\nLOAD s0, \"A\"\nLOAD s0, \";\"\nLOAD s0, \"\"\"\n"), [
-        0x0107B, 0x010A3, 0x01041, 0x0103B, 0x01022
-    ]);
-    assert_eq!(words("JUMP 4095'd\nJUMP 000000000011'b\nOUTPUTK 00, 1111'b\nOUTPUTK 00, 12'd\n"), [
-        0x22FFF, 0x22003, 0x2B00F, 0x2B00C
-    ]);
+    assert_eq!(
+        words("LOAD s0, 123'd\nLOAD s0, 10100011'b\nLOAD s0, \"A\"\nLOAD s0, \";\"\nLOAD s0, \"\"\"\n"),
+        [0x0107B, 0x010A3, 0x01041, 0x0103B, 0x01022]
+    );
+    assert_eq!(
+        words("JUMP 4095'd\nJUMP 000000000011'b\nOUTPUTK 00, 1111'b\nOUTPUTK 00, 12'd\n"),
+        [0x22FFF, 0x22003, 0x2B00F, 0x2B00C]
+    );
     let e = errors("LOAD s0, 7\nLOAD s0, 123\nJUMP 12\nLOAD s0, 256'd\nLOAD s0, 1010'b\nOUTPUTK 00, 10\n");
-    assert_eq!(e, [
-        "t.psm:1:10: error: hex value '7' must have exactly 2 digits",
-        "t.psm:2:10: error: hex value '123' must have exactly 2 digits",
-        "t.psm:3:6: error: hex value '12' must have exactly 3 digits",
-        "t.psm:4:10: error: decimal value '256'd' is out of range 0'd-255'd",
-        "t.psm:5:10: error: binary value '1010'b' must have exactly 8 digits",
-        "t.psm:6:13: error: hex value '10' must have exactly 1 digit",
-    ]);
+    assert_eq!(
+        e,
+        [
+            "t.psm:1:10: error: hex value '7' must have exactly 2 digits",
+            "t.psm:2:10: error: hex value '123' must have exactly 2 digits",
+            "t.psm:3:6: error: hex value '12' must have exactly 3 digits",
+            "t.psm:4:10: error: decimal value '256'd' is out of range 0'd-255'd",
+            "t.psm:5:10: error: binary value '1010'b' must have exactly 8 digits",
+            "t.psm:6:13: error: hex value '10' must have exactly 1 digit",
+        ]
+    );
 }
 
 #[test]
@@ -167,10 +172,13 @@ fn namereg_is_sequential() {
     ";
     assert_eq!(words(src), [0x01501, 0x11501, 0x11502, 0x11503]);
     let e = errors("NAMEREG s5, count\nADD s5, 01\nNAMEREG count, total\nADD count, 01\n");
-    assert_eq!(e, [
-        "t.psm:2:5: error: register 's5' was renamed 'count' by NAMEREG",
-        "t.psm:4:5: error: expected a register, found 'count'",
-    ]);
+    assert_eq!(
+        e,
+        [
+            "t.psm:2:5: error: register 's5' was renamed 'count' by NAMEREG",
+            "t.psm:4:5: error: expected a register, found 'count'",
+        ]
+    );
     // STAR's first operand addresses the other bank: only default names.
     assert_eq!(words("NAMEREG s1, x\nSTAR s1, x\n"), [0x16110]);
     assert!(errors("NAMEREG s1, x\nSTAR x, 01\n")[0].contains("STAR needs a default register name"));
@@ -205,7 +213,9 @@ panic:  JUMP panic
     assert_eq!(p.image.words[1], 0x223FF);
     assert_eq!(p.image.words[0xFFF], 0x223FF);
     assert_eq!(p.default_jump, Some(0x3FF));
-    assert!(errors("ADDRESS 010\nLOAD s0, 00\nADDRESS 005\n")[0].contains("ADDRESS 005 is below the current address 011"));
+    assert!(
+        errors("ADDRESS 010\nLOAD s0, 00\nADDRESS 005\n")[0].contains("ADDRESS 005 is below the current address 011")
+    );
 }
 
 #[test]
@@ -220,9 +230,7 @@ fn strings_and_tables_expand() {
         LOAD&RETURN s4, tens#
         OUTPUTK bin#, F
     ";
-    assert_eq!(words(src), [
-        0x2B483, 0x2B693, 0x2B213, 0x21401, 0x214FF, 0x2147B, 0x2140A, 0x214FF, 0x2B01F, 0x2B80F
-    ]);
+    assert_eq!(words(src), [0x2B483, 0x2B693, 0x2B213, 0x21401, 0x214FF, 0x2147B, 0x2140A, 0x214FF, 0x2B01F, 0x2B80F]);
     // The STRING text runs from the first to the last quote, semicolons included.
     let p = assemble_str("STRING s$, \"a;\"b\" ; note\nOUTPUTK s$, 0\n").unwrap();
     let text: Vec<u8> = p.image.words[..4].iter().map(|w| (w >> 4) as u8).collect();
@@ -256,7 +264,8 @@ fn include_is_relative_to_the_including_file() {
 
 #[test]
 fn defines_override_constants_and_psm_environment() {
-    let src = "CONSTANT threshold, 0F\nCONSTANT delay, %PSM_delay\nLOAD s0, threshold\nLOAD s1, delay\nLOAD s2, extra\n";
+    let src =
+        "CONSTANT threshold, 0F\nCONSTANT delay, %PSM_delay\nLOAD s0, threshold\nLOAD s1, delay\nLOAD s2, extra\n";
     let opts = Options {
         defines: vec![("threshold".into(), "4'd".into()), ("extra".into(), "\"x\"".into())],
         env: vec![("psm_DELAY".into(), "18".into())],
@@ -268,7 +277,9 @@ fn defines_override_constants_and_psm_environment() {
     let e = errors_with(src, &Options::default());
     assert_eq!(e[0], "t.psm:2:17: error: environment value 'PSM_delay' is not set");
     let bad = Options { defines: vec![("threshold".into(), "0x0F".into())], ..Options::default() };
-    assert!(errors_with("CONSTANT threshold, 0F\nLOAD s0, threshold\n", &bad)[0].starts_with("-D threshold=0x0F: error:"));
+    assert!(
+        errors_with("CONSTANT threshold, 0F\nLOAD s0, threshold\n", &bad)[0].starts_with("-D threshold=0x0F: error:")
+    );
 }
 
 #[test]
@@ -284,27 +295,32 @@ start:  LOAD s1, 02
         OUTPUT s0, s1
     ";
     let e = errors(src);
-    assert_eq!(e, [
-        "t.psm:3:1: error: 'start' is already defined (first defined at t.psm:2:1)",
-        "t.psm:4:9: error: unknown instruction or directive 'FOO'",
-        "t.psm:5:18: error: undefined constant 'undefined_c'",
-        "t.psm:6:14: error: undefined label 'undefined_l'",
-        "t.psm:7:18: error: 'BAD' is not a valid name: it reads as a hex value",
-        "t.psm:8:9: error: LOAD takes two operands: a register and a register or constant",
-        "t.psm:9:20: error: write a register port or address as '(s1)'",
-    ]);
+    assert_eq!(
+        e,
+        [
+            "t.psm:3:1: error: 'start' is already defined (first defined at t.psm:2:1)",
+            "t.psm:4:9: error: unknown instruction or directive 'FOO'",
+            "t.psm:5:18: error: undefined constant 'undefined_c'",
+            "t.psm:6:14: error: undefined label 'undefined_l'",
+            "t.psm:7:18: error: 'BAD' is not a valid name: it reads as a hex value",
+            "t.psm:8:9: error: LOAD takes two operands: a register and a register or constant",
+            "t.psm:9:20: error: write a register port or address as '(s1)'",
+        ]
+    );
 }
 
 #[test]
 fn program_past_fff_or_past_the_chosen_rom_size() {
-    assert!(errors("ADDRESS FFF\nLOAD s0, 00\nLOAD s0, 01\n")[0].contains("t.psm:3:1: error: program runs past the last address FFF"));
+    assert!(errors("ADDRESS FFF\nLOAD s0, 00\nLOAD s0, 01\n")[0]
+        .contains("t.psm:3:1: error: program runs past the last address FFF"));
     // Only comments and constants may follow an instruction at FFF.
     assert!(errors("ADDRESS FFF\nLOAD s0, 00\nCONSTANT x, 01\n; fine\n").is_empty());
     assert!(errors("ADDRESS FFF\nLOAD s0, 00\nlate:\n")[0].contains("past the last address FFF"));
     let k1 = Options { rom_size: Some(RomSize::K1), ..Options::default() };
-    assert_eq!(errors_with("ADDRESS 3FF\nLOAD s0, 00\nLOAD s0, 01\n", &k1), [
-        "t.psm:3:1: error: program runs past the 1024-word ROM (last address 3FF)"
-    ]);
+    assert_eq!(
+        errors_with("ADDRESS 3FF\nLOAD s0, 00\nLOAD s0, 01\n", &k1),
+        ["t.psm:3:1: error: program runs past the 1024-word ROM (last address 3FF)"]
+    );
     let k2 = Options { rom_size: Some(RomSize::K2), ..Options::default() };
     assert!(errors_with("ADDRESS 7FF\nSTRING s$, \"ab\"\nOUTPUTK s$, 0\n", &k2)[0].contains("2048-word ROM"));
 }
@@ -319,12 +335,52 @@ fn warnings_are_not_fatal() {
 #[test]
 fn hostile_inputs_do_not_panic() {
     for src in [
-        "", "\0", ":", "::", "a:b:c:", "LOAD", "LOAD ,", "LOAD s0,,", "JUMP@", "JUMP@ (", "JUMP@ (s0", "CALL@ (s0 s1)",
-        "TABLE t#, [", "TABLE t#, []", "TABLE t#, [1,]", "STRING", "STRING x$, \"", "\"", "\"\"", "INCLUDE", "INCLUDE x",
-        "INCLUDE \"\"", "ADDRESS", "ADDRESS FFFF", "NAMEREG", "NAMEREG s0", "NAMEREG s0, s1", "CONSTANT", "CONSTANT x",
-        "CONSTANT x, ", "LOAD s0, ~", "LOAD s0, ''", "LOAD s0, x'upper", "LOAD s0, 'd", "OUTPUTK", "RETURN Q",
-        "REGBANK C", "INST", "DEFAULT_JUMP", "DEFAULT_JUMP 000\nDEFAULT_JUMP 000", "é: LOAD s0, 00", "LOAD s0, \"é\"",
-        "TABLE t#, [\"a\", 02]'d", "%", "LOAD&RETURN s0, nope$", "OUTPUTK nope#, 0",
+        "",
+        "\0",
+        ":",
+        "::",
+        "a:b:c:",
+        "LOAD",
+        "LOAD ,",
+        "LOAD s0,,",
+        "JUMP@",
+        "JUMP@ (",
+        "JUMP@ (s0",
+        "CALL@ (s0 s1)",
+        "TABLE t#, [",
+        "TABLE t#, []",
+        "TABLE t#, [1,]",
+        "STRING",
+        "STRING x$, \"",
+        "\"",
+        "\"\"",
+        "INCLUDE",
+        "INCLUDE x",
+        "INCLUDE \"\"",
+        "ADDRESS",
+        "ADDRESS FFFF",
+        "NAMEREG",
+        "NAMEREG s0",
+        "NAMEREG s0, s1",
+        "CONSTANT",
+        "CONSTANT x",
+        "CONSTANT x, ",
+        "LOAD s0, ~",
+        "LOAD s0, ''",
+        "LOAD s0, x'upper",
+        "LOAD s0, 'd",
+        "OUTPUTK",
+        "RETURN Q",
+        "REGBANK C",
+        "INST",
+        "DEFAULT_JUMP",
+        "DEFAULT_JUMP 000\nDEFAULT_JUMP 000",
+        "é: LOAD s0, 00",
+        "LOAD s0, \"é\"",
+        "TABLE t#, [\"a\", 02]'d",
+        "%",
+        "LOAD&RETURN s0, nope$",
+        "OUTPUTK nope#, 0",
     ] {
         let _ = assemble_str(src);
     }

@@ -482,7 +482,10 @@ fn reset_keeps_registers_and_scratch_pad_and_clears_flags() {
     for _ in 0..4 {
         cpu.tick(Pins::default(), &mut bus);
     }
-    assert_eq!((cpu.pc(), cpu.carry(), cpu.zero(), cpu.bank(), cpu.interrupt_enabled(), cpu.depth()), (0, false, false, false, false, 0));
+    assert_eq!(
+        (cpu.pc(), cpu.carry(), cpu.zero(), cpu.bank(), cpu.interrupt_enabled(), cpu.depth()),
+        (0, false, false, false, false, 0)
+    );
     assert_eq!((cpu.reg(false, 0), cpu.reg(true, 1), cpu.scratch_pad()[0x10]), (0x5A, 0xFF, 0x5A));
 }
 

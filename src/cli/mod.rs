@@ -1,0 +1,47 @@
+//! Subcommands of `botsim`. Every error is one line on stderr and exit status 1.
+
+mod asm;
+mod disasm;
+
+use clap::{Parser, Subcommand};
+
+/// Exit status for success.
+pub const EXIT_OK: i32 = 0;
+/// Exit status for any error: bad input, bad usage, a failed run.
+pub const EXIT_ERROR: i32 = 1;
+
+#[derive(Parser)]
+#[command(name = "botsim", version, about = "Cycle-exact RTL co-simulation of the Rojobot BotSim 2.0", long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    Asm(asm::Args),
+    Disasm(disasm::Args),
+}
+
+/// Parse the command line and run; returns the exit status.
+pub fn main() -> i32 {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let code = if e.use_stderr() { EXIT_ERROR } else { EXIT_OK };
+            let _ = e.print();
+            return code;
+        }
+    };
+    let result = match cli.command {
+        Command::Asm(a) => asm::run(a),
+        Command::Disasm(a) => disasm::run(a),
+    };
+    match result {
+        Ok(()) => EXIT_OK,
+        Err(msg) => {
+            eprintln!("{msg}");
+            EXIT_ERROR
+        }
+    }
+}

@@ -1,0 +1,33 @@
+//! File output that is never half-written: write to a temporary name beside the target, then
+//! rename over it.
+
+use std::io::Write;
+use std::path::Path;
+
+/// Write `data` to `path` atomically. On error nothing is left at `path` (an existing file is
+/// untouched) and the message names the path.
+///
+/// ```
+/// let dir = tempfile::tempdir().unwrap();
+/// let p = dir.path().join("out.txt");
+/// botsim::files::write_atomic(&p, b"hello").unwrap();
+/// assert_eq!(std::fs::read(&p).unwrap(), b"hello");
+/// ```
+pub fn write_atomic(path: &Path, data: &[u8]) -> Result<(), String> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let name = path.file_name().ok_or_else(|| format!("{}: error: not a file name", path.display()))?;
+    let tmp = dir.join(format!(".{}.tmp{}", name.to_string_lossy(), std::process::id()));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(data)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    result.map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        format!("{}: error: cannot write file: {}", path.display(), kcpsm6::asm::io_reason(&e))
+    })
+}

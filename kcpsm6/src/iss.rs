@@ -380,6 +380,7 @@ impl Cpu {
     pub fn tick<B: Bus>(&mut self, pins: Pins, bus: &mut B) -> Option<Retired> {
         let cycle = self.cycle;
         let phase = self.phase;
+        let bank_before = self.bank;
         let mut stack_error = false;
         let mut retired = None;
 
@@ -416,7 +417,7 @@ impl Cpu {
             Phase::Idle => {}
         }
         self.interrupt_ack = entering_interrupt;
-        self.bank_rd = self.bank;
+        self.bank_rd = bank_before;
 
         if self.internal_reset {
             self.pc = 0;

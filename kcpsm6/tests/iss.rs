@@ -544,3 +544,21 @@ fn return_with_empty_stack_resets_and_the_garbage_target_still_strobes() {
     // the internal reset starts; then 000 again.
     assert_eq!(&pcs[..4], &[0, 1, 1, 0]);
 }
+
+#[test]
+fn out_port_reads_the_new_bank_one_cycle_late() {
+    // s0 = 11 in bank A, 22 in bank B. CALL pushes bank A; the callee switches to B and
+    // RETURNI (D 13, F 14) restores A. RETURNI's out_port is sX (bit 13 = 0): in its F the
+    // bank is already A but the register file is still read with the registered bank B.
+    let src = "LOAD s0, 11\nSTAR s0, 22\nCALL 010\nADDRESS 010\nREGBANK B\nRETURNI DISABLE\n";
+    let mut cpu = cpu_with(Config::default(), src);
+    let mut bus = Recorder::default();
+    let mut out = vec![];
+    for _ in 0..16 {
+        out.push((cpu.cycle(), cpu.out_port(), cpu.bank()));
+        cpu.tick(Pins::default(), &mut bus);
+    }
+    assert_eq!(out[13], (13, 0x22, true));
+    assert_eq!(out[14], (14, 0x22, false));
+    assert_eq!(out[15], (15, 0x11, false));
+}

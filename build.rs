@@ -1,0 +1,219 @@
+//! Build script: Verilog -> Verilator C++ -> a static library with a C shim -> Rust FFI.
+//!
+//! 1. check the tools (Verilator 5, libclang) and stop with one line naming the setup script;
+//! 2. verilate each design once, each with its own `--prefix` (spec/verilator.md 4.1, 4.4);
+//! 3. compile the generated model files (listed in `V<prefix>_classes.mk`, never hard-coded),
+//!    the Verilator runtime (once, with VL_USER_FINISH) and the shims with `cc`, optimised
+//!    whatever the Cargo profile;
+//! 4. generate the FFI with bindgen from the plain C header `src/ffi/shim.h`.
+
+use std::collections::BTreeSet;
+use std::env;
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// One verilated design: a prefix, a top module, its sources and parameters.
+struct Design {
+    prefix: &'static str,
+    top: &'static str,
+    sources: &'static [&'static str],
+    params: Vec<String>,
+}
+
+/// The CPU harness variants: scratch-pad size, hwbuild, interrupt_vector.
+const CPU_VARIANTS: [(u32, u8, u16); 3] = [(64, 0x00, 0x3FF), (128, 0x5A, 0x1C0), (256, 0xFF, 0x7F0)];
+
+const CPU_SOURCES: &[&str] =
+    &["rtl/kcpsm6.vlt", "rtl/kcpsm6.v", "rtl/sim/kcpsm6_harness.v", "rtl/sim/kcpsm6_harness.vlt"];
+
+fn fail(msg: &str) -> ! {
+    eprintln!("error: {msg}");
+    std::process::exit(1);
+}
+
+fn main() {
+    let root = PathBuf::from(env::var("CARGO_MANIFEST_DIR").unwrap());
+    let out = PathBuf::from(env::var("OUT_DIR").unwrap());
+    println!("cargo:rerun-if-changed=build.rs");
+    println!("cargo:rerun-if-changed=src/ffi");
+    println!("cargo:rerun-if-env-changed=VERILATOR");
+    println!("cargo:rerun-if-env-changed=VERILATOR_ROOT");
+
+    let verilator = env::var("VERILATOR").unwrap_or_else(|_| "verilator".into());
+    let vroot = verilator_root(&verilator);
+
+    let mut designs: Vec<Design> = CPU_VARIANTS
+        .iter()
+        .map(|&(spm, hw, vec)| Design {
+            prefix: match spm {
+                64 => "Vcpu64",
+                128 => "Vcpu128",
+                _ => "Vcpu256",
+            },
+            top: "kcpsm6_harness",
+            sources: CPU_SOURCES,
+            params: vec![
+                format!("-GSPM_SIZE={spm}"),
+                format!("-GHWBUILD=8'h{hw:02X}"),
+                format!("-GVECTOR=12'h{vec:03X}"),
+            ],
+        })
+        .collect();
+    designs.sort_by_key(|d| d.prefix);
+
+    let mut model_files = Vec::new();
+    let mut runtime = BTreeSet::new();
+    let mut include_dirs = Vec::new();
+    for d in &designs {
+        let mdir = out.join(d.prefix);
+        verilate(&verilator, &root, &mdir, d);
+        let classes = fs::read_to_string(mdir.join(format!("{}_classes.mk", d.prefix)))
+            .unwrap_or_else(|e| fail(&format!("cannot read Verilator's file list: {e}")));
+        for var in ["VM_CLASSES_FAST", "VM_CLASSES_SLOW", "VM_SUPPORT_FAST", "VM_SUPPORT_SLOW"] {
+            for name in mk_list(&classes, var) {
+                model_files.push(mdir.join(format!("{name}.cpp")));
+            }
+        }
+        for var in ["VM_GLOBAL_FAST", "VM_GLOBAL_SLOW"] {
+            runtime.extend(mk_list(&classes, var));
+        }
+        rerun_for_sources(&mdir, d.prefix);
+        include_dirs.push(mdir);
+    }
+
+    let mut build = cc::Build::new();
+    build
+        .cpp(true)
+        .std("c++17")
+        .warnings(false)
+        .opt_level(2) // never -O0: an unoptimised model runs ~7x slower (spec/verilator.md 4.3)
+        .debug(false)
+        .flag_if_supported("-faligned-new")
+        .flag_if_supported("-fcf-protection=none")
+        .flag_if_supported("-Wno-unused-parameter")
+        .define("VM_COVERAGE", "0")
+        .define("VM_SC", "0")
+        .define("VM_TRACE", "1")
+        .define("VM_TRACE_VCD", "1")
+        .define("VM_TRACE_FST", "0")
+        .define("VL_USER_FINISH", None)
+        .include(vroot.join("include"))
+        .include(vroot.join("include/vltstd"))
+        .include(root.join("src/ffi"));
+    for dir in &include_dirs {
+        build.include(dir);
+    }
+    for f in &model_files {
+        build.file(f);
+    }
+    for name in &runtime {
+        build.file(vroot.join("include").join(format!("{name}.cpp")));
+    }
+    build.file(root.join("src/ffi/cpu_shim.cpp"));
+    build.compile("botsim_models");
+
+    bindings(&root, &out);
+    variants(&out);
+}
+
+/// `verilator --getenv VERILATOR_ROOT`, after checking the version.
+fn verilator_root(verilator: &str) -> PathBuf {
+    let version = Command::new(verilator).arg("--version").output();
+    let text = match version {
+        Ok(o) if o.status.success() => String::from_utf8_lossy(&o.stdout).into_owned(),
+        _ => fail("verilator not found: run `bash scripts/setup.sh` (installs Verilator 5.006 from Debian)"),
+    };
+    let major = text.split_whitespace().nth(1).and_then(|v| v.split('.').next()).and_then(|m| m.parse::<u32>().ok());
+    if major != Some(5) {
+        fail(&format!("Verilator 5 is needed, found '{}': run `bash scripts/setup.sh`", text.trim()));
+    }
+    let o = Command::new(verilator)
+        .args(["--getenv", "VERILATOR_ROOT"])
+        .output()
+        .unwrap_or_else(|e| fail(&format!("cannot run verilator: {e}")));
+    let root = PathBuf::from(String::from_utf8_lossy(&o.stdout).trim());
+    if !root.join("include/verilated.h").exists() {
+        fail(&format!("verilated.h not found under {}: run `bash scripts/setup.sh`", root.display()));
+    }
+    root
+}
+
+fn verilate(verilator: &str, root: &Path, mdir: &Path, d: &Design) {
+    let _ = fs::remove_dir_all(mdir);
+    let mut cmd = Command::new(verilator);
+    cmd.current_dir(root)
+        .args(["--cc", "--no-timing", "-O3", "--x-assign", "fast", "--x-initial", "fast", "--trace"])
+        .args(["--prefix", d.prefix, "--top-module", d.top])
+        .arg("--Mdir")
+        .arg(mdir)
+        .args(&d.params)
+        .args(d.sources);
+    let o = cmd.output().unwrap_or_else(|e| fail(&format!("cannot run verilator: {e}")));
+    for line in String::from_utf8_lossy(&o.stderr).lines() {
+        println!("cargo:warning={line}");
+    }
+    if !o.status.success() {
+        fail(&format!("verilator failed on {} ({})", d.top, d.prefix));
+    }
+}
+
+/// The names in a `VAR += \` block of a Verilator makefile fragment.
+fn mk_list(text: &str, var: &str) -> Vec<String> {
+    let mut names = Vec::new();
+    let mut lines = text.lines();
+    while let Some(l) = lines.next() {
+        if l.trim_start().starts_with(var) && l.contains("+=") {
+            for item in lines.by_ref() {
+                let t = item.trim().trim_end_matches('\\').trim();
+                if t.is_empty() {
+                    break;
+                }
+                names.push(t.to_string());
+                if !item.trim_end().ends_with('\\') {
+                    break;
+                }
+            }
+        }
+    }
+    names
+}
+
+/// rerun-if-changed for every source Verilator read (its `__verFiles.dat`, `S` lines).
+fn rerun_for_sources(mdir: &Path, prefix: &str) {
+    let dat = fs::read_to_string(mdir.join(format!("{prefix}__verFiles.dat"))).unwrap_or_default();
+    for line in dat.lines() {
+        let mut parts = line.split_whitespace();
+        if parts.next() == Some("S") {
+            if let Some(path) = parts.last() {
+                if !path.starts_with("/usr") && !path.contains("verilator") {
+                    println!("cargo:rerun-if-changed={path}");
+                }
+            }
+        }
+    }
+}
+
+fn bindings(root: &Path, out: &Path) {
+    let header = root.join("src/ffi/shim.h");
+    let result = std::panic::catch_unwind(|| {
+        bindgen::Builder::default()
+            .header(header.to_string_lossy())
+            .allowlist_function("cpu_sim_.*")
+            .allowlist_type("Cpu.*")
+            .derive_default(true)
+            .generate()
+    });
+    match result {
+        Ok(Ok(b)) => b.write_to_file(out.join("bindings.rs")).unwrap_or_else(|e| fail(&format!("bindings: {e}"))),
+        Ok(Err(e)) => fail(&format!("bindgen failed on src/ffi/shim.h: {e}")),
+        Err(_) => fail("libclang not found (bindgen needs it): run `bash scripts/setup.sh` (installs libclang-dev)"),
+    }
+}
+
+/// The CPU harness variants for the Rust side.
+fn variants(out: &Path) {
+    let mut s = String::from("/// (scratch-pad bytes, hwbuild, interrupt_vector) of each verilated CPU harness.\n");
+    s.push_str(&format!("pub const CPU_VARIANTS: [(u32, u8, u16); {}] = {:?};\n", CPU_VARIANTS.len(), CPU_VARIANTS));
+    fs::write(out.join("variants.rs"), s).unwrap_or_else(|e| fail(&format!("{e}")));
+}

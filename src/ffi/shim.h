@@ -1,0 +1,74 @@
+/* shim.h: the C interface of the Verilated models, for bindgen. Plain C, no Verilator types.
+ * Every function sets the model's context on the calling thread first; a model must be used
+ * only from the thread that created it. */
+#ifndef BOTSIM_SHIM_H
+#define BOTSIM_SHIM_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- the KCPSM6 test harness (rtl/sim/kcpsm6_harness.v) ---------------------------------- */
+
+typedef struct CpuSim CpuSim;
+
+/* Inputs driven during one cycle and sampled at its closing rising edge. */
+typedef struct {
+    uint8_t reset;
+    uint8_t sleep;
+    uint8_t interrupt;
+} CpuPins;
+
+/* The core's ports during one cycle (before its closing edge). */
+typedef struct {
+    uint16_t address;
+    uint32_t instruction;
+    uint8_t bram_enable;
+    uint8_t port_id;
+    uint8_t out_port;
+    uint8_t in_port;
+    uint8_t read_strobe;
+    uint8_t write_strobe;
+    uint8_t k_write_strobe;
+    uint8_t interrupt_ack;
+} CpuPorts;
+
+/* Architectural state of the core. */
+typedef struct {
+    uint16_t pc;
+    uint8_t t_state;
+    uint8_t carry;
+    uint8_t zero;
+    uint8_t interrupt_enable;
+    uint8_t bank;
+    uint8_t stack_pointer;
+    uint8_t registers[32];
+    uint8_t scratch_pad[256];
+    uint16_t scratch_pad_size;
+} CpuState;
+
+/* A harness with a 64, 128 or 256-byte scratch pad (other sizes: NULL). The three variants
+ * are built with different hwbuild and interrupt_vector parameters, see build.rs. */
+CpuSim* cpu_sim_new(uint32_t scratch_pad_size);
+void cpu_sim_free(CpuSim* sim);
+/* Open a VCD of the whole harness; returns 0 on success. */
+int cpu_sim_open_vcd(CpuSim* sim, const char* path);
+void cpu_sim_close_vcd(CpuSim* sim);
+void cpu_sim_load_rom(CpuSim* sim, const uint32_t* words, size_t count);
+void cpu_sim_set_inputs(CpuSim* sim, const uint8_t* values /* 256 */);
+/* One clock cycle; `ports` (may be NULL) receives the ports during it. Returns 0, or -1 once
+ * the model has finished ($finish), after which nothing is evaluated. */
+int cpu_sim_tick(CpuSim* sim, CpuPins pins, CpuPorts* ports);
+/* `cycles` cycles with constant pins, in one call. Returns the cycles run. */
+uint64_t cpu_sim_run(CpuSim* sim, CpuPins pins, uint64_t cycles);
+void cpu_sim_state(CpuSim* sim, CpuState* state);
+uint64_t cpu_sim_cycle(const CpuSim* sim);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

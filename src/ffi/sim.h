@@ -1,0 +1,93 @@
+// sim.h: one Verilated model with its own context, the clock discipline and tracing.
+//
+// Every Verilator 5.006 hazard of spec/verilator.md is handled here, once:
+//  H1  teardown in reverse order with the thread's context set (Sim::~Sim);
+//  H2  Verilated::threadContextp(ctx) at every entry that runs RTL or touches the runtime;
+//  H3  ctx->threads(1): no idle worker threads per model;
+//  H4  $finish only sets gotFinish (vl_finish below, runtime built with VL_USER_FINISH), and
+//      nothing is evaluated after it (tick() refuses);
+//  H5  fatalOnError(false): $stop/$error/$fatal set gotError/gotFinish instead of abort().
+#pragma once
+
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include "verilated.h"
+#include "verilated_vcd_c.h"
+
+// Half a clock period in the model's time precision (`timescale 1ns / 1ps`): 100 MHz.
+static const uint64_t HALF_PERIOD_PS = 5000;
+
+template <class V>
+struct Sim {
+    VerilatedContext* ctx;
+    V* top;
+    VerilatedVcdC* vcd = nullptr;
+    uint64_t cycle = 0;
+
+    Sim() {
+        ctx = new VerilatedContext;
+        Verilated::threadContextp(ctx);
+        ctx->threads(1);
+        ctx->fatalOnError(false);
+        ctx->traceEverOn(true);
+        top = new V{ctx, "TOP"};
+        top->clk = 0;
+        top->eval();  // initialisation: never an edge
+    }
+
+    ~Sim() {
+        Verilated::threadContextp(ctx);
+        close_vcd();
+        top->final();
+        delete top;
+        delete ctx;
+    }
+
+    void enter() { Verilated::threadContextp(ctx); }
+
+    bool finished() const { return ctx->gotFinish(); }
+
+    // Open a VCD file; its first sample is the current state.
+    bool open_vcd(const char* path, int depth) {
+        enter();
+        close_vcd();
+        vcd = new VerilatedVcdC;
+        top->trace(vcd, depth);
+        vcd->open(path);
+        if (!vcd->isOpen()) {
+            delete vcd;
+            vcd = nullptr;
+            return false;
+        }
+        vcd->dump(ctx->time());
+        return true;
+    }
+
+    void close_vcd() {
+        if (vcd) {
+            vcd->flush();
+            vcd->close();
+            delete vcd;
+            vcd = nullptr;
+        }
+    }
+
+    // Settle the inputs set for this cycle with the clock low (dumped at the cycle's start).
+    void settle() {
+        top->clk = 0;
+        top->eval();
+        if (vcd) vcd->dump(ctx->time());
+    }
+
+    // The rising edge that ends the cycle; the clock falls at the start of the next settle().
+    void rise() {
+        ctx->timeInc(HALF_PERIOD_PS);
+        top->clk = 1;
+        top->eval();
+        if (vcd) vcd->dump(ctx->time());
+        ctx->timeInc(HALF_PERIOD_PS);
+        cycle++;
+    }
+};

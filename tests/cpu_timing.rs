@@ -72,12 +72,12 @@ fn input_samples_in_port_at_the_end_of_its_second_cycle() {
 fn external_reset_sequence() {
     // §2.4 example: reset high in 21-22 -> r = 23 -> fetch in 26 -> 000's D in 27.
     let mut h = harness("LOAD s0, 01\nLOAD s0, 02\nJUMP 001\n");
-    let t = trace(&mut h, 32, |c| Pins { reset: c == 21 || c == 22, ..Pins::default() });
+    let t = trace(&mut h, 29, |c| Pins { reset: c == 21 || c == 22, ..Pins::default() });
     let fetches: Vec<usize> = cycles_where(&t, |p| p.bram_enable).into_iter().filter(|&c| c >= 21).collect();
     assert_eq!(fetches[..2], [22, 26], "k+1 still makes the step decided in k (22 is F), then 26");
     assert!(t[23..26].iter().all(|p| !p.bram_enable && p.address == 0));
     assert_eq!((t[27].address, t[27].instruction), (0, 0x01001));
-    assert_eq!(h.state().registers[0], 0x01, "registers are kept; 000 ran again");
+    assert_eq!(h.state().registers[0], 0x01, "000 ran again (its write at the end of 28)");
 }
 
 #[test]

@@ -17,7 +17,7 @@ use std::process::Command;
 struct Design {
     prefix: &'static str,
     top: &'static str,
-    sources: &'static [&'static str],
+    sources: Vec<PathBuf>,
     params: Vec<String>,
 }
 
@@ -26,6 +26,18 @@ const CPU_VARIANTS: [(u32, u8, u16); 3] = [(64, 0x00, 0x3FF), (128, 0x5A, 0x1C0)
 
 const CPU_SOURCES: &[&str] =
     &["rtl/kcpsm6.vlt", "rtl/kcpsm6.v", "rtl/sim/kcpsm6_harness.v", "rtl/sim/kcpsm6_harness.vlt"];
+
+/// The BotSim top; bot_pgm.v is generated from rtl/bot_pgm.psm into OUT_DIR.
+const BOT_SOURCES: &[&str] = &[
+    "rtl/kcpsm6.vlt",
+    "rtl/bot.vlt",
+    "rtl/kcpsm6.v",
+    "rtl/world_if.v",
+    "rtl/map.v",
+    "rtl/world_map.v",
+    "rtl/bot.v",
+    "rtl/sim/bot.vlt",
+];
 
 fn fail(msg: &str) -> ! {
     eprintln!("error: {msg}");
@@ -52,7 +64,7 @@ fn main() {
                 _ => "Vcpu256",
             },
             top: "kcpsm6_harness",
-            sources: CPU_SOURCES,
+            sources: CPU_SOURCES.iter().map(|s| root.join(s)).collect(),
             params: vec![
                 format!("-GSPM_SIZE={spm}"),
                 format!("-GHWBUILD=8'h{hw:02X}"),
@@ -60,6 +72,10 @@ fn main() {
             ],
         })
         .collect();
+    let bot_pgm = assemble_firmware(&root, &out);
+    let mut bot_sources: Vec<PathBuf> = BOT_SOURCES.iter().map(|s| root.join(s)).collect();
+    bot_sources.push(bot_pgm);
+    designs.push(Design { prefix: "Vbot", top: "bot", sources: bot_sources, params: vec![] });
     designs.sort_by_key(|d| d.prefix);
 
     let mut model_files = Vec::new();
@@ -111,10 +127,25 @@ fn main() {
         build.file(vroot.join("include").join(format!("{name}.cpp")));
     }
     build.file(root.join("src/ffi/cpu_shim.cpp"));
+    build.file(root.join("src/ffi/bot_shim.cpp"));
     build.compile("botsim_models");
 
     bindings(&root, &out);
     variants(&out);
+}
+
+/// Assemble the firmware with its default constants into the ROM module Verilator compiles.
+fn assemble_firmware(root: &Path, out: &Path) -> PathBuf {
+    use kcpsm6::asm::{assemble_file, Options, RomSize};
+    let psm = root.join("rtl/bot_pgm.psm");
+    println!("cargo:rerun-if-changed={}", psm.display());
+    let opts = Options { rom_size: Some(RomSize::K1), ..Options::default() };
+    let program =
+        assemble_file(&psm, &opts).unwrap_or_else(|d| fail(&format!("rtl/bot_pgm.psm does not assemble:\n{d}")));
+    let v = kcpsm6::output::verilog_rom(&program.image, "bot_pgm", "bot_pgm.psm", RomSize::K1, program.default_jump);
+    let path = out.join("bot_pgm.v");
+    fs::write(&path, v).unwrap_or_else(|e| fail(&format!("cannot write {}: {e}", path.display())));
+    path
 }
 
 /// `verilator --getenv VERILATOR_ROOT`, after checking the version.
@@ -148,7 +179,7 @@ fn verilate(verilator: &str, root: &Path, mdir: &Path, d: &Design) {
         .arg("--Mdir")
         .arg(mdir)
         .args(&d.params)
-        .args(d.sources);
+        .args(&d.sources);
     let o = cmd.output().unwrap_or_else(|e| fail(&format!("cannot run verilator: {e}")));
     for line in String::from_utf8_lossy(&o.stderr).lines() {
         println!("cargo:warning={line}");
@@ -200,7 +231,9 @@ fn bindings(root: &Path, out: &Path) {
         bindgen::Builder::default()
             .header(header.to_string_lossy())
             .allowlist_function("cpu_sim_.*")
+            .allowlist_function("bot_sim_.*")
             .allowlist_type("Cpu.*")
+            .allowlist_type("Bot.*")
             .derive_default(true)
             .generate()
     });

@@ -1,8 +1,27 @@
 //! botsim: a cycle-exact RTL co-simulation of the Rojobot BotSim 2.0 (PSU ECE 540), driven
 //! from Rust. The KCPSM6 toolchain lives in the `kcpsm6` crate, re-exported here.
+//!
+//! | module | job |
+//! |---|---|
+//! | [`botsim`] | the testbench API: build, reset, motors, wait for updates, video port |
+//! | [`regs`] | typed registers: MotCtl, Orientation, Movement, Sensors, Snapshot |
+//! | [`world`] | the 128 x 128 world and its file formats; the built-in course |
+//! | [`model`] | the golden behavioural model of the spec |
+//! | [`firmware`] | the BotSim firmware and its assembly-time constants |
+//! | [`cpu`] | the KCPSM6 RTL core in a test harness (lock-step DUT) |
 
+pub mod botsim;
 pub mod cpu;
 pub mod files;
+pub mod firmware;
+pub mod model;
+mod picture;
+pub mod regs;
 mod rtl;
+pub mod world;
 
+pub use crate::botsim::{BotSim, Error};
+pub use firmware::{Compat, Firmware, Timing};
 pub use kcpsm6;
+pub use regs::{MotCtl, Movement, Orientation, Registers, Sensors, Snapshot};
+pub use world::{Cell, World};

@@ -67,6 +67,48 @@ uint64_t cpu_sim_run(CpuSim* sim, CpuPins pins, uint64_t cycles);
 void cpu_sim_state(CpuSim* sim, CpuState* state);
 uint64_t cpu_sim_cycle(const CpuSim* sim);
 
+/* ---- the BotSim 2.0 top, `bot` (rtl/bot.v) ------------------------------------------------ */
+
+typedef struct BotSim BotSim;
+
+/* The six visible registers. */
+typedef struct {
+    uint8_t loc_x;
+    uint8_t loc_y;
+    uint8_t sensors;
+    uint8_t bot_info;
+    uint8_t lm_dist;
+    uint8_t rm_dist;
+} BotRegs;
+
+/* The outputs during one cycle. */
+typedef struct {
+    BotRegs regs;
+    uint8_t upd_sysregs;
+    uint8_t vid_pixel_out;
+} BotOutputs;
+
+BotSim* bot_sim_new(void);
+void bot_sim_free(BotSim* sim);
+int bot_sim_open_vcd(BotSim* sim, const char* path);
+void bot_sim_close_vcd(BotSim* sim);
+/* Replace the program ROM (1024 words) and the world (16384 cells of 2 bits, row-major). */
+void bot_sim_load_program(BotSim* sim, const uint32_t* words, size_t count);
+void bot_sim_load_world(BotSim* sim, const uint8_t* cells, size_t count);
+/* Inputs, applied from the next cycle on. */
+void bot_sim_set_motctl(BotSim* sim, uint8_t motctl);
+void bot_sim_set_reset(BotSim* sim, uint8_t reset);
+void bot_sim_set_video(BotSim* sim, uint16_t row, uint16_t col);
+/* One cycle; `out` (may be NULL) receives the outputs during it. 0, or -1 once finished. */
+int bot_sim_tick(BotSim* sim, BotOutputs* out);
+/* Run until upd_sysregs rises: returns 1 with the cycle in which it is first high and the
+ * registers then (the simulation stops at the start of that cycle); 0 if `budget` cycles
+ * passed without a rise; -1 once finished. */
+int bot_sim_run_until_update(BotSim* sim, uint64_t budget, uint64_t* cycle, BotRegs* regs);
+/* `cycles` cycles in one call; returns the cycles run. */
+uint64_t bot_sim_run(BotSim* sim, uint64_t cycles);
+uint64_t bot_sim_cycle(const BotSim* sim);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,0 +1,300 @@
+//! The BotSim testbench API: the `bot` RTL under Verilator, driven from Rust.
+//!
+//! ```
+//! use botsim::{BotSim, MotCtl, Orientation, Timing};
+//! let mut bot = BotSim::builder().timing(Timing::Fast).build().unwrap();
+//! let first = bot.wait_update().unwrap(); // sample 0: the register dump after start-up
+//! assert_eq!((first.location(), first.orientation()), ((64, 64), Orientation::East));
+//! bot.set_motors(MotCtl::FORWARD);
+//! let s = bot.run_samples(16).unwrap();
+//! assert_eq!(s[14].distances(), (15, 15)); // threshold reached on sample 15 ...
+//! assert_eq!(s[15].location(), (65, 64)); // ... the move shows in sample 16
+//! ```
+
+use std::marker::PhantomData;
+use std::path::{Path, PathBuf};
+use std::ptr::NonNull;
+
+use kcpsm6::{Diagnostics, Image};
+
+use crate::firmware::{Compat, Firmware, Timing};
+use crate::regs::{MotCtl, Registers, Snapshot};
+use crate::rtl::ffi;
+use crate::world::{Cell, World};
+
+/// What went wrong in a simulation.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// A wait ran out of its cycle budget.
+    #[error("no {waited_for} within {budget} cycles (stopped at cycle {cycle})")]
+    Timeout { waited_for: &'static str, budget: u64, cycle: u64 },
+    #[error("the model has finished ($finish) and cannot run further")]
+    Finished,
+    #[error("{0}")]
+    Program(Diagnostics),
+    #[error("the program uses address {0:03X}; bot_pgm is a 1K ROM (000-3FF)")]
+    ProgramTooLarge(usize),
+    #[error("{0}")]
+    Io(String),
+}
+
+/// The outputs of `bot` during one cycle.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Outputs {
+    pub regs: Registers,
+    pub upd_sysregs: bool,
+    pub vid_pixel_out: u8,
+}
+
+/// How to build a [`BotSim`].
+#[derive(Clone, Debug)]
+pub struct Builder {
+    firmware: Firmware,
+    program: Option<Image>,
+    world: Option<World>,
+    motors: MotCtl,
+    vcd: Option<PathBuf>,
+    budget: Option<u64>,
+}
+
+impl Builder {
+    /// Samples per move or 45-degree step (assembled into the built-in firmware).
+    pub fn threshold(mut self, t: u8) -> Builder {
+        self.firmware.threshold = t;
+        self
+    }
+    pub fn timing(mut self, t: Timing) -> Builder {
+        self.firmware.timing = t;
+        self
+    }
+    pub fn compat(mut self, c: Compat) -> Builder {
+        self.firmware.compat = c;
+        self
+    }
+    /// All firmware constants at once.
+    pub fn firmware(mut self, f: Firmware) -> Builder {
+        self.firmware = f;
+        self
+    }
+    /// Run this program instead of the built-in firmware.
+    pub fn program(mut self, image: Image) -> Builder {
+        self.program = Some(image);
+        self
+    }
+    /// The world (the built-in one otherwise).
+    pub fn world(mut self, w: World) -> Builder {
+        self.world = Some(w);
+        self
+    }
+    /// MotCtl_in from the start.
+    pub fn motors(mut self, m: MotCtl) -> Builder {
+        self.motors = m;
+        self
+    }
+    /// Write a VCD of the whole design.
+    pub fn vcd(mut self, path: impl AsRef<Path>) -> Builder {
+        self.vcd = Some(path.as_ref().to_path_buf());
+        self
+    }
+    /// The cycle budget of [`BotSim::wait_update`] (default: two sample periods of the
+    /// firmware's timing plus start-up).
+    pub fn update_budget(mut self, cycles: u64) -> Builder {
+        self.budget = Some(cycles);
+        self
+    }
+
+    pub fn build(self) -> Result<BotSim, Error> {
+        let image = match self.program {
+            Some(img) => img,
+            None => self.firmware.assemble().map_err(Error::Program)?,
+        };
+        if let Some(last) = image.words.iter().rposition(|&w| w != 0) {
+            if last >= 1024 {
+                return Err(Error::ProgramTooLarge(last));
+            }
+        }
+        // SAFETY: bot_sim_new returns a new, live model.
+        let sim = NonNull::new(unsafe { ffi::bot_sim_new() }).expect("model allocation");
+        let mut bot = BotSim {
+            sim,
+            budget: self.budget.unwrap_or(default_budget(self.firmware.timing)),
+            next_sample: 0,
+            _thread_bound: PhantomData,
+        };
+        bot.load_program(&image)?;
+        bot.load_world(&self.world.unwrap_or_else(World::builtin));
+        bot.set_motors(self.motors);
+        if let Some(p) = self.vcd {
+            bot.open_vcd(&p)?;
+        }
+        Ok(bot)
+    }
+}
+
+/// Two sample periods plus start-up, for the built-in firmware's timing.
+fn default_budget(t: Timing) -> u64 {
+    match t {
+        Timing::Hw => 2 * 5_314_000 + 10_000,
+        Timing::Fast => 2 * 3_000 + 10_000,
+    }
+}
+
+/// One simulated BotSim 2.0. Not `Send`: a Verilated model stays on the thread that made it.
+pub struct BotSim {
+    sim: NonNull<ffi::BotSim>,
+    budget: u64,
+    next_sample: u64,
+    _thread_bound: PhantomData<*const ()>,
+}
+
+impl BotSim {
+    /// A builder with the built-in firmware (threshold 15, `hw` timing) and world.
+    pub fn builder() -> Builder {
+        Builder {
+            firmware: Firmware::default(),
+            program: None,
+            world: None,
+            motors: MotCtl::STOP,
+            vcd: None,
+            budget: None,
+        }
+    }
+
+    /// Replace the program ROM (takes effect as the CPU fetches; reset to restart it).
+    pub fn load_program(&mut self, image: &Image) -> Result<(), Error> {
+        if let Some(last) = image.words.iter().rposition(|&w| w != 0) {
+            if last >= 1024 {
+                return Err(Error::ProgramTooLarge(last));
+            }
+        }
+        // SAFETY: 1024 readable words.
+        unsafe { ffi::bot_sim_load_program(self.sim.as_ptr(), image.words.as_ptr(), 1024) };
+        Ok(())
+    }
+
+    /// Replace the world.
+    pub fn load_world(&mut self, w: &World) {
+        let cells = w.to_bytes();
+        // SAFETY: 16384 readable bytes.
+        unsafe { ffi::bot_sim_load_world(self.sim.as_ptr(), cells.as_ptr(), cells.len()) };
+    }
+
+    /// Write a VCD from now on.
+    pub fn open_vcd(&mut self, path: &Path) -> Result<(), Error> {
+        let c = std::ffi::CString::new(path.to_string_lossy().as_bytes())
+            .map_err(|_| Error::Io(format!("{}: error: path contains a NUL byte", path.display())))?;
+        // SAFETY: a valid C string for the call.
+        match unsafe { ffi::bot_sim_open_vcd(self.sim.as_ptr(), c.as_ptr()) } {
+            0 => Ok(()),
+            _ => Err(Error::Io(format!("{}: error: cannot write VCD file", path.display()))),
+        }
+    }
+
+    pub fn close_vcd(&mut self) {
+        // SAFETY: live model.
+        unsafe { ffi::bot_sim_close_vcd(self.sim.as_ptr()) }
+    }
+
+    /// Set MotCtl_in (from the next cycle on).
+    pub fn set_motors(&mut self, m: MotCtl) {
+        // SAFETY: live model.
+        unsafe { ffi::bot_sim_set_motctl(self.sim.as_ptr(), m.0) }
+    }
+
+    /// Hold reset for `cycles` cycles (at least 1), then release it. The next update is
+    /// sample 0 again.
+    pub fn reset(&mut self, cycles: u64) -> Result<(), Error> {
+        // SAFETY: live model.
+        unsafe { ffi::bot_sim_set_reset(self.sim.as_ptr(), 1) };
+        let r = self.run(cycles.max(1));
+        // SAFETY: live model.
+        unsafe { ffi::bot_sim_set_reset(self.sim.as_ptr(), 0) };
+        self.next_sample = 0;
+        r
+    }
+
+    /// Drive the video port (vid_row, vid_col); `vid_pixel_out` follows two clocks later.
+    pub fn set_video(&mut self, row: u16, col: u16) {
+        // SAFETY: live model.
+        unsafe { ffi::bot_sim_set_video(self.sim.as_ptr(), row, col) }
+    }
+
+    /// Read one map cell through the video port: drive the address, run two cycles, return
+    /// `vid_pixel_out` in the third.
+    pub fn read_video(&mut self, row: u16, col: u16) -> Result<Cell, Error> {
+        self.set_video(row, col);
+        self.run(2)?;
+        Ok(Cell::from_bits(self.tick()?.vid_pixel_out))
+    }
+
+    /// One clock cycle; returns the outputs during it.
+    pub fn tick(&mut self) -> Result<Outputs, Error> {
+        let mut o = ffi::BotOutputs::default();
+        // SAFETY: live model, writable output.
+        if unsafe { ffi::bot_sim_tick(self.sim.as_ptr(), &mut o) } != 0 {
+            return Err(Error::Finished);
+        }
+        Ok(Outputs { regs: regs(&o.regs), upd_sysregs: o.upd_sysregs != 0, vid_pixel_out: o.vid_pixel_out })
+    }
+
+    /// `cycles` clock cycles in one call.
+    pub fn run(&mut self, cycles: u64) -> Result<(), Error> {
+        // SAFETY: live model.
+        let n = unsafe { ffi::bot_sim_run(self.sim.as_ptr(), cycles) };
+        if n < cycles {
+            return Err(Error::Finished);
+        }
+        Ok(())
+    }
+
+    /// The next cycle to simulate (cycle 0 is the first after configuration).
+    pub fn cycle(&self) -> u64 {
+        // SAFETY: live model.
+        unsafe { ffi::bot_sim_cycle(self.sim.as_ptr()) }
+    }
+
+    /// Run to the next upd_sysregs pulse, within the builder's cycle budget.
+    pub fn wait_update(&mut self) -> Result<Snapshot, Error> {
+        self.wait_update_within(self.budget)
+    }
+
+    /// Run to the next upd_sysregs pulse, within `budget` cycles. The simulation stops at
+    /// the start of the pulse's first cycle; the snapshot holds the registers then.
+    pub fn wait_update_within(&mut self, budget: u64) -> Result<Snapshot, Error> {
+        let mut cycle = 0;
+        let mut r = ffi::BotRegs::default();
+        // SAFETY: live model, writable outputs.
+        match unsafe { ffi::bot_sim_run_until_update(self.sim.as_ptr(), budget, &mut cycle, &mut r) } {
+            1 => {
+                let s = Snapshot { sample: self.next_sample, cycle, regs: regs(&r) };
+                self.next_sample += 1;
+                Ok(s)
+            }
+            0 => Err(Error::Timeout { waited_for: "upd_sysregs pulse", budget, cycle: self.cycle() }),
+            _ => Err(Error::Finished),
+        }
+    }
+
+    /// The next `n` snapshots with the current motor command.
+    pub fn run_samples(&mut self, n: usize) -> Result<Vec<Snapshot>, Error> {
+        (0..n).map(|_| self.wait_update()).collect()
+    }
+}
+
+fn regs(r: &ffi::BotRegs) -> Registers {
+    Registers {
+        loc_x: r.loc_x,
+        loc_y: r.loc_y,
+        sensors: r.sensors,
+        bot_info: r.bot_info,
+        lm_dist: r.lm_dist,
+        rm_dist: r.rm_dist,
+    }
+}
+
+impl Drop for BotSim {
+    fn drop(&mut self) {
+        // SAFETY: created by bot_sim_new, freed once, on its thread (the type is !Send).
+        unsafe { ffi::bot_sim_free(self.sim.as_ptr()) }
+    }
+}

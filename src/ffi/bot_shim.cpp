@@ -1,0 +1,137 @@
+// bot_shim.cpp: the BotSim `bot` model behind shim.h. The clock loop runs here, in C++, so
+// a whole sample costs one call from Rust.
+#include "shim.h"
+#include "sim.h"
+
+#include "Vbot.h"
+#include "Vbot___024root.h"
+
+struct BotSim {
+    Sim<Vbot> sim;
+    bool settled = false;      // the current cycle's inputs have been evaluated
+    bool prev_upd = false;     // upd_sysregs in the previous cycle
+    uint64_t last_dump = ~0ull;
+
+    // Evaluate the current cycle's inputs with the clock low (once dumped per cycle).
+    void settle() {
+        Vbot* t = sim.top;
+        t->clk = 0;
+        t->eval();
+        if (sim.vcd && last_dump != sim.ctx->time()) {
+            sim.vcd->dump(sim.ctx->time());
+            last_dump = sim.ctx->time();
+        }
+        settled = true;
+    }
+
+    void rise() {
+        prev_upd = sim.top->upd_sysregs;
+        sim.rise();
+        last_dump = sim.ctx->time();
+        settled = false;
+    }
+
+    void regs(BotRegs* r) const {
+        const Vbot* t = sim.top;
+        r->loc_x = t->LocX_reg;
+        r->loc_y = t->LocY_reg;
+        r->sensors = t->Sensors_reg;
+        r->bot_info = t->BotInfo_reg;
+        r->lm_dist = t->LMDist_reg;
+        r->rm_dist = t->RMDist_reg;
+    }
+};
+
+extern "C" {
+
+BotSim* bot_sim_new(void) {
+    BotSim* b = new BotSim;
+    b->sim.top->reset = 0;
+    b->sim.top->MotCtl_in = 0;
+    b->sim.top->vid_row = 0;
+    b->sim.top->vid_col = 0;
+    return b;
+}
+
+void bot_sim_free(BotSim* b) { delete b; }
+
+int bot_sim_open_vcd(BotSim* b, const char* path) {
+    if (!b->sim.open_vcd(path, 99)) return -1;
+    b->last_dump = b->sim.ctx->time();
+    return 0;
+}
+
+void bot_sim_close_vcd(BotSim* b) {
+    b->sim.enter();
+    b->sim.close_vcd();
+}
+
+void bot_sim_load_program(BotSim* b, const uint32_t* words, size_t count) {
+    b->sim.enter();
+    auto& rom = b->sim.top->rootp->bot__DOT__BOTSIMPGM__DOT__rom;
+    for (size_t i = 0; i < 1024; i++) rom[i] = i < count ? (words[i] & 0x3FFFF) : 0;
+}
+
+void bot_sim_load_world(BotSim* b, const uint8_t* cells, size_t count) {
+    b->sim.enter();
+    auto& map = b->sim.top->rootp->bot__DOT__MAP__DOT__world__DOT__cells;
+    for (size_t i = 0; i < 16384; i++) map[i] = i < count ? (cells[i] & 3) : 0;
+}
+
+void bot_sim_set_motctl(BotSim* b, uint8_t v) {
+    b->sim.top->MotCtl_in = v;
+    b->settled = false;
+}
+
+void bot_sim_set_reset(BotSim* b, uint8_t v) {
+    b->sim.top->reset = v;
+    b->settled = false;
+}
+
+void bot_sim_set_video(BotSim* b, uint16_t row, uint16_t col) {
+    b->sim.top->vid_row = row & 0x3FF;
+    b->sim.top->vid_col = col & 0x3FF;
+    b->settled = false;
+}
+
+int bot_sim_tick(BotSim* b, BotOutputs* out) {
+    b->sim.enter();
+    if (b->sim.finished()) return -1;
+    b->settle();
+    if (out) {
+        b->regs(&out->regs);
+        out->upd_sysregs = b->sim.top->upd_sysregs;
+        out->vid_pixel_out = b->sim.top->vid_pixel_out;
+    }
+    b->rise();
+    return 0;
+}
+
+int bot_sim_run_until_update(BotSim* b, uint64_t budget, uint64_t* cycle, BotRegs* regs) {
+    b->sim.enter();
+    for (uint64_t n = 0; n < budget; n++) {
+        if (b->sim.finished()) return -1;
+        b->settle();
+        if (b->sim.top->upd_sysregs && !b->prev_upd) {
+            *cycle = b->sim.cycle;
+            b->regs(regs);
+            b->prev_upd = true;  // seen: the next call continues with this cycle's edge
+            return 1;
+        }
+        b->rise();
+    }
+    return 0;
+}
+
+uint64_t bot_sim_run(BotSim* b, uint64_t cycles) {
+    b->sim.enter();
+    uint64_t n = 0;
+    for (; n < cycles && !b->sim.finished(); n++) {
+        b->settle();
+        b->rise();
+    }
+    return n;
+}
+
+uint64_t bot_sim_cycle(const BotSim* b) { return b->sim.cycle; }
+}

@@ -1,0 +1,92 @@
+//! The BotSim firmware (`rtl/bot_pgm.psm`) and the assembly-time choices it takes.
+//!
+//! ```
+//! use botsim::firmware::{Compat, Firmware, Timing};
+//! let fw = Firmware { threshold: 4, timing: Timing::Fast, compat: Compat::BotSim20 };
+//! let image = fw.assemble().unwrap();
+//! assert_ne!(image, Firmware::default().assemble().unwrap());
+//! ```
+
+use std::path::Path;
+
+use kcpsm6::asm::{assemble_source, Options, RomSize};
+use kcpsm6::{Diagnostics, Image};
+
+/// The firmware source, built into the library.
+pub const SOURCE: &str = include_str!("../rtl/bot_pgm.psm");
+/// Its path in the repository, for messages.
+pub const SOURCE_PATH: &str = "rtl/bot_pgm.psm";
+
+/// The sample interval.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Timing {
+    /// About 50 ms at 100 MHz, as on the board: 5,313,006 clocks of busy-wait per sample.
+    #[default]
+    Hw,
+    /// The same behaviour with a 1,722-clock wait: about 2,000 clocks per sample.
+    Fast,
+}
+
+impl Timing {
+    /// The delay constants: (delay_50ms, delay_1ms, delay_40us, delay_1us).
+    pub fn delay(self) -> [u8; 4] {
+        match self {
+            Timing::Hw => [50, 25, 40, 24],
+            Timing::Fast => [1, 1, 16, 24],
+        }
+    }
+
+    pub fn parse(s: &str) -> Option<Timing> {
+        match s {
+            "hw" => Some(Timing::Hw),
+            "fast" => Some(Timing::Fast),
+            _ => None,
+        }
+    }
+}
+
+/// Which right-front cell the bot reads when facing SW (spec §7.1).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Compat {
+    /// The symmetric (X-2, Y+1) that the Theory of Operation's figures imply.
+    #[default]
+    Symmetric,
+    /// The 2014 BotSim 2.0 program's (X-1, Y).
+    BotSim20,
+}
+
+/// The firmware's assembly-time constants.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Firmware {
+    /// Samples per cell moved or per 45-degree step (2014 Part 1: 15, Part 2: 4).
+    pub threshold: u8,
+    pub timing: Timing,
+    pub compat: Compat,
+}
+
+impl Default for Firmware {
+    fn default() -> Firmware {
+        Firmware { threshold: 15, timing: Timing::Hw, compat: Compat::Symmetric }
+    }
+}
+
+impl Firmware {
+    /// The `-D` constants for this choice.
+    pub fn defines(&self) -> Vec<(String, String)> {
+        let d = self.timing.delay();
+        vec![
+            ("threshold".into(), format!("{}'d", self.threshold)),
+            ("compat_botsim20".into(), if self.compat == Compat::BotSim20 { "01" } else { "00" }.into()),
+            ("delay_50ms".into(), format!("{}'d", d[0])),
+            ("delay_1ms".into(), format!("{}'d", d[1])),
+            ("delay_40us".into(), format!("{}'d", d[2])),
+            ("delay_1us".into(), format!("{}'d", d[3])),
+        ]
+    }
+
+    /// Assemble the built-in firmware with these constants (1K ROM).
+    pub fn assemble(&self) -> Result<Image, Diagnostics> {
+        let opts = Options { defines: self.defines(), rom_size: Some(RomSize::K1), ..Options::default() };
+        assemble_source(Path::new(SOURCE_PATH), SOURCE, &opts).map(|p| p.image)
+    }
+}

@@ -1,0 +1,103 @@
+//! Scoreboard: every snapshot of the RTL (bot.v + firmware under Verilator) equals the golden
+//! model's, on random worlds and random motor sequences, in both compatibility modes and with
+//! several thresholds.
+
+use botsim::firmware::{Compat, Timing};
+use botsim::model::Model;
+use botsim::regs::MotCtl;
+use botsim::world::{Cell, World};
+use botsim::BotSim;
+use proptest::prelude::*;
+
+/// A random world: scattered cells of every value, with a bias to keep it passable.
+fn world() -> impl Strategy<Value = World> {
+    (any::<u64>(), 0u32..40, 0u32..30, 0u32..8, any::<bool>()).prop_map(|(seed, walls, lines, reserved, border)| {
+        let mut w = World::empty();
+        let mut x = seed | 1;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        // Dense features near the start so the bot meets them.
+        for (count, cell) in [(walls, Cell::Obstruction), (lines, Cell::Line), (reserved, Cell::Reserved)] {
+            for _ in 0..count * 8 {
+                let r = next();
+                let (dx, dy) = ((r % 17) as u8, (r >> 8) % 17);
+                w.set(56 + dx, 56 + dy as u8, cell);
+            }
+        }
+        if border {
+            w.fill((0, 0), (127, 0), Cell::Obstruction);
+        }
+        w.set(64, 64, if seed & 1 == 0 { Cell::Line } else { Cell::Floor });
+        w
+    })
+}
+
+/// Motor segments: (MotCtl, samples), any byte value (speed bits included).
+fn motors() -> impl Strategy<Value = Vec<(u8, u8)>> {
+    prop::collection::vec((any::<u8>(), 1u8..12), 1..10)
+}
+
+fn check(world: World, threshold: u8, compat: Compat, segments: &[(u8, u8)]) -> Result<(), TestCaseError> {
+    let mut bot = BotSim::builder()
+        .timing(Timing::Fast)
+        .threshold(threshold)
+        .compat(compat)
+        .world(world.clone())
+        .build()
+        .map_err(|e| TestCaseError::fail(e.to_string()))?;
+    let mut model = Model::new(world, threshold, compat);
+    let s0 = bot.wait_update().map_err(|e| TestCaseError::fail(e.to_string()))?;
+    prop_assert_eq!(s0.regs, model.initial(), "sample 0");
+    let mut k = 0;
+    for &(m, n) in segments {
+        bot.set_motors(MotCtl(m));
+        for _ in 0..n {
+            k += 1;
+            let s = bot.wait_update().map_err(|e| TestCaseError::fail(e.to_string()))?;
+            let want = model.step(MotCtl(m));
+            prop_assert_eq!(s.regs, want, "sample {} with MotCtl {:02X}", k, m);
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, failure_persistence: None, ..ProptestConfig::default() })]
+
+    #[test]
+    fn rtl_matches_the_model_on_random_worlds_and_motors(
+        w in world(),
+        segs in motors(),
+        threshold in prop::sample::select(vec![1u8, 2, 3, 4, 15]),
+        compat in prop::sample::select(vec![Compat::Symmetric, Compat::BotSim20]),
+    ) {
+        check(w, threshold, compat, &segs)?;
+    }
+}
+
+/// A long drive with small thresholds through all headings on the built-in world.
+#[test]
+fn long_drive_on_the_builtin_world() {
+    let script: Vec<(u8, u8)> = [
+        (0x33, 30),
+        (0x30, 9),
+        (0x33, 20),
+        (0x23, 9),
+        (0x22, 25),
+        (0x03, 5),
+        (0x33, 40),
+        (0x32, 13),
+        (0x33, 30),
+        (0x00, 3),
+        (0x02, 7),
+        (0x20, 7),
+        (0x44, 4),
+        (0xFF, 9),
+    ]
+    .to_vec();
+    check(World::builtin(), 2, Compat::Symmetric, &script).unwrap();
+}

@@ -18,6 +18,7 @@ pub mod model;
 mod picture;
 pub mod regs;
 mod rtl;
+pub mod script;
 pub mod world;
 
 pub use crate::botsim::{BotSim, Error};

@@ -2,6 +2,7 @@
 
 mod asm;
 mod disasm;
+mod run;
 
 use clap::{Parser, Subcommand};
 
@@ -19,6 +20,7 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
+    Run(run::Args),
     Asm(asm::Args),
     Disasm(disasm::Args),
 }
@@ -34,6 +36,7 @@ pub fn main() -> i32 {
         }
     };
     let result = match cli.command {
+        Command::Run(a) => run::run(a),
         Command::Asm(a) => asm::run(a),
         Command::Disasm(a) => disasm::run(a),
     };

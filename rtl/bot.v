@@ -8,13 +8,20 @@
 // The firmware samples MotCtl_in once per ~50 ms main-loop iteration, moves the bot in its
 // world and publishes LocX/LocY/Sensors/BotInfo (and the deprecated distance counters) with
 // a 2-clock upd_sysregs pulse. Reset is synchronous and active high.
+//
+// Some later copies of the course files spell the Y output `Loc_Y_reg`; define
+// BOTSIM_LOC_Y_REG to get that spelling instead of the 2014 release's `LocY_reg`.
 `timescale 1ns / 1ps
 module bot #(
     parameter WORLD_FILE = ""
 ) (
     input  wire [7:0] MotCtl_in,
     output wire [7:0] LocX_reg,
+`ifdef BOTSIM_LOC_Y_REG
+    output wire [7:0] Loc_Y_reg,
+`else
     output wire [7:0] LocY_reg,
+`endif
     output wire [7:0] Sensors_reg,
     output wire [7:0] BotInfo_reg,
     output wire [7:0] LMDist_reg,
@@ -33,6 +40,12 @@ module bot #(
     wire        write_strobe, k_write_strobe, read_strobe, interrupt_ack;
     wire [ 7:0] wrld_col_addr, wrld_row_addr;
     wire [ 1:0] wrld_loc_info;
+    wire [ 7:0] loc_y;
+`ifdef BOTSIM_LOC_Y_REG
+    assign Loc_Y_reg = loc_y;
+`else
+    assign LocY_reg = loc_y;
+`endif
 
     kcpsm6 #(
         .interrupt_vector(12'h3FF),
@@ -71,7 +84,7 @@ module bot #(
         .DataOut(in_port),
         .MotCtl(MotCtl_in),
         .LocX(LocX_reg),
-        .LocY(LocY_reg),
+        .LocY(loc_y),
         .BotInfo(BotInfo_reg),
         .Sensors(Sensors_reg),
         .LMDist(LMDist_reg),

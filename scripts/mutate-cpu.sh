@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Mutation check of the CPU testbench: apply one deliberate bug at a time to rtl/kcpsm6.v,
 # run the CPU tests, and report which test caught it. Restores the file afterwards.
-# Usage: scripts/mutate-cpu.sh            (all mutations; several minutes)
+# Usage: scripts/mutate-cpu.sh [NAME-PATTERN]   (all mutations by default; several minutes)
 set -uo pipefail
 cd "$(dirname "$0")/.."
 src=rtl/kcpsm6.v
@@ -25,7 +25,7 @@ mutations=(
   "RETURNI does not restore flags|s/else if (flag_restore_q)/else if (1'b0)/"
   "RETURN resumes at the CALL|s/do_return ? stack_top\[11:0\] + 12'd1 :/do_return ? stack_top[11:0] :/"
   "sleep ignored in D|s/default: t_state <= sleep_q ? T_IDLE : T_FETCH;/default: t_state <= (t_state == T_IDLE \&\& sleep_q) ? T_IDLE : T_FETCH;/"
-  "scratch pad does not alias|s/scratch_pad\[operand\[SPM_BITS-1:0\]\] <= sx;/scratch_pad[operand[5:0] ^ 6'd1] <= sx;/"
+  "out-of-range scratch-pad stores dropped, not aliased|s/            scratch_pad\[operand\[SPM_BITS-1:0\]\] <= sx;/            if ({24'd0, operand} < scratch_pad_memory_size) scratch_pad[operand[SPM_BITS-1:0]] <= sx;/"
   "interrupt_ack one cycle late|s/interrupt_ack_q <= in_decode \& take_interrupt;/interrupt_ack_q <= in_fetch \& (pc == interrupt_vector);/"
   "strobe ignores a pending interrupt (in D)|s/read_strobe_q       <= in_decode \& ~take_interrupt \& op_input;/read_strobe_q       <= in_decode \& op_input;/"
 )
@@ -33,6 +33,7 @@ mutations=(
 for m in "${mutations[@]}"; do
   name=${m%%|*}
   expr=${m#*|}
+  [[ -n "${1:-}" && "$name" != *$1* ]] && continue
   cp /tmp/kcpsm6.v.orig "$src"
   sed -i "$expr" "$src"
   if cmp -s "$src" /tmp/kcpsm6.v.orig; then

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Mutation check of the BotSim testbench: apply one deliberate bug at a time to
 # rtl/bot_pgm.psm, run the system tests, and report which test caught it. Restores the file.
-# Usage: scripts/mutate-firmware.sh   (several minutes)
+# Usage: scripts/mutate-firmware.sh [NAME-PATTERN]   (all mutations by default; several minutes)
 set -uo pipefail
 cd "$(dirname "$0")/.."
 src=rtl/bot_pgm.psm
@@ -10,7 +10,7 @@ trap 'cp /tmp/bot_pgm.psm.orig "$src"' EXIT
 
 # name | sed expression (applied to rtl/bot_pgm.psm)
 mutations=(
-  "rm_dist not cleared on a threshold event|/^        LOAD rm_dist, 00              ; cleared on every event/d"
+  "rm_dist not cleared on a threshold event|/^        LOAD rm_dist, 00$/d"
   "line sensors active high|s/^        LOAD sensors, 00$/        LOAD sensors, 01/"
   "front obstruction sets only ProxL|s/OR sensors, PROX_BOTH/OR sensors, PROX_L/"
   "SW quirk always on|s/LOAD s7, compat_botsim20/LOAD s7, 01/"
@@ -28,6 +28,7 @@ mutations=(
 for m in "${mutations[@]}"; do
   name=${m%%|*}
   expr=${m#*|}
+  [[ -n "${1:-}" && "$name" != *$1* ]] && continue
   cp /tmp/bot_pgm.psm.orig "$src"
   sed -i "$expr" "$src"
   if cmp -s "$src" /tmp/bot_pgm.psm.orig; then

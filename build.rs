@@ -227,6 +227,9 @@ fn rerun_for_sources(mdir: &Path, prefix: &str) {
 
 fn bindings(root: &Path, out: &Path) {
     let header = root.join("src/ffi/shim.h");
+    // bindgen panics when libclang cannot be loaded: keep the message to our one line.
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
     let result = std::panic::catch_unwind(|| {
         bindgen::Builder::default()
             .header(header.to_string_lossy())
@@ -237,6 +240,7 @@ fn bindings(root: &Path, out: &Path) {
             .derive_default(true)
             .generate()
     });
+    std::panic::set_hook(hook);
     match result {
         Ok(Ok(b)) => b.write_to_file(out.join("bindings.rs")).unwrap_or_else(|e| fail(&format!("bindings: {e}"))),
         Ok(Err(e)) => fail(&format!("bindgen failed on src/ffi/shim.h: {e}")),

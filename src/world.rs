@@ -120,7 +120,7 @@ impl World {
     }
 
     /// Fill the rectangle of columns `x0..=x1`, rows `y0..=y1`.
-    pub fn fill(&mut self, (x0, y0): (u8, u8), (x1, y1): (u8, u8), c: Cell) {
+    pub fn fill(&mut self, (x0, y0): Xy, (x1, y1): Xy, c: Cell) {
         for y in y0.min(y1)..=y0.max(y1) {
             for x in x0.min(x1)..=x0.max(x1) {
                 self.set(x, y, c);
@@ -465,7 +465,7 @@ impl World {
 /// The built-in course: waypoints joined by horizontal, vertical or diagonal lines.
 /// E, right to S, left to E, right to SE, right to S, right to W, right to NW, left to W,
 /// right to N, left to NW, right to N, and the end of the line below a wall.
-pub const COURSE: &[(u8, u8)] = &[
+pub const COURSE: &[Xy] = &[
     (64, 64),
     (84, 64),
     (84, 76),
@@ -480,8 +480,11 @@ pub const COURSE: &[(u8, u8)] = &[
     (36, 48),
 ];
 
+/// A cell as (column, row).
+pub type Xy = (u8, u8);
+
 /// Wall blocks (corner, corner): beside the course, and across its end.
-pub const BLOCKS: &[((u8, u8), (u8, u8))] = &[
+pub const BLOCKS: &[(Xy, Xy)] = &[
     ((88, 58), (91, 61)),   // north-east of the first straight
     ((70, 68), (74, 70)),   // south of the first straight
     ((108, 88), (110, 95)), // east of the long southward run

@@ -116,7 +116,7 @@ fn bad_world_files_give_one_located_error() {
     assert_eq!(error("w.txt", long_row.as_bytes()), "w.txt:8:5: error: row 000 has 129 cells; a row has 128");
     let coe = World::builtin().to_coe();
     assert_eq!(error("w.coe", coe.replacen("2,", "4,", 1).as_bytes()), "w.coe:4:1: error: '4' is not a cell value 0-3");
-    assert_eq!(error("w.coe", coe[..coe.len() - 2].as_bytes()), "w.coe: error: has 16383 values; a world has 16384");
+    assert_eq!(error("w.coe", &coe.as_bytes()[..coe.len() - 2]), "w.coe: error: has 16383 values; a world has 16384");
     assert_eq!(error("w.coe", b"hello"), "w.coe:1:1: error: missing MEMORY_INITIALIZATION_RADIX");
     assert_eq!(error("w.mem", b"0\n1\n7\n"), "w.mem:3:1: error: '7' is not a cell value 0-3");
     assert_eq!(error("w.mem", b""), "w.mem: error: no cell values found");

@@ -275,6 +275,29 @@ impl BotSim {
         }
     }
 
+    /// Closed loop: at each upd_sysregs pulse give the snapshot to `driver` and apply its
+    /// MotCtl for the next iteration, until it is finished or `max_samples` snapshots have
+    /// been taken. `observe` sees every snapshot. Returns the number of snapshots.
+    pub fn drive(
+        &mut self,
+        driver: &mut dyn crate::driver::Driver,
+        max_samples: u64,
+        mut observe: impl FnMut(&Snapshot),
+    ) -> Result<u64, Error> {
+        let mut n = 0;
+        while n < max_samples {
+            let s = self.wait_update()?;
+            n += 1;
+            observe(&s);
+            let m = driver.next(&s);
+            if driver.finished() {
+                break;
+            }
+            self.set_motors(m);
+        }
+        Ok(n)
+    }
+
     /// The next `n` snapshots with the current motor command.
     pub fn run_samples(&mut self, n: usize) -> Result<Vec<Snapshot>, Error> {
         (0..n).map(|_| self.wait_update()).collect()

@@ -12,6 +12,7 @@
 
 pub mod botsim;
 pub mod cpu;
+pub mod driver;
 pub mod files;
 pub mod firmware;
 pub mod model;

@@ -253,6 +253,11 @@ impl BotSim {
         unsafe { ffi::bot_sim_cycle(self.sim.as_ptr()) }
     }
 
+    /// The cycle budget of [`BotSim::wait_update`].
+    pub fn update_budget(&self) -> u64 {
+        self.budget
+    }
+
     /// Run to the next upd_sysregs pulse, within the builder's cycle budget.
     pub fn wait_update(&mut self) -> Result<Snapshot, Error> {
         self.wait_update_within(self.budget)

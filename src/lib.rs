@@ -18,6 +18,7 @@ pub mod firmware;
 pub mod model;
 mod picture;
 pub mod regs;
+pub mod render;
 mod rtl;
 pub mod script;
 pub mod world;

@@ -134,3 +134,152 @@ fn bad_inputs_are_one_line_with_a_location() {
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).starts_with("no/dir/t.csv: error: cannot write file"), "{}", stderr(&o));
 }
+
+#[test]
+fn line_follow_driver_with_json_summary_png_and_json_lines() {
+    let d = tempfile::tempdir().unwrap();
+    let o = botsim(
+        &[
+            "run",
+            "--timing",
+            "fast",
+            "--driver",
+            "line-follow",
+            "--json",
+            "--png",
+            "p.png",
+            "--trace-json",
+            "t.jsonl",
+            "--trace-csv",
+            "t.csv",
+        ],
+        d.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(summary["driver"], "reached the end of the line");
+    let &(ex, ey) = botsim::world::COURSE.last().unwrap();
+    assert_eq!(
+        (summary["final"]["loc_x"].as_u64(), summary["final"]["loc_y"].as_u64()),
+        (Some(ex as u64), Some(ey as u64))
+    );
+    assert_eq!(summary["final"]["orientation"], "N");
+    assert!(summary["cycles"].as_u64().unwrap() > 1_000_000);
+    assert_eq!(summary["files"].as_array().unwrap().len(), 3);
+    assert!(stderr(&o).is_empty(), "no progress bar when stderr is not a terminal: {}", stderr(&o));
+
+    // JSON lines: one per pulse, decoded fields present, same rows as the CSV.
+    let jsonl = std::fs::read_to_string(d.path().join("t.jsonl")).unwrap();
+    let csv = std::fs::read_to_string(d.path().join("t.csv")).unwrap();
+    let rows: Vec<serde_json::Value> = jsonl.lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    assert_eq!(rows.len(), csv.lines().count() - 1);
+    assert_eq!(rows[0]["orientation"], "E");
+    assert_eq!(rows[0]["on_line"], true);
+    assert_eq!(rows[1]["movement"], "forward");
+    let last = rows.last().unwrap();
+    assert_eq!((last["prox_left"].as_bool(), last["prox_right"].as_bool()), (Some(true), Some(true)));
+
+    // The PNG: 512 x 512, and the centre of every visited cell in the path colour.
+    let png = std::fs::read(d.path().join("p.png")).unwrap();
+    let mut dec = png::Decoder::new(std::io::Cursor::new(png)).read_info().unwrap();
+    let mut buf = vec![0; dec.output_buffer_size().unwrap()];
+    let info = dec.next_frame(&mut buf).unwrap();
+    assert_eq!((info.width, info.height), (512, 512));
+    let px = |x: u32, y: u32| {
+        let i = (y * info.width + x) as usize * 3;
+        [buf[i], buf[i + 1], buf[i + 2]]
+    };
+    let style = botsim::render::PathStyle::default();
+    let mut checked = 0;
+    for r in rows.iter().take(rows.len() - 1) {
+        let (x, y) = (r["loc_x"].as_u64().unwrap() as u32, r["loc_y"].as_u64().unwrap() as u32);
+        if (x, y) == (64, 64) {
+            continue; // the start cell is outlined
+        }
+        assert_eq!(px(4 * x + 2, 4 * y + 2), style.path, "path at ({x}, {y})");
+        checked += 1;
+    }
+    assert!(checked > 1000);
+    assert_eq!(px(4 * ex as u32 + 1, 4 * ey as u32 + 1), style.end, "the end cell");
+    assert_eq!(px(4 * 64 - 1, 4 * 64 + 1), style.start, "the start outline");
+    assert_eq!(px(0, 0), botsim::Cell::Obstruction.colour(), "the border wall");
+}
+
+#[test]
+fn vcd_windows_in_samples_and_cycles() {
+    let d = tempfile::tempdir().unwrap();
+    // Samples 3..=5: the file covers exactly those three pulses.
+    let o = botsim(
+        &[
+            "run",
+            "--timing",
+            "fast",
+            "--samples",
+            "8",
+            "--vcd",
+            "s.vcd",
+            "--trace-from",
+            "3",
+            "--trace-to",
+            "5",
+            "--trace-csv",
+            "t.csv",
+        ],
+        d.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(d.path().join("t.csv")).unwrap();
+    let cycles: Vec<u64> = csv.lines().skip(1).map(|l| l.split(',').nth(1).unwrap().parse().unwrap()).collect();
+    let (rises, first, last) = scan_vcd(&d.path().join("s.vcd"));
+    assert_eq!(rises, 3);
+    // Time is in ps, 10,000 ps per cycle; the window starts right after sample 2's pulse.
+    assert!(first > cycles[2] * 10_000 && first < cycles[3] * 10_000, "{first}");
+    assert!(last >= cycles[5] * 10_000 && last < cycles[6] * 10_000, "{last}");
+    // Cycles 2000..=3000: the file's time stamps stay inside.
+    let o = botsim(
+        &[
+            "run",
+            "--timing",
+            "fast",
+            "--samples",
+            "3",
+            "--vcd",
+            "c.vcd",
+            "--trace-from",
+            "2000c",
+            "--trace-to",
+            "3000c",
+        ],
+        d.path(),
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (_, first, last) = scan_vcd(&d.path().join("c.vcd"));
+    assert_eq!(first, 2000 * 10_000);
+    assert!(last <= 3000 * 10_000 && last > 2990 * 10_000, "{last}");
+    let o = botsim(&["run", "--trace-from", "3"], d.path());
+    assert_eq!(o.status.code(), Some(1), "a window needs --vcd");
+}
+
+/// (upd_sysregs rises, first time stamp, last time stamp) of a VCD file.
+fn scan_vcd(path: &Path) -> (u32, u64, u64) {
+    let f = std::io::BufReader::new(std::fs::File::open(path).unwrap());
+    let mut p = vcd::Parser::new(f);
+    let h = p.parse_header().unwrap();
+    let upd = h.find_var(&["TOP", "upd_sysregs"]).unwrap().code;
+    let (mut rises, mut last_v, mut first, mut last) = (0, false, None, 0);
+    for c in p {
+        match c.unwrap() {
+            vcd::Command::Timestamp(t) => {
+                first.get_or_insert(t);
+                last = t;
+            }
+            vcd::Command::ChangeScalar(code, v) if code == upd => {
+                let now = v == vcd::Value::V1;
+                rises += (now && !last_v) as u32;
+                last_v = now;
+            }
+            _ => {}
+        }
+    }
+    (rises, first.unwrap(), last)
+}

@@ -1,26 +1,34 @@
-//! `botsim run`: a closed run of the BotSim RTL with a motor script.
+//! `botsim run`: run the BotSim RTL with a motor script or a closed-loop driver.
 
 use std::fmt::Write as _;
+use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use botsim::driver::{Driver, LineFollower, ScriptDriver};
 use botsim::files::write_atomic;
 use botsim::firmware::{Compat, Firmware, Timing};
 use botsim::kcpsm6::asm::Options;
 use botsim::kcpsm6::image::{Format, Image};
+use botsim::render::{path_picture, PathStyle};
 use botsim::script::MotorScript;
 use botsim::world::World;
-use botsim::{BotSim, Snapshot};
+use botsim::{BotSim, Error, MotCtl, Snapshot};
 
-/// Run the BotSim 2.0 RTL (Verilator) on a world with a motor script.
+/// Run the BotSim 2.0 RTL (Verilator) on a world, driven by a motor script or a driver.
 ///
-/// MotCtl_in follows the motor script: the first segment's value from reset, each later
-/// value applied right after an upd_sysregs pulse, so main-loop iteration k sees the segment
-/// that covers k. Sample 0 is the register dump after reset.
+/// With --motors, MotCtl_in follows the script: the first segment's value from reset, each
+/// later value applied right after an upd_sysregs pulse, so main-loop iteration k sees the
+/// segment that covers k. With --driver, the driver reads each snapshot and sets MotCtl for the
+/// next iteration. Sample 0 is the register dump after reset.
 #[derive(clap::Args)]
-#[command(
-    after_help = "Examples:\n  botsim run --timing fast --motors drive.txt --trace-csv trace.csv\n  botsim run --map world_map_lr.txt --program bot_pgm.hex --samples 50 --vcd bot.vcd\n\nMotor script lines: '<MOTCTL> <COUNT>', e.g. '33 15' or 'forward 15'; '#' starts a comment."
-)]
+#[command(after_help = "Examples:
+  botsim run --timing fast --driver line-follow --png path.png --trace-csv trace.csv
+  botsim run --timing fast --motors drive.txt --vcd bot.vcd --trace-from 10 --trace-to 12
+  botsim run --map world_map_lr.txt --program bot_pgm.hex --samples 50 --json
+
+Motor script lines: '<MOTCTL> <COUNT>', e.g. '33 15' or 'forward 15'; '#' starts a comment.
+Trace windows: a number of samples (e.g. 10), or of cycles with a 'c' suffix (e.g. 2500000c).")]
 pub struct Args {
     /// Program: .psm (assembled with the constants below), .hex, .mem or a ROM .v
     /// [default: the built-in BotSim firmware]
@@ -29,10 +37,14 @@ pub struct Args {
     /// World: .txt, .coe, .mem or .png [default: the built-in course]
     #[arg(long, value_name = "FILE")]
     map: Option<PathBuf>,
-    /// Motor script [default: stopped]
-    #[arg(long, value_name = "FILE")]
+    /// Motor script
+    #[arg(long, value_name = "FILE", conflicts_with = "driver")]
     motors: Option<PathBuf>,
-    /// Main-loop iterations to run [default: the script's total, else 20]
+    /// A closed-loop driver instead of a script: line-follow (the course's black-line follower)
+    #[arg(long, value_name = "NAME", value_parser = ["line-follow"])]
+    driver: Option<String>,
+    /// Main-loop iterations to run [default: the script's total; with a driver, until it is
+    /// done (at most 50000); else 20]
     #[arg(long, value_name = "N")]
     samples: Option<u64>,
     /// Samples per move or 45-degree turn [default: 15]
@@ -47,12 +59,42 @@ pub struct Args {
     /// Write one CSV row per upd_sysregs pulse
     #[arg(long, value_name = "FILE")]
     trace_csv: Option<PathBuf>,
-    /// Write a VCD waveform of the whole run
+    /// Write one JSON object per upd_sysregs pulse (with decoded fields)
+    #[arg(long, value_name = "FILE")]
+    trace_json: Option<PathBuf>,
+    /// Write a VCD waveform (of the whole run, or of the --trace-from/--trace-to window)
     #[arg(long, value_name = "FILE")]
     vcd: Option<PathBuf>,
-    /// Print only errors
+    /// Start the waveform at this sample (or cycle, with a 'c' suffix)
+    #[arg(long, value_name = "N|Nc", value_parser = parse_point, requires = "vcd")]
+    trace_from: Option<Point>,
+    /// End the waveform after this sample (or at this cycle, with a 'c' suffix)
+    #[arg(long, value_name = "N|Nc", value_parser = parse_point, requires = "vcd")]
+    trace_to: Option<Point>,
+    /// Draw the world and the bot's path into a PNG
+    #[arg(long, value_name = "FILE")]
+    png: Option<PathBuf>,
+    /// Print the summary as JSON
+    #[arg(long)]
+    json: bool,
+    /// Print only errors (no summary, no progress bar)
     #[arg(short, long)]
     quiet: bool,
+}
+
+/// A point of a trace window.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Point {
+    Sample(u64),
+    Cycle(u64),
+}
+
+fn parse_point(s: &str) -> Result<Point, String> {
+    let bad = || format!("expected a sample number or a cycle number with a 'c' suffix, found '{s}'");
+    match s.strip_suffix('c') {
+        Some(c) => c.parse().map(Point::Cycle).map_err(|_| bad()),
+        None => s.parse().map(Point::Sample).map_err(|_| bad()),
+    }
 }
 
 fn parse_timing(s: &str) -> Result<Timing, String> {
@@ -77,10 +119,30 @@ fn csv_row(s: &Snapshot) -> String {
     )
 }
 
-/// Check that `path` can be written before a long run (and leave nothing behind).
+fn json_row(s: &Snapshot, motctl: MotCtl) -> String {
+    let r = &s.regs;
+    let v = serde_json::json!({
+        "sample": s.sample, "cycle": s.cycle,
+        "loc_x": r.loc_x, "loc_y": r.loc_y, "bot_info": r.bot_info, "sensors": r.sensors,
+        "lm_dist": r.lm_dist, "rm_dist": r.rm_dist,
+        "orientation": s.orientation().name(), "heading_degrees": s.orientation().degrees(),
+        "movement": s.movement().name(),
+        "prox_left": s.sensors().prox_left(), "prox_right": s.sensors().prox_right(),
+        "on_line": s.sensors().on_line(),
+        "next_motctl": motctl.0,
+    });
+    format!("{v}\n")
+}
+
+/// Fail early on an output path that cannot be written (before a long run).
 fn check_writable(path: &Path) -> Result<(), String> {
     write_atomic(path, b"")
         .and_then(|()| std::fs::remove_file(path).map_err(|e| format!("{}: error: {e}", path.display())))
+}
+
+/// The temporary name a file is written under until it is complete.
+fn part_name(p: &Path) -> PathBuf {
+    p.with_file_name(format!(".{}.part", p.file_name().unwrap_or_default().to_string_lossy()))
 }
 
 pub fn run(args: Args) -> Result<(), String> {
@@ -106,68 +168,231 @@ pub fn run(args: Args) -> Result<(), String> {
         Some(p) => World::load(p).map_err(|d| d.to_string())?,
         None => World::builtin(),
     };
-    let script = match &args.motors {
-        Some(p) => MotorScript::load(p).map_err(|d| d.to_string())?,
-        None => MotorScript::default(),
+    let (mut driver, samples): (Box<dyn Driver>, u64) = match (&args.motors, &args.driver) {
+        (Some(p), _) => {
+            let script = MotorScript::load(p).map_err(|d| d.to_string())?;
+            let n = args.samples.unwrap_or(script.total());
+            (Box::new(ScriptDriver::new(script)), n)
+        }
+        (None, Some(_)) => (Box::new(LineFollower::new(firmware.threshold)), args.samples.unwrap_or(50_000)),
+        (None, None) => (Box::new(ScriptDriver::new(MotorScript::default())), args.samples.unwrap_or(20)),
     };
-    let samples = args.samples.unwrap_or(if args.motors.is_some() { script.total() } else { 20 });
-    for p in args.trace_csv.iter().chain(args.vcd.iter()) {
+    let outputs = [&args.trace_csv, &args.trace_json, &args.vcd, &args.png];
+    for p in outputs.into_iter().flatten() {
         check_writable(p)?;
     }
 
-    let vcd_tmp = args
-        .vcd
-        .as_ref()
-        .map(|p| p.with_file_name(format!(".{}.part", p.file_name().unwrap_or_default().to_string_lossy())));
-    let mut builder = BotSim::builder().firmware(firmware).program(image).world(world).motors(script.initial());
-    if let Some(t) = &vcd_tmp {
-        builder = builder.vcd(t);
-    }
-    let mut bot = builder.build().map_err(|e| e.to_string())?;
+    let initial = match &args.motors {
+        Some(p) => MotorScript::load(p).map_err(|d| d.to_string())?.initial(),
+        None => MotCtl::STOP,
+    };
+    let mut bot = BotSim::builder()
+        .firmware(firmware)
+        .program(image)
+        .world(world.clone())
+        .motors(initial)
+        .build()
+        .map_err(|e| e.to_string())?;
 
+    let progress = (!args.quiet && !args.json && std::io::stderr().is_terminal() && samples > 50).then(|| {
+        let bar = indicatif::ProgressBar::new(samples + 1);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} samples {elapsed_precise} ({per_sec}) {msg}")
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        bar
+    });
+
+    let vcd_part = args.vcd.as_ref().map(|p| part_name(p));
+    let mut window =
+        vcd_part.clone().map(|part| Window { part, from: args.trace_from, to: args.trace_to, state: State::Before });
     let start = Instant::now();
-    let mut csv = String::from(CSV_HEADER);
-    csv.push('\n');
-    let mut last = None;
+    let mut snaps: Vec<Snapshot> = vec![];
+    let mut json = String::new();
     for k in 0..=samples {
-        let s = bot.wait_update().map_err(|e| format!("error: sample {k}: {e}"))?;
-        csv.push_str(&csv_row(&s));
-        bot.set_motors(script.value_for(k + 1));
-        last = Some(s);
+        if let Some(w) = window.as_mut() {
+            w.before_sample(&mut bot, k)?;
+        }
+        let s = next_sample(&mut bot, window.as_mut()).map_err(|e| format!("error: sample {k}: {e}"))?;
+        let m = driver.next(&s);
+        json.push_str(&json_row(&s, m));
+        snaps.push(s);
+        if let Some(w) = window.as_mut() {
+            w.after_sample(&mut bot, k)?;
+        }
+        if let Some(b) = &progress {
+            b.set_position(k + 1);
+        }
+        if driver.finished() {
+            break;
+        }
+        bot.set_motors(m);
+    }
+    if let Some(w) = window.as_mut() {
+        w.close(&mut bot);
     }
     let cycles = bot.cycle();
     let wall = start.elapsed().as_secs_f64();
-    bot.close_vcd();
     drop(bot);
+    if let Some(b) = progress {
+        b.finish_and_clear();
+    }
 
     let mut written = vec![];
     if let Some(p) = &args.trace_csv {
+        let mut csv = String::from(CSV_HEADER);
+        csv.push('\n');
+        for s in &snaps {
+            csv.push_str(&csv_row(s));
+        }
         write_atomic(p, csv.as_bytes())?;
-        written.push(p.display().to_string());
+        written.push(p.clone());
     }
-    if let (Some(p), Some(t)) = (&args.vcd, &vcd_tmp) {
-        std::fs::rename(t, p).map_err(|e| format!("{}: error: cannot write file: {e}", p.display()))?;
-        written.push(p.display().to_string());
+    if let Some(p) = &args.trace_json {
+        write_atomic(p, json.as_bytes())?;
+        written.push(p.clone());
     }
-    if !args.quiet {
+    if let Some(p) = &args.png {
+        write_atomic(p, &path_picture(&world, &snaps, firmware.threshold, &PathStyle::default()))?;
+        written.push(p.clone());
+    }
+    if let (Some(p), Some(part)) = (&args.vcd, &vcd_part) {
+        if part.exists() {
+            std::fs::rename(part, p).map_err(|e| format!("{}: error: cannot write file: {e}", p.display()))?;
+            written.push(p.clone());
+        } else {
+            eprintln!("{}: warning: the trace window was never reached; no waveform written", p.display());
+        }
+    }
+    let last = snaps.last().copied().expect("at least sample 0");
+    if args.json {
+        let v = serde_json::json!({
+            "samples": snaps.len(), "cycles": cycles, "simulated_seconds": cycles as f64 / 1e8,
+            "wall_seconds": wall, "mcycles_per_second": cycles as f64 / wall.max(1e-9) / 1e6,
+            "final": {
+                "loc_x": last.regs.loc_x, "loc_y": last.regs.loc_y, "orientation": last.orientation().name(),
+                "movement": last.movement().name(), "sensors": last.regs.sensors,
+            },
+            "driver": driver.status(),
+            "files": written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>(),
+        });
+        println!("{v}");
+    } else if !args.quiet {
         let mut out = String::new();
-        let s = last.expect("at least sample 0");
-        let _ = writeln!(out, "samples      {} (iterations 1-{samples} after the reset dump)", samples + 1);
+        let _ = writeln!(out, "samples      {} (the reset dump and {} iterations)", snaps.len(), snaps.len() - 1);
         let _ = writeln!(out, "cycles       {cycles} ({:.3} s at 100 MHz)", cycles as f64 / 1e8);
         let _ = writeln!(out, "wall time    {wall:.2} s ({:.1} Mcycles/s)", cycles as f64 / wall.max(1e-9) / 1e6);
         let _ = writeln!(
             out,
             "final        ({}, {}) facing {} {}, sensors {:02X}",
-            s.regs.loc_x,
-            s.regs.loc_y,
-            s.orientation().name(),
-            s.movement().name(),
-            s.regs.sensors
+            last.regs.loc_x,
+            last.regs.loc_y,
+            last.orientation().name(),
+            last.movement().name(),
+            last.regs.sensors
         );
+        if !driver.status().is_empty() {
+            let _ = writeln!(out, "driver       {}", driver.status());
+        }
         for w in written {
-            let _ = writeln!(out, "wrote        {w}");
+            let _ = writeln!(out, "wrote        {}", w.display());
         }
         print!("{out}");
     }
     Ok(())
+}
+
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum State {
+    Before,
+    Open,
+    Done,
+}
+
+/// The waveform window: opens at `from` (a sample's start or a cycle), closes after `to`.
+struct Window {
+    part: PathBuf,
+    from: Option<Point>,
+    to: Option<Point>,
+    state: State,
+}
+
+impl Window {
+    fn open(&mut self, bot: &mut BotSim) -> Result<(), String> {
+        bot.open_vcd(&self.part).map_err(|e| e.to_string())?;
+        self.state = State::Open;
+        Ok(())
+    }
+
+    fn close(&mut self, bot: &mut BotSim) {
+        if self.state == State::Open {
+            bot.close_vcd();
+        }
+        self.state = State::Done;
+    }
+
+    /// Before waiting for sample `k`: open a whole-run or sample window.
+    fn before_sample(&mut self, bot: &mut BotSim, k: u64) -> Result<(), String> {
+        match (self.state, self.from) {
+            (State::Before, None) => self.open(bot),
+            (State::Before, Some(Point::Sample(s))) if k >= s => {
+                if k > 0 {
+                    // The run stands at the first cycle of sample k-1's pulse: start after it.
+                    bot.run(2).map_err(|e| e.to_string())?;
+                }
+                self.open(bot)
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// After sample `k`'s pulse began: close a sample window, including the whole pulse.
+    fn after_sample(&mut self, bot: &mut BotSim, k: u64) -> Result<(), String> {
+        if let (State::Open, Some(Point::Sample(s))) = (self.state, self.to) {
+            if k >= s {
+                bot.run(3).map_err(|e| e.to_string())?;
+                self.close(bot);
+            }
+        }
+        Ok(())
+    }
+
+    /// The next cycle at which the window opens or closes, if it is given in cycles.
+    fn boundary(&self) -> Option<u64> {
+        match (self.state, self.from, self.to) {
+            (State::Before, Some(Point::Cycle(c)), _) => Some(c),
+            (State::Open, _, Some(Point::Cycle(c))) => Some(c),
+            _ => None,
+        }
+    }
+
+    fn cross_boundary(&mut self, bot: &mut BotSim) -> Result<(), String> {
+        match self.state {
+            State::Before => self.open(bot),
+            _ => {
+                self.close(bot);
+                Ok(())
+            }
+        }
+    }
+}
+
+/// Wait for the next pulse, opening or closing a cycle window on the way.
+fn next_sample(bot: &mut BotSim, mut window: Option<&mut Window>) -> Result<Snapshot, String> {
+    loop {
+        let boundary = window.as_ref().and_then(|w| w.boundary());
+        let Some(c) = boundary else { return bot.wait_update().map_err(|e| e.to_string()) };
+        let now = bot.cycle();
+        if c > now {
+            let budget = (c - now).min(bot.update_budget());
+            match bot.wait_update_within(budget) {
+                Ok(s) => return Ok(s),
+                Err(Error::Timeout { .. }) if bot.cycle() >= c => {}
+                Err(e) => return Err(e.to_string()),
+            }
+        }
+        if let Some(w) = window.as_mut() {
+            w.cross_boundary(bot)?;
+        }
+    }
 }

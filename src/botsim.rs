@@ -227,6 +227,23 @@ impl BotSim {
         Ok(Cell::from_bits(self.tick()?.vid_pixel_out))
     }
 
+    /// Read the whole map through the video port, one cell per clock (pipelined: an address
+    /// every cycle, its value two cycles later), in address order. This runs 16,386 cycles:
+    /// upd_sysregs pulses in them are not reported as samples.
+    pub fn scan_video(&mut self) -> Result<Vec<Cell>, Error> {
+        let mut cells = Vec::with_capacity(crate::world::CELLS);
+        for i in 0..crate::world::CELLS + 2 {
+            if i < crate::world::CELLS {
+                self.set_video((i / crate::world::SIZE) as u16, (i % crate::world::SIZE) as u16);
+            }
+            let o = self.tick()?;
+            if i >= 2 {
+                cells.push(Cell::from_bits(o.vid_pixel_out));
+            }
+        }
+        Ok(cells)
+    }
+
     /// One clock cycle; returns the outputs during it.
     pub fn tick(&mut self) -> Result<Outputs, Error> {
         let mut o = ffi::BotOutputs::default();

@@ -116,3 +116,115 @@ pub fn path_picture(world: &World, snapshots: &[Snapshot], threshold: u8, style:
     }
     encode_rgb(c.w, c.h, &c.rgb)
 }
+
+/// The course display: 640 x 480, the world at 4 x 4 pixels per cell (rows 0-119 visible, 512
+/// pixels wide; black outside), the bot's 16 x 16 icon centred on its cell, the colour table
+/// below (12-bit colours, as on the Nexys4).
+pub mod display {
+    use super::Canvas;
+    use crate::picture::encode_rgb;
+    use crate::regs::{Orientation, Snapshot};
+    use crate::world::{Cell, World};
+
+    pub const WIDTH: u32 = 640;
+    pub const HEIGHT: u32 = 480;
+    /// The display timing generator's active width and the visible map rows (spec §12).
+    pub const ACTIVE_WIDTH: u32 = 512;
+    pub const VISIBLE_ROWS: u32 = 120;
+
+    /// 12-bit colours: floor, line, obstruction, reserved; icon colours 1, 2, 3.
+    pub const COLOURS: [u16; 7] = [0xFFF, 0x000, 0xC22, 0x29F, 0xF80, 0x04C, 0xFF0];
+
+    fn rgb(c12: u16) -> [u8; 3] {
+        [((c12 >> 8 & 15) * 17) as u8, ((c12 >> 4 & 15) * 17) as u8, ((c12 & 15) * 17) as u8]
+    }
+
+    /// The colour of a world cell.
+    pub fn cell_colour(c: Cell) -> [u8; 3] {
+        rgb(COLOURS[c as usize])
+    }
+
+    /// Icon colour 1-3.
+    pub fn icon_colour(i: u8) -> [u8; 3] {
+        rgb(COLOURS[3 + i.clamp(1, 3) as usize])
+    }
+
+    /// The bot heading North: 0 transparent, 1 outline, 2 body, 3 eyes.
+    const ICON_N: [&str; 16] = [
+        "................",
+        ".......11.......",
+        "......1221......",
+        "......1221......",
+        ".....122221.....",
+        ".....122221.....",
+        "....12222221....",
+        "....13222231....",
+        "...1233223321...",
+        "...1222222221...",
+        "..122222222221..",
+        "..122222222221..",
+        ".12222222222221.",
+        ".11111111111111.",
+        "................",
+        "................",
+    ];
+
+    type Icon = [[u8; 16]; 16];
+
+    fn parse(rows: &[&str; 16]) -> Icon {
+        let mut icon = [[0; 16]; 16];
+        for (y, r) in rows.iter().enumerate() {
+            for (x, ch) in r.bytes().enumerate().take(16) {
+                icon[y][x] = if ch == b'.' { 0 } else { ch - b'0' };
+            }
+        }
+        icon
+    }
+
+    /// Rotated clockwise by `eighths` x 45 degrees (nearest neighbour about the centre).
+    fn rotated(icon: &Icon, eighths: u8) -> Icon {
+        let t = std::f64::consts::FRAC_PI_4 * eighths as f64;
+        let (sin, cos) = t.sin_cos();
+        let mut out = [[0; 16]; 16];
+        for (y, row) in out.iter_mut().enumerate() {
+            for (x, px) in row.iter_mut().enumerate() {
+                let (dx, dy) = (x as f64 - 7.5, y as f64 - 7.5);
+                let sx = (7.5 + dx * cos + dy * sin).round();
+                let sy = (7.5 - dx * sin + dy * cos).round();
+                if (0.0..16.0).contains(&sx) && (0.0..16.0).contains(&sy) {
+                    *px = icon[sy as usize][sx as usize];
+                }
+            }
+        }
+        out
+    }
+
+    /// The icon for a heading: the North bitmap, turned.
+    pub fn icon(h: Orientation) -> [[u8; 16]; 16] {
+        rotated(&parse(&ICON_N), h as u8)
+    }
+
+    /// One display frame as PNG: `world` as read through the video port, the bot of `s`.
+    pub fn frame(world: &World, s: Option<&Snapshot>) -> Vec<u8> {
+        let mut c = Canvas::new(WIDTH, HEIGHT);
+        for y in 0..VISIBLE_ROWS as i64 {
+            for x in 0..(ACTIVE_WIDTH / 4) as i64 {
+                c.rect(x * 4, y * 4, 4, 4, cell_colour(world.get(x as u8, y as u8)));
+            }
+        }
+        if let Some(s) = s {
+            let icon = icon(s.orientation());
+            let (cx, cy) = ((s.regs.loc_x & 127) as i64 * 4 + 2, (s.regs.loc_y & 127) as i64 * 4 + 2);
+            for (y, row) in icon.iter().enumerate() {
+                for (x, &v) in row.iter().enumerate() {
+                    let (px, py) = (cx - 8 + x as i64, cy - 8 + y as i64);
+                    // The colorizer shows the icon only where the display is active.
+                    if v != 0 && px < ACTIVE_WIDTH as i64 && py < (VISIBLE_ROWS * 4) as i64 {
+                        c.put(px, py, icon_colour(v));
+                    }
+                }
+            }
+        }
+        encode_rgb(c.w, c.h, &c.rgb)
+    }
+}

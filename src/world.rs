@@ -128,6 +128,15 @@ impl World {
         }
     }
 
+    /// A world from cell values in address order (at most 16384; the rest floor).
+    pub fn from_cells(cells: &[Cell]) -> World {
+        let mut w = World::empty();
+        for (d, s) in w.cells.iter_mut().zip(cells) {
+            *d = *s;
+        }
+        w
+    }
+
     /// The 2-bit values in address order.
     pub fn cells(&self) -> impl Iterator<Item = Cell> + '_ {
         self.cells.iter().copied()

@@ -2,6 +2,8 @@
 
 mod asm;
 mod disasm;
+mod frame;
+mod map;
 mod run;
 
 use clap::{Parser, Subcommand};
@@ -21,6 +23,8 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     Run(run::Args),
+    Frame(frame::Args),
+    Map(map::Args),
     Asm(asm::Args),
     Disasm(disasm::Args),
 }
@@ -37,6 +41,8 @@ pub fn main() -> i32 {
     };
     let result = match cli.command {
         Command::Run(a) => run::run(a),
+        Command::Frame(a) => frame::run(a),
+        Command::Map(a) => map::run(a),
         Command::Asm(a) => asm::run(a),
         Command::Disasm(a) => disasm::run(a),
     };

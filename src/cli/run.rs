@@ -23,6 +23,7 @@ use botsim::{BotSim, Error, MotCtl, Snapshot};
 /// next iteration. Sample 0 is the register dump after reset.
 #[derive(clap::Args)]
 #[command(after_help = "Examples:
+  botsim run --timing fast --driver line-follow --frames frames --frame-every 30
   botsim run --timing fast --driver line-follow --png path.png --trace-csv trace.csv
   botsim run --timing fast --motors drive.txt --vcd bot.vcd --trace-from 10 --trace-to 12
   botsim run --map world_map_lr.txt --program bot_pgm.hex --samples 50 --json
@@ -74,6 +75,12 @@ pub struct Args {
     /// Draw the world and the bot's path into a PNG
     #[arg(long, value_name = "FILE")]
     png: Option<PathBuf>,
+    /// Save course-display frames (640 x 480 PNG) into this folder
+    #[arg(long, value_name = "DIR")]
+    frames: Option<PathBuf>,
+    /// With --frames: one frame every N samples (and the last)
+    #[arg(long, value_name = "N", default_value_t = 15, requires = "frames")]
+    frame_every: u64,
     /// Print the summary as JSON
     #[arg(long)]
     json: bool,
@@ -146,6 +153,11 @@ fn part_name(p: &Path) -> PathBuf {
 }
 
 pub fn run(args: Args) -> Result<(), String> {
+    run_with_frame(args, None)
+}
+
+/// `botsim frame`: a run, then the course display at its end.
+pub fn run_with_frame(args: Args, frame_out: Option<PathBuf>) -> Result<(), String> {
     let firmware = Firmware {
         threshold: args.threshold.unwrap_or(15),
         timing: args.timing.unwrap_or_default(),
@@ -177,10 +189,22 @@ pub fn run(args: Args) -> Result<(), String> {
         (None, Some(_)) => (Box::new(LineFollower::new(firmware.threshold)), args.samples.unwrap_or(50_000)),
         (None, None) => (Box::new(ScriptDriver::new(MotorScript::default())), args.samples.unwrap_or(20)),
     };
-    let outputs = [&args.trace_csv, &args.trace_json, &args.vcd, &args.png];
+    let outputs = [&args.trace_csv, &args.trace_json, &args.vcd, &args.png, &frame_out];
     for p in outputs.into_iter().flatten() {
         check_writable(p)?;
     }
+    // Frames show the world as read through the RTL video port, scanned once in a model of
+    // its own (so no sample of the run is skipped).
+    let frames = match &args.frames {
+        None => None,
+        Some(dir) => {
+            std::fs::create_dir_all(dir).map_err(|e| format!("{}: error: cannot create folder: {e}", dir.display()))?;
+            let mut scan =
+                BotSim::builder().program(image.clone()).world(world.clone()).build().map_err(|e| e.to_string())?;
+            Some((dir.clone(), World::from_cells(&scan.scan_video().map_err(|e| e.to_string())?)))
+        }
+    };
+    let mut frames_written = 0;
 
     let initial = match &args.motors {
         Some(p) => MotorScript::load(p).map_err(|d| d.to_string())?.initial(),
@@ -217,6 +241,13 @@ pub fn run(args: Args) -> Result<(), String> {
         let m = driver.next(&s);
         json.push_str(&json_row(&s, m));
         snaps.push(s);
+        if let Some((dir, video)) = &frames {
+            if k % args.frame_every.max(1) == 0 || k == samples || driver.finished() {
+                let p = dir.join(format!("frame_{k:06}.png"));
+                write_atomic(&p, &botsim::render::display::frame(video, Some(&s)))?;
+                frames_written += 1;
+            }
+        }
         if let Some(w) = window.as_mut() {
             w.after_sample(&mut bot, k)?;
         }
@@ -233,6 +264,13 @@ pub fn run(args: Args) -> Result<(), String> {
     }
     let cycles = bot.cycle();
     let wall = start.elapsed().as_secs_f64();
+    let end_frame = match &frame_out {
+        Some(_) => Some(botsim::render::display::frame(
+            &World::from_cells(&bot.scan_video().map_err(|e| e.to_string())?),
+            snaps.last(),
+        )),
+        None => None,
+    };
     drop(bot);
     if let Some(b) = progress {
         b.finish_and_clear();
@@ -251,6 +289,13 @@ pub fn run(args: Args) -> Result<(), String> {
     if let Some(p) = &args.trace_json {
         write_atomic(p, json.as_bytes())?;
         written.push(p.clone());
+    }
+    if let (Some(p), Some(png)) = (&frame_out, &end_frame) {
+        write_atomic(p, png)?;
+        written.push(p.clone());
+    }
+    if let Some((dir, _)) = &frames {
+        written.push(dir.join(format!("({frames_written} frames)")));
     }
     if let Some(p) = &args.png {
         write_atomic(p, &path_picture(&world, &snaps, firmware.threshold, &PathStyle::default()))?;
@@ -275,6 +320,7 @@ pub fn run(args: Args) -> Result<(), String> {
             },
             "driver": driver.status(),
             "files": written.iter().map(|p| p.display().to_string()).collect::<Vec<_>>(),
+            "frames": frames_written,
         });
         println!("{v}");
     } else if !args.quiet {

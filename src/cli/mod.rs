@@ -2,6 +2,7 @@
 
 mod asm;
 mod disasm;
+mod firmware;
 mod frame;
 mod map;
 mod run;
@@ -25,6 +26,7 @@ enum Command {
     Run(run::Args),
     Frame(frame::Args),
     Map(map::Args),
+    Firmware(firmware::Args),
     Asm(asm::Args),
     Disasm(disasm::Args),
 }
@@ -43,6 +45,7 @@ pub fn main() -> i32 {
         Command::Run(a) => run::run(a),
         Command::Frame(a) => frame::run(a),
         Command::Map(a) => map::run(a),
+        Command::Firmware(a) => firmware::run(a),
         Command::Asm(a) => asm::run(a),
         Command::Disasm(a) => disasm::run(a),
     };

@@ -11,6 +11,7 @@ command -v yosys     >/dev/null 2>&1 || need+=(yosys)
 dpkg -s libclang-dev >/dev/null 2>&1 || need+=(libclang-dev)
 command -v g++       >/dev/null 2>&1 || need+=(g++)
 command -v make      >/dev/null 2>&1 || need+=(make)
+command -v bc        >/dev/null 2>&1 || need+=(bc)
 
 if [ ${#need[@]} -gt 0 ]; then
   echo "setup: installing ${need[*]}"

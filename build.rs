@@ -51,6 +51,9 @@ fn main() {
     println!("cargo:rerun-if-changed=src/ffi");
     println!("cargo:rerun-if-env-changed=VERILATOR");
     println!("cargo:rerun-if-env-changed=VERILATOR_ROOT");
+    println!("cargo:rerun-if-env-changed=BOTSIM_COVERAGE");
+    // A coverage build (scripts/coverage.sh): line and toggle coverage points in every model.
+    let coverage = env::var_os("BOTSIM_COVERAGE").is_some();
 
     let verilator = env::var("VERILATOR").unwrap_or_else(|_| "verilator".into());
     let vroot = verilator_root(&verilator);
@@ -83,7 +86,7 @@ fn main() {
     let mut include_dirs = Vec::new();
     for d in &designs {
         let mdir = out.join(d.prefix);
-        verilate(&verilator, &root, &mdir, d);
+        verilate(&verilator, &root, &mdir, d, coverage);
         let classes = fs::read_to_string(mdir.join(format!("{}_classes.mk", d.prefix)))
             .unwrap_or_else(|e| fail(&format!("cannot read Verilator's file list: {e}")));
         for var in ["VM_CLASSES_FAST", "VM_CLASSES_SLOW", "VM_SUPPORT_FAST", "VM_SUPPORT_SLOW"] {
@@ -108,7 +111,7 @@ fn main() {
         .flag_if_supported("-faligned-new")
         .flag_if_supported("-fcf-protection=none")
         .flag_if_supported("-Wno-unused-parameter")
-        .define("VM_COVERAGE", "0")
+        .define("VM_COVERAGE", if coverage { "1" } else { "0" })
         .define("VM_SC", "0")
         .define("VM_TRACE", "1")
         .define("VM_TRACE_VCD", "1")
@@ -170,7 +173,7 @@ fn verilator_root(verilator: &str) -> PathBuf {
     root
 }
 
-fn verilate(verilator: &str, root: &Path, mdir: &Path, d: &Design) {
+fn verilate(verilator: &str, root: &Path, mdir: &Path, d: &Design, coverage: bool) {
     let _ = fs::remove_dir_all(mdir);
     let mut cmd = Command::new(verilator);
     cmd.current_dir(root)
@@ -179,6 +182,7 @@ fn verilate(verilator: &str, root: &Path, mdir: &Path, d: &Design) {
         .arg("--Mdir")
         .arg(mdir)
         .args(&d.params)
+        .args(if coverage { &["--coverage-line", "--coverage-toggle"][..] } else { &[][..] })
         .args(&d.sources);
     let o = cmd.output().unwrap_or_else(|e| fail(&format!("cannot run verilator: {e}")));
     for line in String::from_utf8_lossy(&o.stderr).lines() {

@@ -4,8 +4,10 @@
 #   icarus     Icarus Verilog runs rtl/sim/bot_tb.v; its register trace must equal Verilator's
 #   yosys      synth of `bot` (and synth_xilinx): no latches, no multiple drivers, no loops
 #   generated  rtl/bot_pgm.v and rtl/default_world.mem equal what the toolchain generates now
+#   coverage   line and toggle coverage per RTL module over the RTL tests, against floors
 #   rust       cargo fmt --check and cargo clippy --all-targets -- -D warnings
-# Prints each stage's time. Needs scripts/setup.sh and a release build (it builds one).
+# Prints each stage's time. Needs scripts/setup.sh; builds what it needs.
+# GATE_STAGES="lint yosys" runs only the named stages (in the order above).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
@@ -24,6 +26,9 @@ fail() {
 run_stage() {
   stage=$1
   shift
+  if [ -n "${GATE_STAGES:-}" ] && [[ " $GATE_STAGES " != *" $stage "* ]]; then
+    return 0
+  fi
   local t0
   t0=$(date +%s.%N)
   echo "gate: $stage ..."
@@ -104,6 +109,10 @@ generated() {
   test "${PIPESTATUS[0]}" -eq 0
 }
 
+coverage() {
+  bash scripts/coverage.sh --check
+}
+
 rust() {
   cargo fmt --all -- --check || { echo "gate: run cargo fmt --all" >&2; return 1; }
   cargo clippy --workspace --all-targets --release -q -- -D warnings
@@ -115,5 +124,6 @@ run_stage lint lint
 run_stage icarus icarus
 run_stage yosys yosys_synth
 run_stage generated generated
+run_stage coverage coverage
 run_stage rust rust
 echo "gate: all stages passed in $(( $(date +%s) - total0 )) s"

@@ -223,6 +223,25 @@ fn coordinates_wrap_on_a_world_without_walls() {
     assert_eq!(s[64].location(), (0, 64));
     assert_eq!(s[65].location(), (0xFF, 64));
     assert_eq!(s[66].location(), (0xFE, 64));
+    // Forward North from Y = 64 (fast left from East): 0, then 0xFF.
+    let (mut b, _) = bot(World::empty(), 1, Compat::Symmetric);
+    run(&mut b, 0x23, 1);
+    let s = run(&mut b, 0x33, 67);
+    assert_eq!(s[0].orientation(), Orientation::North);
+    assert_eq!(s[64].location(), (64, 0));
+    assert_eq!(s[65].location(), (64, 0xFF));
+}
+
+#[test]
+fn counters_count_to_a_large_threshold_then_clear() {
+    // 8-bit counters, compared with >= (spec §5.3): with T = 200 they read 1..200, then 1.
+    let (mut b, _) = bot(World::empty(), 200, Compat::Symmetric);
+    let s = run(&mut b, 0x33, 201);
+    assert!(s[..200]
+        .iter()
+        .enumerate()
+        .all(|(k, s)| s.distances() == (k as u8 + 1, k as u8 + 1) && s.location() == (64, 64)));
+    assert_eq!((s[200].distances(), s[200].location()), ((1, 1), (65, 64)));
 }
 
 #[test]
@@ -296,6 +315,8 @@ fn video_port_contents_and_two_clock_latency() {
     }
     // Only bits [6:0] are used.
     assert_eq!(b.read_video(64 + 128, 64 + 256).unwrap(), Cell::Line);
+    assert_eq!(b.read_video(0x3FF, 0x3FF).unwrap(), w.get(127, 127));
+    assert_eq!(b.read_video(0x2C0, 0x1C0).unwrap(), w.get(64, 64), "row 0x2C0 = 64 + 5 x 128");
     // Latency: the value appears exactly two clocks after the address.
     b.set_video(0, 0);
     b.run(3).unwrap();

@@ -9,12 +9,18 @@
 //  H5  fatalOnError(false): $stop/$error/$fatal set gotError/gotFinish instead of abort().
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
+#include <unistd.h>
 
 #include "verilated.h"
 #include "verilated_vcd_c.h"
+#if VM_COVERAGE
+#include "verilated_cov.h"
+#endif
 
 // Half a clock period in the model's time precision (`timescale 1ns / 1ps`): 100 MHz.
 static const uint64_t HALF_PERIOD_PS = 5000;
@@ -41,6 +47,15 @@ struct Sim {
         Verilated::threadContextp(ctx);
         close_vcd();
         top->final();
+#if VM_COVERAGE
+        // A coverage build writes one file per model into $BOTSIM_COVERAGE_DIR.
+        static std::atomic<unsigned> serial{0};
+        if (const char* dir = std::getenv("BOTSIM_COVERAGE_DIR")) {
+            std::string path = std::string(dir) + "/cov-" + std::to_string(getpid()) + "-" +
+                               std::to_string(serial++) + ".dat";
+            ctx->coveragep()->write(path.c_str());
+        }
+#endif
         delete top;
         delete ctx;
     }

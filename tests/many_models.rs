@@ -8,6 +8,9 @@ use std::time::Duration;
 use botsim::regs::Registers;
 use botsim::{BotSim, MotCtl, Timing};
 
+/// Every snapshot of a run: (cycle, registers).
+type Trace = Vec<(u64, Registers)>;
+
 /// A scenario: a motor command, a threshold and a sample count; the result is every snapshot.
 #[derive(Clone, Copy)]
 struct Job {
@@ -17,7 +20,7 @@ struct Job {
     vcd: bool,
 }
 
-fn run(job: Job, dir: &std::path::Path, id: usize) -> Vec<(u64, Registers)> {
+fn run(job: Job, dir: &std::path::Path, id: usize) -> Trace {
     let mut b = BotSim::builder().timing(Timing::Fast).threshold(job.threshold).motors(MotCtl(job.motors));
     if job.vcd {
         b = b.vcd(dir.join(format!("m{id}.vcd")));
@@ -70,7 +73,7 @@ fn parallel_threads() {
             let dir = dir.path().to_path_buf();
             let mine: Vec<(usize, Job)> = (0..3).map(|k| (t * 3 + k, jobs[t * 3 + k])).collect();
             std::thread::spawn(move || {
-                let mut bots: Vec<(usize, BotSim, Vec<(u64, Registers)>)> = mine
+                let mut bots: Vec<(usize, BotSim, Trace)> = mine
                     .iter()
                     .map(|&(i, j)| {
                         let mut b =

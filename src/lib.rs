@@ -9,12 +9,14 @@
 //! | [`model`] | the golden behavioural model of the spec |
 //! | [`firmware`] | the BotSim firmware and its assembly-time constants |
 //! | [`cpu`] | the KCPSM6 RTL core in a test harness (lock-step DUT) |
+//! | [`iss_backend`] | the same bot on the ISS, with cycle-timed Rust models of world_if and map |
 
 pub mod botsim;
 pub mod cpu;
 pub mod driver;
 pub mod files;
 pub mod firmware;
+pub mod iss_backend;
 pub mod model;
 mod picture;
 pub mod regs;

@@ -2,7 +2,8 @@
 //! model's, on random worlds and random motor sequences, in both compatibility modes and with
 //! several thresholds.
 
-use botsim::firmware::{Compat, Timing};
+use botsim::firmware::{Compat, Firmware, Timing};
+use botsim::iss_backend::IssBot;
 use botsim::model::Model;
 use botsim::regs::MotCtl;
 use botsim::world::{Cell, World};
@@ -41,25 +42,27 @@ fn motors() -> impl Strategy<Value = Vec<(u8, u8)>> {
     prop::collection::vec((any::<u8>(), 1u8..12), 1..10)
 }
 
+/// The RTL against the golden model (registers) and against the ISS backend (registers and
+/// the cycle of every pulse).
 fn check(world: World, threshold: u8, compat: Compat, segments: &[(u8, u8)]) -> Result<(), TestCaseError> {
-    let mut bot = BotSim::builder()
-        .timing(Timing::Fast)
-        .threshold(threshold)
-        .compat(compat)
-        .world(world.clone())
-        .build()
-        .map_err(|e| TestCaseError::fail(e.to_string()))?;
+    let fw = Firmware { threshold, timing: Timing::Fast, compat };
+    let fail = |e: botsim::Error| TestCaseError::fail(e.to_string());
+    let mut bot = BotSim::builder().firmware(fw).world(world.clone()).build().map_err(fail)?;
+    let mut iss = IssBot::new(&fw.assemble().unwrap(), world.clone());
     let mut model = Model::new(world, threshold, compat);
-    let s0 = bot.wait_update().map_err(|e| TestCaseError::fail(e.to_string()))?;
+    let s0 = bot.wait_update().map_err(fail)?;
     prop_assert_eq!(s0.regs, model.initial(), "sample 0");
+    prop_assert_eq!(iss.wait_update(10_000).map_err(fail)?, s0, "ISS backend, sample 0");
     let mut k = 0;
     for &(m, n) in segments {
         bot.set_motors(MotCtl(m));
+        iss.set_motors(MotCtl(m));
         for _ in 0..n {
             k += 1;
-            let s = bot.wait_update().map_err(|e| TestCaseError::fail(e.to_string()))?;
+            let s = bot.wait_update().map_err(fail)?;
             let want = model.step(MotCtl(m));
             prop_assert_eq!(s.regs, want, "sample {} with MotCtl {:02X}", k, m);
+            prop_assert_eq!(iss.wait_update(10_000).map_err(fail)?, s, "ISS backend, sample {}", k);
         }
     }
     Ok(())

@@ -1,0 +1,189 @@
+//! BotSim on the instruction-set simulator: the same firmware image on [`kcpsm6::iss::Cpu`],
+//! with Rust models of `world_if` and `map` that follow the RTL's cycle timing, so every
+//! snapshot (and its cycle) equals the RTL's.
+//!
+//! Timing reproduced (spec §8, §9): world_if's read mux is a register (an INPUT whose strobe
+//! is in cycle t reads the state of cycle t-1); the map registers its address and its output
+//! (a map value read in cycle t comes from MapX/MapY of cycle t-3); writes land at the end of
+//! their strobe cycle; ports 0C/0D/0E toggle their flags, the visible registers copy the holding
+//! registers every cycle while a flag is high, and upd_sysregs is high from the cycle after a
+//! rising toggle.
+//!
+//! The scoreboard compares every snapshot and its cycle with the RTL on random worlds and
+//! motor commands. The firmware reads the map with zero slack on the late side only, so that
+//! comparison pins a map or MotCtl path that is a clock too slow, not one that is a clock too
+//! fast; a port-level lock-step on programs that read at every distance will pin both.
+//!
+//! ```
+//! use botsim::iss_backend::IssBot;
+//! use botsim::{Firmware, MotCtl, Timing, World};
+//! let fw = Firmware { timing: Timing::Fast, ..Firmware::default() };
+//! let mut bot = IssBot::new(&fw.assemble().unwrap(), World::builtin());
+//! assert_eq!(bot.wait_update(10_000).unwrap().location(), (64, 64));
+//! bot.set_motors(MotCtl::FORWARD);
+//! let s: Vec<_> = (0..16).map(|_| bot.wait_update(10_000).unwrap()).collect();
+//! assert_eq!(s[15].location(), (65, 64));
+//! ```
+
+use kcpsm6::iss::{Bus, Config, Cpu};
+use kcpsm6::Image;
+
+use crate::botsim::Error;
+use crate::regs::{MotCtl, Registers, Snapshot};
+use crate::world::World;
+
+/// A register written through the port bus: its value before and after the last write.
+#[derive(Clone, Copy, Debug, Default)]
+struct Timed {
+    before: u8,
+    after: u8,
+    /// The strobe cycle of the last write (the new value holds from the next cycle).
+    written: u64,
+}
+
+impl Timed {
+    fn write(&mut self, v: u8, cycle: u64) {
+        self.before = self.value_at(cycle);
+        self.after = v;
+        self.written = cycle;
+    }
+
+    /// The value during `cycle`.
+    fn value_at(&self, cycle: u64) -> u8 {
+        if cycle > self.written {
+            self.after
+        } else {
+            self.before
+        }
+    }
+}
+
+/// world_if and map as the CPU's bus sees them.
+struct WorldIf {
+    world: World,
+    motctl: Timed,
+    map_x: Timed,
+    map_y: Timed,
+    holding: [u8; 7],
+    visible: Registers,
+    load_sys: bool,
+    load_dist: bool,
+    upd: bool,
+    /// Set when upd_sysregs rises: the first cycle it is high.
+    pulse: Option<u64>,
+}
+
+impl WorldIf {
+    /// Bring the visible registers up to the start of `cycle`: while a load flag is high they
+    /// copy the holding registers every cycle, and the holding registers only change at the
+    /// end of write strobes, which are at least two cycles apart.
+    fn catch_up(&mut self) {
+        if self.load_sys {
+            self.visible.loc_x = self.holding[1];
+            self.visible.loc_y = self.holding[2];
+            self.visible.bot_info = self.holding[3];
+            self.visible.sensors = self.holding[4];
+        }
+        if self.load_dist {
+            self.visible.lm_dist = self.holding[5];
+            self.visible.rm_dist = self.holding[6];
+        }
+    }
+}
+
+impl Bus for WorldIf {
+    fn input(&mut self, port: u8, cycle: u64) -> u8 {
+        // The read mux registered at the end of cycle - 1.
+        let t = cycle - 1;
+        match port & 15 {
+            0x0 => self.motctl.value_at(t),
+            p @ 1..=6 => self.holding[p as usize],
+            0x8 => self.map_x.value_at(t),
+            0x9 => self.map_y.value_at(t),
+            // The map's address register and output register: two more cycles.
+            0xA => self.world.get(self.map_x.value_at(t - 2), self.map_y.value_at(t - 2)).bits(),
+            _ => 0,
+        }
+    }
+
+    fn output(&mut self, port: u8, value: u8, cycle: u64) {
+        self.catch_up();
+        match port & 15 {
+            p @ 1..=6 => self.holding[p as usize] = value,
+            0x8 => self.map_x.write(value, cycle),
+            0x9 => self.map_y.write(value, cycle),
+            // The flags are registers: a toggle takes effect from the next cycle.
+            0xC => self.load_sys = !self.load_sys,
+            0xD => self.load_dist = !self.load_dist,
+            0xE => {
+                self.upd = !self.upd;
+                if self.upd {
+                    self.pulse = Some(cycle + 1);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    fn output_k(&mut self, _port: u8, _value: u8, _cycle: u64) {}
+}
+
+/// A BotSim whose CPU is the ISS.
+pub struct IssBot {
+    cpu: Cpu,
+    bus: WorldIf,
+    next_sample: u64,
+}
+
+impl IssBot {
+    /// The bot with `program` (bot_pgm's 1K) in `world`, at configuration (cycle 0).
+    pub fn new(program: &Image, world: World) -> IssBot {
+        let config = Config::default();
+        IssBot {
+            cpu: Cpu::new(config, &program.words[..1024]),
+            bus: WorldIf {
+                world,
+                motctl: Timed::default(),
+                map_x: Timed::default(),
+                map_y: Timed::default(),
+                holding: [0; 7],
+                visible: Registers::default(),
+                load_sys: false,
+                load_dist: false,
+                upd: false,
+                pulse: None,
+            },
+            next_sample: 0,
+        }
+    }
+
+    /// MotCtl_in from the current cycle on.
+    pub fn set_motors(&mut self, m: MotCtl) {
+        let c = self.cpu.cycle();
+        self.bus.motctl.write(m.0, c.saturating_sub(1));
+    }
+
+    /// The next cycle to simulate.
+    pub fn cycle(&self) -> u64 {
+        self.cpu.cycle()
+    }
+
+    /// Run to the next upd_sysregs pulse within `budget` cycles; stops at the start of the
+    /// pulse's first cycle, as the RTL backend does.
+    pub fn wait_update(&mut self, budget: u64) -> Result<Snapshot, Error> {
+        let end = self.cpu.cycle() + budget;
+        while self.cpu.cycle() < end {
+            self.cpu.tick(Default::default(), &mut self.bus);
+            if let Some(p) = self.bus.pulse {
+                if self.cpu.cycle() >= p {
+                    self.bus.pulse = None;
+                    self.bus.catch_up();
+                    let s = Snapshot { sample: self.next_sample, cycle: p, regs: self.bus.visible };
+                    self.next_sample += 1;
+                    return Ok(s);
+                }
+            }
+        }
+        Err(Error::Timeout { waited_for: "upd_sysregs pulse", budget, cycle: self.cpu.cycle() })
+    }
+}

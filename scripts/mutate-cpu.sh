@@ -5,8 +5,6 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 src=rtl/kcpsm6.v
-cp "$src" /tmp/kcpsm6.v.orig
-trap 'cp /tmp/kcpsm6.v.orig "$src"' EXIT
 
 # name | sed expression (applied to rtl/kcpsm6.v)
 mutations=(
@@ -30,23 +28,5 @@ mutations=(
   "strobe ignores a pending interrupt (in D)|s/read_strobe_q       <= in_decode \& ~take_interrupt \& op_input;/read_strobe_q       <= in_decode \& op_input;/"
 )
 
-for m in "${mutations[@]}"; do
-  name=${m%%|*}
-  expr=${m#*|}
-  [[ -n "${1:-}" && "$name" != *$1* ]] && continue
-  cp /tmp/kcpsm6.v.orig "$src"
-  sed -i "$expr" "$src"
-  if cmp -s "$src" /tmp/kcpsm6.v.orig; then
-    echo "NOT APPLIED  $name"
-    continue
-  fi
-  out=$(cargo test --release --test cpu_lockstep --test cpu_timing 2>&1)
-  failed=$(echo "$out" | grep -E '^test .* FAILED' | sed -E 's/^test (.*) \.\.\. FAILED/\1/' | tr '\n' ' ')
-  if echo "$out" | grep -q "error: could not compile\|failed to run custom build"; then
-    echo "BUILD FAILS  $name"
-  elif [ -n "$failed" ]; then
-    echo "CAUGHT       $name: $failed"
-  else
-    echo "MISSED       $name"
-  fi
-done
+. scripts/mutate-lib.sh
+mutate "$src" "${1:-}" --test cpu_lockstep --test cpu_timing -- "${mutations[@]}"

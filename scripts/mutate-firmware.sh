@@ -5,8 +5,6 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 src=rtl/bot_pgm.psm
-cp "$src" /tmp/bot_pgm.psm.orig
-trap 'cp /tmp/bot_pgm.psm.orig "$src"' EXIT
 
 # name | sed expression (applied to rtl/bot_pgm.psm)
 mutations=(
@@ -25,23 +23,5 @@ mutations=(
   "diagonal L/R use the 90-degree step|s/^        LOAD s0, 01                   ; ... or 45 degrees on a diagonal$/        LOAD s0, 02/"
 )
 
-for m in "${mutations[@]}"; do
-  name=${m%%|*}
-  expr=${m#*|}
-  [[ -n "${1:-}" && "$name" != *$1* ]] && continue
-  cp /tmp/bot_pgm.psm.orig "$src"
-  sed -i "$expr" "$src"
-  if cmp -s "$src" /tmp/bot_pgm.psm.orig; then
-    echo "NOT APPLIED  $name"
-    continue
-  fi
-  out=$(cargo test --release --no-fail-fast --test bot_spec --test scoreboard --test cli_run 2>&1)
-  failed=$(echo "$out" | grep -E '^test .* FAILED$' | sed -E 's/^test (.*) \.\.\. FAILED/\1/' | tr '\n' ' ')
-  if echo "$out" | grep -q "does not assemble\|could not compile"; then
-    echo "BUILD FAILS  $name"
-  elif [ -n "$failed" ]; then
-    echo "CAUGHT       $name: $failed"
-  else
-    echo "MISSED       $name"
-  fi
-done
+. scripts/mutate-lib.sh
+mutate "$src" "${1:-}" --test bot_spec --test scoreboard --test cli_run -- "${mutations[@]}"

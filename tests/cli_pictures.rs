@@ -1,5 +1,7 @@
 //! `botsim frame`, `run --frames` and `botsim map` as a user runs them.
 
+mod common;
+
 use std::path::Path;
 use std::process::{Command, Output};
 
@@ -10,19 +12,12 @@ fn botsim(args: &[&str], dir: &Path) -> Output {
     Command::new(env!("CARGO_BIN_EXE_botsim")).args(args).current_dir(dir).output().unwrap()
 }
 
-fn decode(path: &Path) -> (u32, u32, Vec<u8>) {
-    let mut dec = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap())).read_info().unwrap();
-    let mut buf = vec![0; dec.output_buffer_size().unwrap()];
-    let info = dec.next_frame(&mut buf).unwrap();
-    (info.width, info.height, buf)
-}
-
 #[test]
 fn frame_shows_the_world_through_the_video_port_and_the_bot() {
     let d = tempfile::tempdir().unwrap();
     let o = botsim(&["frame", "--timing", "fast", "--samples", "0", "-o", "f.png", "--quiet"], d.path());
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let (w, h, px) = decode(&d.path().join("f.png"));
+    let (w, h, px) = common::decode_png(&d.path().join("f.png"));
     assert_eq!((w, h), (640, 480));
     let at = |x: u32, y: u32| {
         let i = ((y * w + x) * 3) as usize;
@@ -84,8 +79,8 @@ fn run_saves_frames_every_n_samples() {
     names.sort();
     assert_eq!(names, ["frame_000000.png", "frame_000015.png", "frame_000030.png", "frame_000040.png"]);
     // The bot moved two cells East between the first and the last frame.
-    let (w, _, first) = decode(&d.path().join("fr/frame_000000.png"));
-    let (_, _, last) = decode(&d.path().join("fr/frame_000040.png"));
+    let (w, _, first) = common::decode_png(&d.path().join("fr/frame_000000.png"));
+    let (_, _, last) = common::decode_png(&d.path().join("fr/frame_000040.png"));
     let body = display::icon_colour(2);
     let body_x =
         |px: &[u8]| -> Vec<u32> { (0..w).filter(|&x| px[((258 * w + x) * 3) as usize..][..3] == body).collect() };

@@ -1,5 +1,7 @@
 //! `botsim run` as a user runs it: the contract of the system issue.
 
+mod common;
+
 use std::path::Path;
 use std::process::{Command, Output};
 
@@ -180,13 +182,10 @@ fn line_follow_driver_with_json_summary_png_and_json_lines() {
     assert_eq!((last["prox_left"].as_bool(), last["prox_right"].as_bool()), (Some(true), Some(true)));
 
     // The PNG: 512 x 512, and the centre of every visited cell in the path colour.
-    let png = std::fs::read(d.path().join("p.png")).unwrap();
-    let mut dec = png::Decoder::new(std::io::Cursor::new(png)).read_info().unwrap();
-    let mut buf = vec![0; dec.output_buffer_size().unwrap()];
-    let info = dec.next_frame(&mut buf).unwrap();
-    assert_eq!((info.width, info.height), (512, 512));
+    let (width, height, buf) = common::decode_png(&d.path().join("p.png"));
+    assert_eq!((width, height), (512, 512));
     let px = |x: u32, y: u32| {
-        let i = (y * info.width + x) as usize * 3;
+        let i = (y * width + x) as usize * 3;
         [buf[i], buf[i + 1], buf[i + 2]]
     };
     let style = botsim::render::PathStyle::default();

@@ -54,16 +54,7 @@ fn completes_world_map_part1_along_the_tracker_route() {
     let r = follow(&w, 20_000);
     assert!(r.follower.reached_end(), "{}", r.follower.status());
     // The course's "Proj2 Bot tracker": every turn point, in order, and the END blocked.
-    let turns = [
-        (0x40, 0x40),
-        (0x49, 0x40),
-        (0x49, 0x4A),
-        (0x46, 0x4D),
-        (0x33, 0x4D),
-        (0x2C, 0x46),
-        (0x2C, 0x3F),
-        (0x3B, 0x3F),
-    ];
+    let turns = common::PART1_TRACKER;
     let mut at = 0;
     for t in turns {
         let i = r.path[at..]

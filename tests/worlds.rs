@@ -29,16 +29,7 @@ fn course_maps_load_in_both_formats_and_agree() {
 fn part1_tracker_route_is_on_the_line() {
     let Some(txt) = common::reference_map("world_map_part1.txt") else { return };
     let w = World::load(&txt).unwrap();
-    let route = [
-        (0x40, 0x40),
-        (0x49, 0x40),
-        (0x49, 0x4A),
-        (0x46, 0x4D),
-        (0x33, 0x4D),
-        (0x2C, 0x46),
-        (0x2C, 0x3F),
-        (0x3B, 0x3F),
-    ];
+    let route: Vec<(i32, i32)> = common::PART1_TRACKER.iter().map(|&(x, y)| (x as i32, y as i32)).collect();
     for pair in route.windows(2) {
         let ((x0, y0), (x1, y1)): ((i32, i32), (i32, i32)) = (pair[0], pair[1]);
         let (dx, dy) = ((x1 - x0).signum(), (y1 - y0).signum());

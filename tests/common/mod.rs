@@ -29,3 +29,18 @@ pub fn reference_map(name: &str) -> Option<PathBuf> {
         }
     }
 }
+
+/// The course's "Proj2 Bot tracker" for world_map_part1: start, the six turn points and the
+/// end, as (LocX, LocY) (reference README).
+pub const PART1_TRACKER: [(u8, u8); 8] =
+    [(0x40, 0x40), (0x49, 0x40), (0x49, 0x4A), (0x46, 0x4D), (0x33, 0x4D), (0x2C, 0x46), (0x2C, 0x3F), (0x3B, 0x3F)];
+
+/// An 8-bit RGB PNG file: (width, height, pixels).
+pub fn decode_png(path: &std::path::Path) -> (u32, u32, Vec<u8>) {
+    let file = std::io::BufReader::new(std::fs::File::open(path).unwrap());
+    let mut dec = png::Decoder::new(file).read_info().unwrap();
+    let mut buf = vec![0; dec.output_buffer_size().unwrap()];
+    let info = dec.next_frame(&mut buf).unwrap();
+    buf.truncate(info.buffer_size());
+    (info.width, info.height, buf)
+}

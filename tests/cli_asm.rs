@@ -1,15 +1,10 @@
 //! `botsim asm` and `botsim disasm` as a user runs them.
 
+mod common;
+
 use std::path::Path;
-use std::process::{Command, Output};
 
-fn botsim(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_botsim")).args(args).current_dir(dir).output().unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use common::{botsim, stderr};
 
 const PROG: &str = "CONSTANT threshold, 0F\nstart: LOAD s0, threshold\nOUTPUT s0, 01\nJUMP start\n";
 

@@ -3,14 +3,11 @@
 mod common;
 
 use std::path::Path;
-use std::process::{Command, Output};
+
+use common::botsim;
 
 use botsim::render::display;
 use botsim::world::{Cell, World};
-
-fn botsim(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_botsim")).args(args).current_dir(dir).output().unwrap()
-}
 
 #[test]
 fn frame_shows_the_world_through_the_video_port_and_the_bot() {

@@ -3,7 +3,18 @@
 
 pub mod lockstep;
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// Run the `botsim` binary in `dir`.
+pub fn botsim(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_botsim")).args(args).current_dir(dir).output().unwrap()
+}
+
+/// A command's standard error as text.
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
 
 /// The course reference folder: $BOTSIM_REFERENCE, else ../shared/reference beside the repo.
 pub fn reference_dir() -> Option<PathBuf> {

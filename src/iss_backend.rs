@@ -172,17 +172,15 @@ impl IssBot {
     /// pulse's first cycle, as the RTL backend does.
     pub fn wait_update(&mut self, budget: u64) -> Result<Snapshot, Error> {
         let end = self.cpu.cycle() + budget;
-        while self.cpu.cycle() < end {
-            self.cpu.tick(Default::default(), &mut self.bus);
-            if let Some(p) = self.bus.pulse {
-                if self.cpu.cycle() >= p {
-                    self.bus.pulse = None;
-                    self.bus.catch_up();
-                    let s = Snapshot { sample: self.next_sample, cycle: p, regs: self.bus.visible };
-                    self.next_sample += 1;
-                    return Ok(s);
-                }
-            }
+        // Whole instructions at a time (and busy-wait loops at once), stopping right after the
+        // write strobe that raises upd_sysregs: that is the start of the pulse's first cycle.
+        self.cpu.run_fast(&mut self.bus, end, |bus| bus.pulse.is_some());
+        if let Some(p) = self.bus.pulse.take() {
+            debug_assert_eq!(self.cpu.cycle(), p);
+            self.bus.catch_up();
+            let s = Snapshot { sample: self.next_sample, cycle: p, regs: self.bus.visible };
+            self.next_sample += 1;
+            return Ok(s);
         }
         Err(Error::Timeout { waited_for: "upd_sysregs pulse", budget, cycle: self.cpu.cycle() })
     }

@@ -670,6 +670,98 @@ impl Cpu {
         }
         Err(Timeout(budget))
     }
+
+    /// True at an instruction boundary of the steady state: the next cycle is a D cycle with
+    /// nothing in flight, no reset sequence, no registered sleep or interrupt request. There,
+    /// with all pins low, instructions can be executed whole ([`Cpu::run_fast`]).
+    fn steady(&self) -> bool {
+        self.phase == Phase::Decode
+            && self.pending.is_none()
+            && self.run
+            && !self.internal_reset
+            && !self.sleep_reg
+            && !self.irq_reg
+            && !self.take_interrupt
+            && self.bank_rd == self.bank
+    }
+
+    /// Would the instruction about to be decoded overflow or underflow the stack?
+    fn stack_error_ahead(&self) -> bool {
+        let op = self.instr >> 12;
+        let taken = op & 0x10 == 0
+            || match op >> 2 & 3 {
+                0 => self.z,
+                1 => !self.z,
+                2 => self.c,
+                _ => !self.c,
+            };
+        let push = op == 0x24 || (taken && matches!(op, 0x20 | 0x30 | 0x34 | 0x38 | 0x3C));
+        let pop = op == 0x29 || (taken && matches!(op, 0x21 | 0x25 | 0x31 | 0x35 | 0x39 | 0x3D));
+        (push && self.sp >= STACK_DEPTH) || (pop && self.sp == 0)
+    }
+
+    /// Run with all pins low, a whole instruction at a time, until cycle `until` is reached or
+    /// passed, or `stop(bus)` is true after an instruction. Equal, cycle for cycle and event for
+    /// event, to calling [`Cpu::tick`] with low pins (tested): away from the steady state
+    /// (reset sequence, stack errors) it ticks cycle by cycle. The busy-wait idiom
+    /// `SUB sX, 01` / `JUMP NZ, <the SUB>` is fast-forwarded to its end in one step.
+    pub fn run_fast<B: Bus>(&mut self, bus: &mut B, until: u64, mut stop: impl FnMut(&B) -> bool) {
+        while self.cycle < until {
+            if !self.steady() || self.stack_error_ahead() {
+                self.tick(Pins::default(), bus);
+                if stop(bus) {
+                    return;
+                }
+                continue;
+            }
+            if self.fast_forward_countdown(until) {
+                continue;
+            }
+            // D cycle: the stack RAM write, PC, stack, IE, bank; then the second cycle.
+            let d = self.cycle;
+            let bank_before = self.bank;
+            self.stack[self.sp as usize] = StackEntry { pc: self.pc, c: self.c, z: self.z, bank: self.bank };
+            let p = Pending { kind: RetireKind::Executed, cycle: d, pc: self.pc, word: self.instr, restore: None };
+            let (restore, _) = self.decode();
+            self.bank_rd = bank_before;
+            self.second_cycle(Pending { restore, ..p }, bus, d + 1);
+            self.instr = self.rom[self.pc as usize];
+            self.bank_rd = self.bank;
+            self.cycle = d + 2;
+            if stop(bus) {
+                return;
+            }
+        }
+    }
+
+    /// At `SUB sX, 01` followed by `JUMP NZ` back to it, in the steady state: finish the
+    /// whole countdown at once (4 cycles per pass), if it ends before `until`.
+    fn fast_forward_countdown(&mut self, until: u64) -> bool {
+        let w = self.instr;
+        let pc = self.pc as usize;
+        let next = self.rom[(pc + 1) & 0xFFF];
+        if w & 0xFF0FF != 0x19001 || next != (0x36000 | pc as u32) {
+            return false;
+        }
+        let x = (w >> 8 & 15) as usize;
+        let i = (self.bank as usize) << 4 | x;
+        let passes = if self.regs[i] == 0 { 256 } else { self.regs[i] as u64 };
+        let end = self.cycle + 4 * passes;
+        if end > until {
+            return false;
+        }
+        // The last pass: SUB leaves 0 (Z = 1, C = 0); the JUMP NZ falls through; its D cycle
+        // wrote the stack entry with its own address and those flags. (The next D rewrites
+        // that entry before anything can pop it; it is kept so the state mirrors tick().)
+        self.regs[i] = 0;
+        self.z = true;
+        self.c = false;
+        self.stack[self.sp as usize] = StackEntry { pc: ((pc + 1) & 0xFFF) as u16, c: false, z: true, bank: self.bank };
+        self.pc = ((pc + 2) & 0xFFF) as u16;
+        self.instr = self.rom[self.pc as usize];
+        self.cycle = end;
+        true
+    }
 }
 
 #[cfg(test)]

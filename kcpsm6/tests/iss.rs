@@ -562,3 +562,87 @@ fn out_port_reads_the_new_bank_one_cycle_late() {
     assert_eq!(out[14], (14, 0x22, false));
     assert_eq!(out[15], (15, 0x11, false));
 }
+
+mod fast_path {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Random words biased towards meaningful programs of 48 words, with countdown loops.
+    fn program() -> impl Strategy<Value = Vec<u32>> {
+        let word = prop_oneof![
+            6 => (prop::sample::select(vec![0x00u32, 0x02, 0x04, 0x06, 0x08, 0x0A, 0x0C, 0x0E, 0x10, 0x12, 0x16, 0x18, 0x1A, 0x1C, 0x1E, 0x2C, 0x2E]),
+                  any::<bool>(), 0u32..16, 0u32..16, any::<u8>())
+                .prop_map(|(op, k, x, y, kk)| if k { (op + 1) << 12 | x << 8 | kk as u32 } else { op << 12 | x << 8 | y << 4 }),
+            2 => (0u32..16, any::<u8>()).prop_map(|(x, s)| 0x14000 | x << 8 | s as u32),
+            3 => (prop::sample::select(vec![0x20u32, 0x22, 0x30, 0x32, 0x34, 0x36, 0x38, 0x3A, 0x3C, 0x3E]), 0u32..50)
+                .prop_map(|(op, t)| op << 12 | t),
+            2 => prop::sample::select(vec![0x25000u32, 0x31000, 0x35000, 0x29001, 0x21342, 0x28001, 0x37001, 0x37000, 0x2B123, 0x23000]),
+            1 => 0u32..=0x3FFFF,
+        ];
+        (prop::collection::vec(word, 48), prop::collection::vec((0usize..44, 0u32..16, any::<u8>()), 0..4)).prop_map(
+            |(mut p, loops)| {
+                // Countdown loops: LOAD sX, kk / SUB sX, 01 / JUMP NZ, <the SUB>.
+                for (at, x, k) in loops {
+                    p[at] = 0x01000 | x << 8 | k as u32;
+                    p[at + 1] = 0x19001 | x << 8;
+                    p[at + 2] = 0x36000 | (at as u32 + 1);
+                }
+                p.push(0x22000);
+                p
+            },
+        )
+    }
+
+    fn state(c: &Cpu) -> (u64, u16, bool, bool, bool, bool, u8, [u8; 32], Vec<u8>) {
+        (
+            c.cycle(),
+            c.pc(),
+            c.carry(),
+            c.zero(),
+            c.bank(),
+            c.interrupt_enabled(),
+            c.depth(),
+            *c.regs(),
+            c.scratch_pad().to_vec(),
+        )
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 2000, failure_persistence: None, ..ProptestConfig::default() })]
+
+        #[test]
+        fn run_fast_equals_cycle_by_cycle(prog in program(), until in 1u64..4000) {
+            let mut fast = Cpu::new(Config::default(), &prog);
+            let mut fast_bus = Recorder::default();
+            fast.run_fast(&mut fast_bus, until, |_| false);
+            let end = fast.cycle();
+            let mut slow = Cpu::new(Config::default(), &prog);
+            let mut slow_bus = Recorder::default();
+            while slow.cycle() < end {
+                slow.tick(Pins::default(), &mut slow_bus);
+            }
+            prop_assert_eq!(&fast_bus.events, &slow_bus.events);
+            prop_assert_eq!(state(&fast), state(&slow));
+            // And both go on identically from there.
+            let more = end + 500;
+            fast.run_fast(&mut fast_bus, more, |_| false);
+            while slow.cycle() < fast.cycle() {
+                slow.tick(Pins::default(), &mut slow_bus);
+            }
+            prop_assert_eq!(&fast_bus.events, &slow_bus.events);
+            prop_assert_eq!(state(&fast), state(&slow));
+        }
+    }
+
+    #[test]
+    fn countdown_loop_is_fast_forwarded_exactly() {
+        // LOAD s3, 18 / SUB s3, 01 / JUMP NZ, 001 / OUTPUT s3, 01: 24 passes of 4 cycles.
+        let prog = [0x01318, 0x19301, 0x36001, 0x2D301];
+        let mut fast = Cpu::new(Config::default(), &prog);
+        let mut bus = Recorder::default();
+        fast.run_fast(&mut bus, 1_000, |b| !b.events.is_empty());
+        // LOAD D at 5; the loop 7..103; OUTPUT D at 103, strobe in 104.
+        assert_eq!((bus.events[0].cycle, bus.events[0].value), (104, 0));
+        assert_eq!(fast.cycle(), 105);
+    }
+}

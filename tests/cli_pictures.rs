@@ -131,3 +131,16 @@ fn every_subcommand_help_has_an_example() {
         assert!(text.contains("Example"), "{args:?}: {text}");
     }
 }
+
+#[test]
+fn bench_reports_each_backend_as_json() {
+    let o = botsim(&["bench", "--quick", "--json"], Path::new("."));
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    for key in ["rtl_mcycles_per_s", "rtl_vcd_mcycles_per_s", "iss_mcycles_per_s"] {
+        assert!(v[key].as_f64().is_some_and(|x| x > 0.0), "{key}: {v}");
+    }
+    // The ISS backend is far faster than the RTL, which is faster than with a VCD.
+    assert!(v["iss_mcycles_per_s"].as_f64() > v["rtl_mcycles_per_s"].as_f64());
+    assert!(v["rtl_mcycles_per_s"].as_f64() > v["rtl_vcd_mcycles_per_s"].as_f64());
+}

@@ -1,6 +1,7 @@
 //! Subcommands of `botsim`. Every error is one line on stderr and exit status 1.
 
 mod asm;
+mod bench;
 mod disasm;
 mod firmware;
 mod frame;
@@ -27,6 +28,7 @@ enum Command {
     Frame(frame::Args),
     Map(map::Args),
     Firmware(firmware::Args),
+    Bench(bench::Args),
     Asm(asm::Args),
     Disasm(disasm::Args),
 }
@@ -46,6 +48,7 @@ pub fn main() -> i32 {
         Command::Frame(a) => frame::run(a),
         Command::Map(a) => map::run(a),
         Command::Firmware(a) => firmware::run(a),
+        Command::Bench(a) => bench::run(a),
         Command::Asm(a) => asm::run(a),
         Command::Disasm(a) => disasm::run(a),
     };

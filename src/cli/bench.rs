@@ -1,0 +1,134 @@
+//! `botsim bench`: simulation speed of each backend on this machine.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+use botsim::firmware::{Firmware, Timing};
+use botsim::iss_backend::IssBot;
+use botsim::{BotSim, MotCtl, World};
+
+/// Measure simulation speed: the RTL (Verilator, tracing compiled in but off), the RTL writing a
+/// full VCD, the ISS backend, and Icarus Verilog on the same RTL when it is installed; all on
+/// the built-in world driving forward, in `hw` timing (Icarus and VCD: `fast`).
+#[derive(clap::Args)]
+#[command(after_help = "Examples:\n  botsim bench\n  botsim bench --quick --json")]
+pub struct Args {
+    /// Shorter runs (less precise)
+    #[arg(long)]
+    quick: bool,
+    /// Print the figures as JSON
+    #[arg(long)]
+    json: bool,
+}
+
+/// Mcycles/s of `cycles` simulated in `seconds`.
+fn rate(cycles: u64, seconds: f64) -> f64 {
+    cycles as f64 / seconds.max(1e-9) / 1e6
+}
+
+fn rtl(cycles: u64) -> Result<f64, String> {
+    let mut bot = BotSim::builder().motors(MotCtl::FORWARD).build().map_err(|e| e.to_string())?;
+    let t = Instant::now();
+    bot.run(cycles).map_err(|e| e.to_string())?;
+    Ok(rate(cycles, t.elapsed().as_secs_f64()))
+}
+
+fn rtl_vcd(cycles: u64, dir: &Path) -> Result<f64, String> {
+    let path = dir.join("bench.vcd");
+    let fw = Firmware { timing: Timing::Fast, ..Firmware::default() };
+    let mut bot =
+        BotSim::builder().firmware(fw).motors(MotCtl::FORWARD).vcd(&path).build().map_err(|e| e.to_string())?;
+    let t = Instant::now();
+    bot.run(cycles).map_err(|e| e.to_string())?;
+    bot.close_vcd();
+    let r = rate(cycles, t.elapsed().as_secs_f64());
+    let _ = std::fs::remove_file(&path);
+    Ok(r)
+}
+
+fn iss(samples: u64) -> Result<f64, String> {
+    let image = Firmware::default().assemble().map_err(|d| d.to_string())?;
+    let mut bot = IssBot::new(&image, World::builtin());
+    bot.set_motors(MotCtl::FORWARD);
+    let t = Instant::now();
+    for _ in 0..samples {
+        bot.wait_update(20_000_000).map_err(|e| e.to_string())?;
+    }
+    Ok(rate(bot.cycle(), t.elapsed().as_secs_f64()))
+}
+
+/// Icarus on rtl/sim/bot_tb.v (fast firmware): None when Icarus or the RTL sources are absent.
+fn icarus(samples: u32, dir: &Path) -> Option<f64> {
+    let rtl = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("rtl");
+    if !rtl.join("sim/bot_tb.v").exists() || Command::new("iverilog").arg("-V").output().is_err() {
+        return None;
+    }
+    let fw = Firmware { timing: Timing::Fast, ..Firmware::default() };
+    let program = fw.assemble().ok()?;
+    let v =
+        botsim::kcpsm6::output::verilog_rom(&program, "bot_pgm", "bot_pgm.psm", botsim::kcpsm6::asm::RomSize::K1, None);
+    std::fs::write(dir.join("bot_pgm.v"), v).ok()?;
+    let vvp = dir.join("tb.vvp");
+    let ok = Command::new("iverilog")
+        .args(["-g2005", "-o"])
+        .arg(&vvp)
+        .args(["-s", "bot_tb"])
+        .arg(format!("-Pbot_tb.WORLD=\"{}\"", rtl.join("default_world.mem").display()))
+        .arg(format!("-Pbot_tb.SAMPLES={samples}"))
+        .args(["kcpsm6.v", "world_if.v", "map.v", "world_map.v", "bot.v"].map(|f| rtl.join(f)))
+        .arg(dir.join("bot_pgm.v"))
+        .arg(rtl.join("sim/bot_tb.v"))
+        .status()
+        .ok()?
+        .success();
+    if !ok {
+        return None;
+    }
+    let t = Instant::now();
+    let out = Command::new("vvp").arg("-N").arg(&vvp).output().ok()?;
+    let secs = t.elapsed().as_secs_f64();
+    let text = String::from_utf8_lossy(&out.stdout);
+    let last_cycle: u64 = text.lines().last()?.split(',').nth(1)?.parse().ok()?;
+    Some(rate(last_cycle, secs))
+}
+
+pub fn run(args: Args) -> Result<(), String> {
+    let dir = std::env::temp_dir().join(format!("botsim-bench-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: error: {e}", dir.display()))?;
+    let scale = if args.quick { 1 } else { 5 };
+    let result = (|| {
+        let rtl = rtl(4_000_000 * scale)?;
+        let vcd = rtl_vcd(60_000 * scale, &dir)?;
+        let iss = iss(20 * scale)?;
+        let icarus = icarus(5 * scale as u32, &dir);
+        Ok::<_, String>((rtl, vcd, iss, icarus))
+    })();
+    let _ = std::fs::remove_dir_all(&dir);
+    let (rtl, vcd, iss, icarus) = result?;
+    let real_time = 100.0; // the board's 100 MHz
+    if args.json {
+        let v = serde_json::json!({
+            "rtl_mcycles_per_s": rtl,
+            "rtl_vcd_mcycles_per_s": vcd,
+            "iss_mcycles_per_s": iss,
+            "icarus_mcycles_per_s": icarus,
+            "rtl_vs_icarus": icarus.map(|i| rtl / i),
+            "real_time_mhz": real_time,
+        });
+        println!("{v}");
+        return Ok(());
+    }
+    println!("{:<34} {:>12} {:>14} {:>12}", "backend", "Mcycles/s", "x real time", "x Icarus");
+    let row = |name: &str, r: f64| {
+        let vs = icarus.map_or("-".to_string(), |i| format!("{:.0}", r / i));
+        println!("{name:<34} {r:>12.2} {:>14.3} {vs:>12}", r / real_time);
+    };
+    row("RTL (Verilator, trace off)", rtl);
+    row("RTL writing a full VCD", vcd);
+    row("ISS backend (fast path)", iss);
+    if let Some(i) = icarus {
+        row("Icarus Verilog 11 (same RTL)", i);
+    }
+    Ok(())
+}

@@ -124,6 +124,8 @@ fn every_subcommand_help_has_an_example() {
         &["map", "convert", "--help"],
         &["asm", "--help"],
         &["disasm", "--help"],
+        &["firmware", "--help"],
+        &["bench", "--help"],
     ] {
         let o = botsim(args, Path::new("."));
         assert!(o.status.success(), "{args:?}");

@@ -470,6 +470,18 @@ impl Cpu {
         (self.stack[self.sp as usize], underflow)
     }
 
+    /// Whether control-flow opcode `op` acts: unconditional forms always, conditional ones
+    /// (bit 16 set) when their condition (bits 15:14: Z, NZ, C, NC) holds.
+    fn taken(&self, op: u32) -> bool {
+        op & 0x10 == 0
+            || match op >> 2 & 3 {
+                0 => self.z,
+                1 => !self.z,
+                2 => self.c,
+                _ => !self.c,
+            }
+    }
+
     /// D-cycle work: next PC, stack, IE and bank. Returns RETURNI's flags and a stack error.
     fn decode(&mut self) -> (Option<(bool, bool)>, bool) {
         let w = self.instr;
@@ -481,13 +493,7 @@ impl Cpu {
         if op < 0x20 {
             return (None, false);
         }
-        let taken = op & 0x10 == 0
-            || match op >> 2 & 3 {
-                0 => self.z,
-                1 => !self.z,
-                2 => self.c,
-                _ => !self.c,
-            };
+        let taken = self.taken(op);
         match op {
             0x24 => {
                 self.pc = at_target;
@@ -688,13 +694,7 @@ impl Cpu {
     /// Would the instruction about to be decoded overflow or underflow the stack?
     fn stack_error_ahead(&self) -> bool {
         let op = self.instr >> 12;
-        let taken = op & 0x10 == 0
-            || match op >> 2 & 3 {
-                0 => self.z,
-                1 => !self.z,
-                2 => self.c,
-                _ => !self.c,
-            };
+        let taken = self.taken(op);
         let push = op == 0x24 || (taken && matches!(op, 0x20 | 0x30 | 0x34 | 0x38 | 0x3C));
         let pop = op == 0x29 || (taken && matches!(op, 0x21 | 0x25 | 0x31 | 0x35 | 0x39 | 0x3D));
         (push && self.sp >= STACK_DEPTH) || (pop && self.sp == 0)

@@ -108,11 +108,6 @@ impl Builder {
             Some(img) => img,
             None => self.firmware.assemble().map_err(Error::Program)?,
         };
-        if let Some(last) = image.words.iter().rposition(|&w| w != 0) {
-            if last >= 1024 {
-                return Err(Error::ProgramTooLarge(last));
-            }
-        }
         // SAFETY: bot_sim_new returns a new, live model.
         let sim = NonNull::new(unsafe { ffi::bot_sim_new() }).expect("model allocation");
         let mut bot = BotSim {

@@ -9,7 +9,7 @@
 
 use std::path::Path;
 
-use kcpsm6::asm::{assemble_source, Options, RomSize};
+use kcpsm6::asm::{assemble_source, Options, Program, RomSize};
 use kcpsm6::{Diagnostics, Image};
 
 /// The firmware source, built into the library.
@@ -86,7 +86,12 @@ impl Firmware {
 
     /// Assemble the built-in firmware with these constants (1K ROM).
     pub fn assemble(&self) -> Result<Image, Diagnostics> {
-        let opts = Options { defines: self.defines(), rom_size: Some(RomSize::K1), ..Options::default() };
-        assemble_source(Path::new(SOURCE_PATH), SOURCE, &opts).map(|p| p.image)
+        self.program(0).map(|p| p.image)
+    }
+
+    /// The whole assembly (listing, symbols); `timestamp` feeds the predefined date stamps.
+    pub fn program(&self, timestamp: u64) -> Result<Program, Diagnostics> {
+        let opts = Options { defines: self.defines(), rom_size: Some(RomSize::K1), timestamp, ..Options::default() };
+        assemble_source(Path::new(SOURCE_PATH), SOURCE, &opts)
     }
 }

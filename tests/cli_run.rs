@@ -91,18 +91,28 @@ fn vcd_opens_with_a_vcd_reader_and_has_the_top_ports() {
     }
     assert!(header.find_var(&["TOP", "bot", "BOTSIMCPU", "address"]).is_some(), "the RTL hierarchy");
     let upd = header.find_var(&["TOP", "upd_sysregs"]).unwrap().code;
-    let mut rises = 0;
-    let mut last = false;
+    let clk = header.find_var(&["TOP", "clk"]).unwrap().code;
+    let (mut rises, mut last) = (0, false);
+    let (mut stamps, mut clk_changes, mut clk_last) = (0u64, 0u64, None);
     for cmd in parser {
-        if let vcd::Command::ChangeScalar(c, v) = cmd.unwrap() {
-            if c == upd {
+        match cmd.unwrap() {
+            vcd::Command::Timestamp(_) => stamps += 1,
+            vcd::Command::ChangeScalar(c, v) if c == upd => {
                 let now = v == vcd::Value::V1;
                 rises += (now && !last) as u32;
                 last = now;
             }
+            vcd::Command::ChangeScalar(c, v) if c == clk => {
+                assert_ne!(clk_last, Some(v), "the clock must alternate");
+                clk_last = Some(v);
+                clk_changes += 1;
+            }
+            _ => {}
         }
     }
     assert_eq!(rises, 3, "samples 0, 1, 2");
+    // Both clock edges are in the file: the clock changes at every time stamp.
+    assert!(clk_changes >= stamps, "{clk_changes} clock changes in {stamps} time stamps");
     assert!(!d.path().join(".w.vcd.part").exists());
 }
 

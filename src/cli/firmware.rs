@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use botsim::files::write_atomic;
 use botsim::firmware::{Compat, Firmware, Timing, SOURCE, SOURCE_PATH};
-use botsim::kcpsm6::asm::{assemble_source, Options, RomSize};
+use botsim::kcpsm6::asm::RomSize;
 use botsim::kcpsm6::output::{render, OutputFormat};
 
 /// Write the built-in BotSim firmware (rtl/bot_pgm.psm) assembled with chosen constants:
@@ -34,13 +34,7 @@ pub fn run(args: Args) -> Result<(), String> {
         timing: Timing::parse(&args.timing).unwrap_or_default(),
         compat: if args.compat.is_some() { Compat::BotSim20 } else { Compat::Symmetric },
     };
-    let opts = Options {
-        defines: fw.defines(),
-        rom_size: Some(RomSize::K1),
-        timestamp: super::asm::timestamp(),
-        ..Options::default()
-    };
-    let program = assemble_source(Path::new(SOURCE_PATH), SOURCE, &opts).map_err(|d| d.to_string())?;
+    let program = fw.program(super::asm::timestamp()).map_err(|d| d.to_string())?;
     for out in &args.output {
         if out.extension().is_some_and(|e| e.eq_ignore_ascii_case("psm")) {
             write_atomic(out, SOURCE.as_bytes())?;

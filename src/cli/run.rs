@@ -180,14 +180,17 @@ pub fn run_with_frame(args: Args, frame_out: Option<PathBuf>) -> Result<(), Stri
         Some(p) => World::load(p).map_err(|d| d.to_string())?,
         None => World::builtin(),
     };
-    let (mut driver, samples): (Box<dyn Driver>, u64) = match (&args.motors, &args.driver) {
+    // MotCtl_in from reset is the script's first value (a driver starts stopped).
+    let (mut driver, samples, initial): (Box<dyn Driver>, u64, MotCtl) = match (&args.motors, &args.driver) {
         (Some(p), _) => {
             let script = MotorScript::load(p).map_err(|d| d.to_string())?;
-            let n = args.samples.unwrap_or(script.total());
-            (Box::new(ScriptDriver::new(script)), n)
+            let (n, first) = (args.samples.unwrap_or(script.total()), script.initial());
+            (Box::new(ScriptDriver::new(script)), n, first)
         }
-        (None, Some(_)) => (Box::new(LineFollower::new(firmware.threshold)), args.samples.unwrap_or(50_000)),
-        (None, None) => (Box::new(ScriptDriver::new(MotorScript::default())), args.samples.unwrap_or(20)),
+        (None, Some(_)) => {
+            (Box::new(LineFollower::new(firmware.threshold)), args.samples.unwrap_or(50_000), MotCtl::STOP)
+        }
+        (None, None) => (Box::new(ScriptDriver::new(MotorScript::default())), args.samples.unwrap_or(20), MotCtl::STOP),
     };
     let outputs = [&args.trace_csv, &args.trace_json, &args.vcd, &args.png, &frame_out];
     for p in outputs.into_iter().flatten() {
@@ -206,10 +209,6 @@ pub fn run_with_frame(args: Args, frame_out: Option<PathBuf>) -> Result<(), Stri
     };
     let mut frames_written = 0;
 
-    let initial = match &args.motors {
-        Some(p) => MotorScript::load(p).map_err(|d| d.to_string())?.initial(),
-        None => MotCtl::STOP,
-    };
     let mut bot = BotSim::builder()
         .firmware(firmware)
         .program(image)

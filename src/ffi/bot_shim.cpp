@@ -8,27 +8,13 @@
 
 struct BotSim {
     Sim<Vbot> sim;
-    bool settled = false;      // the current cycle's inputs have been evaluated
-    bool prev_upd = false;     // upd_sysregs in the previous cycle
-    uint64_t last_dump = ~0ull;
+    bool prev_upd = false;  // upd_sysregs in the previous cycle
 
-    // Evaluate the current cycle's inputs with the clock low (once dumped per cycle).
-    void settle() {
-        Vbot* t = sim.top;
-        t->clk = 0;
-        t->eval();
-        if (sim.vcd && last_dump != sim.ctx->time()) {
-            sim.vcd->dump(sim.ctx->time());
-            last_dump = sim.ctx->time();
-        }
-        settled = true;
-    }
+    void settle() { sim.settle(); }
 
     void rise() {
         prev_upd = sim.top->upd_sysregs;
         sim.rise();
-        last_dump = sim.ctx->time();
-        settled = false;
     }
 
     void regs(BotRegs* r) const {
@@ -56,9 +42,7 @@ BotSim* bot_sim_new(void) {
 void bot_sim_free(BotSim* b) { delete b; }
 
 int bot_sim_open_vcd(BotSim* b, const char* path) {
-    if (!b->sim.open_vcd(path, 99)) return -1;
-    b->last_dump = b->sim.ctx->time();
-    return 0;
+    return b->sim.open_vcd(path, 99) ? 0 : -1;
 }
 
 void bot_sim_close_vcd(BotSim* b) {
@@ -80,18 +64,15 @@ void bot_sim_load_world(BotSim* b, const uint8_t* cells, size_t count) {
 
 void bot_sim_set_motctl(BotSim* b, uint8_t v) {
     b->sim.top->MotCtl_in = v;
-    b->settled = false;
 }
 
 void bot_sim_set_reset(BotSim* b, uint8_t v) {
     b->sim.top->reset = v;
-    b->settled = false;
 }
 
 void bot_sim_set_video(BotSim* b, uint16_t row, uint16_t col) {
     b->sim.top->vid_row = row & 0x3FF;
     b->sim.top->vid_col = col & 0x3FF;
-    b->settled = false;
 }
 
 int bot_sim_tick(BotSim* b, BotOutputs* out) {

@@ -31,6 +31,7 @@ struct Sim {
     V* top;
     VerilatedVcdC* vcd = nullptr;
     uint64_t cycle = 0;
+    uint64_t last_dump = ~0ull;  // time of the last VCD sample: each time stamp is dumped once
 
     Sim() {
         ctx = new VerilatedContext;
@@ -76,7 +77,7 @@ struct Sim {
             vcd = nullptr;
             return false;
         }
-        vcd->dump(ctx->time());
+        dump();
         return true;
     }
 
@@ -89,11 +90,19 @@ struct Sim {
         }
     }
 
-    // Settle the inputs set for this cycle with the clock low (dumped at the cycle's start).
+    void dump() {
+        if (vcd && last_dump != ctx->time()) {
+            vcd->dump(ctx->time());
+            last_dump = ctx->time();
+        }
+    }
+
+    // Settle the inputs set for this cycle with the clock low (dumped at the cycle's start;
+    // settling the same cycle again after changing an input re-evaluates without a second dump).
     void settle() {
         top->clk = 0;
         top->eval();
-        if (vcd) vcd->dump(ctx->time());
+        dump();
     }
 
     // The rising edge that ends the cycle; the clock falls at the start of the next settle().
@@ -101,7 +110,7 @@ struct Sim {
         ctx->timeInc(HALF_PERIOD_PS);
         top->clk = 1;
         top->eval();
-        if (vcd) vcd->dump(ctx->time());
+        dump();
         ctx->timeInc(HALF_PERIOD_PS);
         cycle++;
     }

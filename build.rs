@@ -3,8 +3,9 @@
 //! 1. check the tools (Verilator 5, libclang) and stop with one line naming the setup script;
 //! 2. verilate each design once, each with its own `--prefix` (spec/verilator.md 4.1, 4.4);
 //! 3. compile the generated model files (listed in `V<prefix>_classes.mk`, never hard-coded),
-//!    the Verilator runtime (once, with VL_USER_FINISH) and the shims with `cc`, optimised
-//!    whatever the Cargo profile;
+//!    the Verilator runtime (with VL_USER_FINISH/VL_USER_FATAL) and the shims with `cc`,
+//!    optimised whatever the Cargo profile, each into a library rebuilt only when its inputs
+//!    change;
 //! 4. generate the FFI with bindgen from the plain C header `src/ffi/shim.h`.
 
 use std::collections::BTreeSet;
@@ -81,60 +82,140 @@ fn main() {
     designs.push(Design { prefix: "Vbot", top: "bot", sources: bot_sources, params: vec![] });
     designs.sort_by_key(|d| d.prefix);
 
-    let mut model_files = Vec::new();
+    // Each design, the runtime and the shims become their own static library. A library is
+    // rebuilt only when what it is compiled from changed (a content hash in a stamp file), so
+    // an edit to one RTL file recompiles one model: see "Build times" in the README.
     let mut runtime = BTreeSet::new();
     let mut include_dirs = Vec::new();
+    let mut model_libs = Vec::new();
     for d in &designs {
         let mdir = out.join(d.prefix);
         verilate(&verilator, &root, &mdir, d, coverage);
         let classes = fs::read_to_string(mdir.join(format!("{}_classes.mk", d.prefix)))
             .unwrap_or_else(|e| fail(&format!("cannot read Verilator's file list: {e}")));
+        let mut files = Vec::new();
         for var in ["VM_CLASSES_FAST", "VM_CLASSES_SLOW", "VM_SUPPORT_FAST", "VM_SUPPORT_SLOW"] {
             for name in mk_list(&classes, var) {
-                model_files.push(mdir.join(format!("{name}.cpp")));
+                files.push(mdir.join(format!("{name}.cpp")));
             }
         }
         for var in ["VM_GLOBAL_FAST", "VM_GLOBAL_SLOW"] {
             runtime.extend(mk_list(&classes, var));
         }
         rerun_for_sources(&mdir, d.prefix);
+        // The model's headers are part of its input too (the generated .h files).
+        let mut inputs = files.clone();
+        inputs.extend(list_dir(&mdir).into_iter().filter(|f| f.extension().is_some_and(|e| e == "h")));
+        model_libs.push((format!("{}_model", d.prefix), files, inputs, mdir.clone()));
         include_dirs.push(mdir);
     }
-
-    let mut build = cc::Build::new();
-    build
-        .cpp(true)
-        .std("c++17")
-        .warnings(false)
-        .opt_level(2) // never -O0: an unoptimised model runs ~7x slower (spec/verilator.md 4.3)
-        .debug(false)
-        .flag_if_supported("-faligned-new")
-        .flag_if_supported("-fcf-protection=none")
-        .flag_if_supported("-Wno-unused-parameter")
-        .define("VM_COVERAGE", if coverage { "1" } else { "0" })
-        .define("VM_SC", "0")
-        .define("VM_TRACE", "1")
-        .define("VM_TRACE_VCD", "1")
-        .define("VM_TRACE_FST", "0")
-        .define("VL_USER_FINISH", None)
-        .include(vroot.join("include"))
-        .include(vroot.join("include/vltstd"))
-        .include(root.join("src/ffi"));
-    for dir in &include_dirs {
-        build.include(dir);
+    let config = format!("{:?} coverage={coverage}", compiler_flags());
+    let cpp = |includes: &[PathBuf]| {
+        let mut b = cc::Build::new();
+        b.cpp(true)
+            .std("c++17")
+            .warnings(false)
+            .opt_level(2) // never -O0: an unoptimised model runs ~7x slower (spec/verilator.md 4.3)
+            .debug(false)
+            .cpp_link_stdlib(None) // linked once, after all the libraries (below)
+            .define("VM_COVERAGE", if coverage { "1" } else { "0" })
+            .include(vroot.join("include"))
+            .include(vroot.join("include/vltstd"))
+            .include(root.join("src/ffi"));
+        for f in compiler_flags() {
+            b.flag_if_supported(f);
+        }
+        for (name, value) in DEFINES {
+            b.define(name, *value);
+        }
+        for dir in includes {
+            b.include(dir);
+        }
+        b
+    };
+    // The shims come first on the link line: they use the models, which use the runtime.
+    let shims = [root.join("src/ffi/cpu_shim.cpp"), root.join("src/ffi/bot_shim.cpp")];
+    let mut shim_inputs = shims.to_vec();
+    shim_inputs.extend(list_dir(&root.join("src/ffi")));
+    for mdir in &include_dirs {
+        shim_inputs.extend(list_dir(mdir).into_iter().filter(|f| f.extension().is_some_and(|e| e == "h")));
     }
-    for f in &model_files {
-        build.file(f);
+    cached_lib(&out, "botsim_shims", &config, &shim_inputs, || {
+        let mut b = cpp(&include_dirs);
+        b.files(&shims);
+        b
+    });
+    for (name, files, inputs, mdir) in &model_libs {
+        cached_lib(&out, name, &config, inputs, || {
+            let mut b = cpp(std::slice::from_ref(mdir));
+            b.files(files);
+            b
+        });
     }
-    for name in &runtime {
-        build.file(vroot.join("include").join(format!("{name}.cpp")));
-    }
-    build.file(root.join("src/ffi/cpu_shim.cpp"));
-    build.file(root.join("src/ffi/bot_shim.cpp"));
-    build.compile("botsim_models");
+    let runtime_files: Vec<PathBuf> =
+        runtime.iter().map(|name| vroot.join("include").join(format!("{name}.cpp"))).collect();
+    cached_lib(&out, "verilator_runtime", &config, &runtime_files, || {
+        let mut b = cpp(&[]);
+        b.files(&runtime_files);
+        b
+    });
+    println!("cargo:rustc-link-lib=stdc++");
 
     bindings(&root, &out);
     variants(&out);
+}
+
+/// Flags for every C++ file (applied when the compiler supports them).
+fn compiler_flags() -> [&'static str; 3] {
+    ["-faligned-new", "-fcf-protection=none", "-Wno-unused-parameter"]
+}
+
+/// Defines for every C++ file: the runtime as the models need it, $finish and fatal errors
+/// handled by the shims (spec/verilator.md H4).
+const DEFINES: &[(&str, Option<&str>)] = &[
+    ("VM_SC", Some("0")),
+    ("VM_TRACE", Some("1")),
+    ("VM_TRACE_VCD", Some("1")),
+    ("VM_TRACE_FST", Some("0")),
+    ("VL_USER_FINISH", None),
+    ("VL_USER_FATAL", None),
+];
+
+/// The files of a folder (not recursive), sorted.
+fn list_dir(dir: &Path) -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = fs::read_dir(dir)
+        .map(|rd| rd.filter_map(|e| e.ok()).map(|e| e.path()).filter(|p| p.is_file()).collect())
+        .unwrap_or_default();
+    v.sort();
+    v
+}
+
+/// Compile the static library `lib<name>.a` with `build` unless the stamp says its inputs
+/// (contents) and configuration are those it was last built from; either way, link it.
+fn cached_lib(out: &Path, name: &str, config: &str, inputs: &[PathBuf], build: impl FnOnce() -> cc::Build) {
+    // FNV-1a over the configuration and every input's name and contents.
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut eat = |bytes: &[u8]| {
+        for &b in bytes {
+            h = (h ^ b as u64).wrapping_mul(0x0100_0000_01b3);
+        }
+    };
+    eat(config.as_bytes());
+    for f in inputs {
+        eat(f.to_string_lossy().as_bytes());
+        eat(&fs::read(f).unwrap_or_else(|e| fail(&format!("cannot read {}: {e}", f.display()))));
+    }
+    let stamp = out.join(format!("{name}.stamp"));
+    let lib = out.join(format!("lib{name}.a"));
+    let key = format!("{h:016x}\n");
+    if lib.exists() && fs::read_to_string(&stamp).ok().as_deref() == Some(key.as_str()) {
+        println!("cargo:rustc-link-search=native={}", out.display());
+        println!("cargo:rustc-link-lib=static={name}");
+        return;
+    }
+    let _ = fs::remove_file(&stamp);
+    build().compile(name);
+    fs::write(&stamp, key).unwrap_or_else(|e| fail(&format!("cannot write {}: {e}", stamp.display())));
 }
 
 /// Assemble the firmware with its default constants into the ROM module Verilator compiles.
@@ -177,7 +258,7 @@ fn verilate(verilator: &str, root: &Path, mdir: &Path, d: &Design, coverage: boo
     let _ = fs::remove_dir_all(mdir);
     let mut cmd = Command::new(verilator);
     cmd.current_dir(root)
-        .args(["--cc", "--no-timing", "-O3", "--x-assign", "fast", "--x-initial", "fast", "--trace"])
+        .args(["--cc", "--no-timing", "-O3", "--x-assign", "fast", "--x-initial", "unique", "--trace"])
         .args(["--prefix", d.prefix, "--top-module", d.top])
         .arg("--Mdir")
         .arg(mdir)
@@ -215,13 +296,18 @@ fn mk_list(text: &str, var: &str) -> Vec<String> {
 }
 
 /// rerun-if-changed for every source Verilator read (its `__verFiles.dat`, `S` lines).
+fn out_dir() -> String {
+    env::var("OUT_DIR").unwrap_or_default()
+}
+
 fn rerun_for_sources(mdir: &Path, prefix: &str) {
     let dat = fs::read_to_string(mdir.join(format!("{prefix}__verFiles.dat"))).unwrap_or_default();
     for line in dat.lines() {
         let mut parts = line.split_whitespace();
         if parts.next() == Some("S") {
-            if let Some(path) = parts.last() {
-                if !path.starts_with("/usr") && !path.contains("verilator") {
+            // Paths are quoted; the generated ROM in OUT_DIR follows the .psm (tracked above).
+            if let Some(path) = parts.last().map(|p| p.trim_matches('"')) {
+                if !path.starts_with("/usr") && !path.contains("verilator") && !path.starts_with(&*out_dir()) {
                     println!("cargo:rerun-if-changed={path}");
                 }
             }
@@ -239,6 +325,7 @@ fn bindings(root: &Path, out: &Path) {
             .header(header.to_string_lossy())
             .allowlist_function("cpu_sim_.*")
             .allowlist_function("bot_sim_.*")
+            .allowlist_function("botsim_.*")
             .allowlist_type("Cpu.*")
             .allowlist_type("Bot.*")
             .derive_default(true)

@@ -4,7 +4,10 @@
 #   icarus     Icarus Verilog runs rtl/sim/bot_tb.v; its register trace must equal Verilator's
 #   yosys      synth of `bot` (and synth_xilinx): no latches, no multiple drivers, no loops
 #   generated  rtl/bot_pgm.v and rtl/default_world.mem equal what the toolchain generates now
+#   xinit      the lock-step and system tests again with random power-up values (--x-initial
+#              unique, BOTSIM_X_SEED=1..4): the RTL needs no state the device does not set
 #   coverage   line and toggle coverage per RTL module over the RTL tests, against floors
+#   fuzz       a short cargo-fuzz run of every parser (when cargo-fuzz is installed)
 #   rust       cargo fmt --check and cargo clippy --all-targets -- -D warnings
 # Prints each stage's time. Needs scripts/setup.sh; builds what it needs.
 # GATE_STAGES="lint yosys" runs only the named stages (in the order above).
@@ -109,8 +112,25 @@ generated() {
   test "${PIPESTATUS[0]}" -eq 0
 }
 
+xinit() {
+  local seed
+  for seed in 1 2 3 4; do
+    BOTSIM_X_SEED=$seed cargo test --release -q --test cpu_lockstep --test cpu_timing --test bot_spec \
+      --test scoreboard --test many_models >"$work/xinit.log" 2>&1 \
+      || { tail -30 "$work/xinit.log"; echo "gate: fails with BOTSIM_X_SEED=$seed" >&2; return 1; }
+  done
+}
+
 coverage() {
   bash scripts/coverage.sh --check
+}
+
+fuzz() {
+  if ! command -v cargo-fuzz >/dev/null; then
+    echo "gate: cargo-fuzz not installed; skipping the fuzz smoke run"
+    return 0
+  fi
+  bash scripts/fuzz.sh "${FUZZ_SECONDS:-20}"
 }
 
 rust() {
@@ -124,6 +144,8 @@ run_stage lint lint
 run_stage icarus icarus
 run_stage yosys yosys_synth
 run_stage generated generated
+run_stage xinit xinit
 run_stage coverage coverage
+run_stage fuzz fuzz
 run_stage rust rust
 echo "gate: all stages passed in $(( $(date +%s) - total0 )) s"

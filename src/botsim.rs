@@ -25,17 +25,42 @@ use crate::world::{Cell, World};
 /// What went wrong in a simulation.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
-    /// A wait ran out of its cycle budget.
-    #[error("no {waited_for} within {budget} cycles (stopped at cycle {cycle})")]
-    Timeout { waited_for: &'static str, budget: u64, cycle: u64 },
+    /// A wait ran out of its cycle budget: a firmware stuck in a loop, held in reset, or a
+    /// budget too small for its timing.
+    #[error("no {waited_for} within {budget} cycles (stopped at cycle {cycle}, {cpu})")]
+    Timeout { waited_for: &'static str, budget: u64, cycle: u64, cpu: CpuAt },
     #[error("the model has finished ($finish) and cannot run further")]
     Finished,
+    /// The waveform could not be written (a full disk, say); the model stopped.
+    #[error("cannot write the waveform: {0}")]
+    Waveform(String),
+    /// Another fatal runtime error stopped the model.
+    #[error("the simulation stopped: {0}")]
+    Stopped(String),
     #[error("{0}")]
     Program(Diagnostics),
     #[error("the program uses address {0:03X}; bot_pgm is a 1K ROM (000-3FF)")]
     ProgramTooLarge(usize),
     #[error("{0}")]
     Io(String),
+}
+
+/// Where the CPU was when a wait gave up.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CpuAt {
+    /// Running; the program counter.
+    Address(u16),
+    /// Held in reset (the reset pin, or the internal reset that follows it).
+    Reset,
+}
+
+impl std::fmt::Display for CpuAt {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            CpuAt::Address(a) => write!(f, "the CPU at address {a:03X}"),
+            CpuAt::Reset => f.write_str("the CPU held in reset"),
+        }
+    }
 }
 
 /// The outputs of `bot` during one cycle.
@@ -185,9 +210,11 @@ impl BotSim {
         }
     }
 
-    pub fn close_vcd(&mut self) {
+    /// Finish and close the VCD file; an error if it could not be written completely.
+    pub fn close_vcd(&mut self) -> Result<(), Error> {
         // SAFETY: live model.
-        unsafe { ffi::bot_sim_close_vcd(self.sim.as_ptr()) }
+        unsafe { ffi::bot_sim_close_vcd(self.sim.as_ptr()) };
+        fatal().map_or(Ok(()), |msg| Err(stopped_by(msg)))
     }
 
     /// Set MotCtl_in (from the next cycle on).
@@ -199,12 +226,9 @@ impl BotSim {
     /// Hold reset for `cycles` cycles (at least 1), then release it. The next update is
     /// sample 0 again.
     pub fn reset(&mut self, cycles: u64) -> Result<(), Error> {
-        // SAFETY: live model.
-        unsafe { ffi::bot_sim_set_reset(self.sim.as_ptr(), 1) };
+        self.hold_reset(true);
         let r = self.run(cycles.max(1));
-        // SAFETY: live model.
-        unsafe { ffi::bot_sim_set_reset(self.sim.as_ptr(), 0) };
-        self.next_sample = 0;
+        self.hold_reset(false);
         r
     }
 
@@ -244,7 +268,7 @@ impl BotSim {
         let mut o = ffi::BotOutputs::default();
         // SAFETY: live model, writable output.
         if unsafe { ffi::bot_sim_tick(self.sim.as_ptr(), &mut o) } != 0 {
-            return Err(Error::Finished);
+            return Err(stopped());
         }
         Ok(Outputs { regs: regs(&o.regs), upd_sysregs: o.upd_sysregs != 0, vid_pixel_out: o.vid_pixel_out })
     }
@@ -254,7 +278,7 @@ impl BotSim {
         // SAFETY: live model.
         let n = unsafe { ffi::bot_sim_run(self.sim.as_ptr(), cycles) };
         if n < cycles {
-            return Err(Error::Finished);
+            return Err(stopped());
         }
         Ok(())
     }
@@ -263,6 +287,25 @@ impl BotSim {
     pub fn cycle(&self) -> u64 {
         // SAFETY: live model.
         unsafe { ffi::bot_sim_cycle(self.sim.as_ptr()) }
+    }
+
+    /// Where the CPU is now.
+    pub fn cpu_at(&self) -> CpuAt {
+        let mut pc = 0;
+        // SAFETY: live model, writable output.
+        match unsafe { ffi::bot_sim_cpu_in_reset(self.sim.as_ptr(), &mut pc) } {
+            0 => CpuAt::Address(pc),
+            _ => CpuAt::Reset,
+        }
+    }
+
+    /// Hold the reset pin high (`true`) or release it; [`BotSim::reset`] pulses it.
+    pub fn hold_reset(&mut self, held: bool) {
+        // SAFETY: live model.
+        unsafe { ffi::bot_sim_set_reset(self.sim.as_ptr(), held as u8) };
+        if held {
+            self.next_sample = 0;
+        }
     }
 
     /// The cycle budget of [`BotSim::wait_update`].
@@ -287,8 +330,10 @@ impl BotSim {
                 self.next_sample += 1;
                 Ok(s)
             }
-            0 => Err(Error::Timeout { waited_for: "upd_sysregs pulse", budget, cycle: self.cycle() }),
-            _ => Err(Error::Finished),
+            0 => {
+                Err(Error::Timeout { waited_for: "upd_sysregs pulse", budget, cycle: self.cycle(), cpu: self.cpu_at() })
+            }
+            _ => Err(stopped()),
         }
     }
 
@@ -318,6 +363,26 @@ impl BotSim {
     /// The next `n` snapshots with the current motor command.
     pub fn run_samples(&mut self, n: usize) -> Result<Vec<Snapshot>, Error> {
         (0..n).map(|_| self.wait_update()).collect()
+    }
+}
+
+/// The fatal runtime error that stopped a model on this thread, if any (taken once).
+fn fatal() -> Option<String> {
+    let mut buf = [0u8; 512];
+    // SAFETY: a writable buffer of the given length.
+    let n = unsafe { ffi::botsim_take_fatal(buf.as_mut_ptr().cast(), buf.len()) };
+    (n > 0).then(|| String::from_utf8_lossy(&buf[..n]).into_owned())
+}
+
+/// Why a model refused to run on.
+fn stopped() -> Error {
+    fatal().map_or(Error::Finished, stopped_by)
+}
+
+fn stopped_by(msg: String) -> Error {
+    match msg.strip_prefix("VerilatedVcd::bufferFlush: ") {
+        Some(reason) => Error::Waveform(reason.to_string()),
+        None => Error::Stopped(msg),
     }
 }
 

@@ -28,7 +28,7 @@
 use kcpsm6::iss::{Bus, Config, Cpu};
 use kcpsm6::Image;
 
-use crate::botsim::Error;
+use crate::botsim::{CpuAt, Error};
 use crate::regs::{MotCtl, Registers, Snapshot};
 use crate::world::World;
 
@@ -182,6 +182,7 @@ impl IssBot {
             self.next_sample += 1;
             return Ok(s);
         }
-        Err(Error::Timeout { waited_for: "upd_sysregs pulse", budget, cycle: self.cpu.cycle() })
+        let cpu = if self.cpu.in_reset() { CpuAt::Reset } else { CpuAt::Address(self.cpu.pc()) };
+        Err(Error::Timeout { waited_for: "upd_sysregs pulse", budget, cycle: self.cpu.cycle(), cpu })
     }
 }

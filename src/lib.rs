@@ -25,7 +25,7 @@ mod rtl;
 pub mod script;
 pub mod world;
 
-pub use crate::botsim::{BotSim, Error};
+pub use crate::botsim::{BotSim, CpuAt, Error};
 pub use firmware::{Compat, Firmware, Timing};
 pub use kcpsm6;
 pub use regs::{MotCtl, Movement, Orientation, Registers, Sensors, Snapshot};

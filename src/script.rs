@@ -22,6 +22,10 @@ use kcpsm6::diag::{Diagnostic, Loc};
 
 use crate::regs::MotCtl;
 
+/// The most main-loop iterations a script may cover (about 1.7 years of `hw` time): counts
+/// beyond it are typing errors, and totals stay far from overflow.
+pub const MAX_ITERATIONS: u64 = 1_000_000_000;
+
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct MotorScript {
     pub segments: Vec<(MotCtl, u64)>,
@@ -40,15 +44,20 @@ impl MotorScript {
     pub fn parse(path: impl AsRef<Path>, text: &str) -> Result<MotorScript, Diagnostic> {
         let path = path.as_ref();
         let mut segments = Vec::new();
+        let mut total = 0u64;
         for (i, line) in text.lines().enumerate() {
             let code = line.split('#').next().unwrap_or("");
             let mut words = Vec::new();
-            let mut col = 0;
-            for w in code.split(|c: char| c.is_whitespace()) {
-                if !w.is_empty() {
-                    words.push((w, col + 1));
+            let mut start = None;
+            for (at, c) in code.char_indices().chain([(code.len(), ' ')]) {
+                match (c.is_whitespace(), start) {
+                    (false, None) => start = Some(at),
+                    (true, Some(s)) => {
+                        words.push((&code[s..at], code[..s].chars().count() + 1));
+                        start = None;
+                    }
+                    _ => {}
                 }
-                col += w.len() + 1;
             }
             let at = |c| Loc::new(path, i + 1, c);
             match words[..] {
@@ -58,6 +67,13 @@ impl MotorScript {
                     let count = n.parse::<u64>().map_err(|_| {
                         Diagnostic::error(at(nc), format!("'{n}' is not a count (a decimal number of iterations)"))
                     })?;
+                    total += count.min(MAX_ITERATIONS + 1);
+                    if total > MAX_ITERATIONS {
+                        return Err(Diagnostic::error(
+                            at(nc),
+                            format!("the script covers more than {MAX_ITERATIONS} iterations"),
+                        ));
+                    }
                     segments.push((motctl, count));
                 }
                 [(_, c)] => {

@@ -353,9 +353,9 @@ impl World {
         for (i, line) in text.lines().enumerate() {
             let code = line.split("//").next().unwrap_or("");
             let mut col = 1;
-            for tok in code.split(' ') {
+            for tok in code.split([' ', '\t']) {
                 let here = col;
-                col += tok.len() + 1;
+                col += tok.chars().count() + 1;
                 let tok = tok.trim();
                 if tok.is_empty() {
                     continue;

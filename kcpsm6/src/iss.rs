@@ -269,6 +269,11 @@ impl Cpu {
         self.pc
     }
 
+    /// Held in reset (by the pin, or by the internal reset after power-up or a stack error).
+    pub fn in_reset(&self) -> bool {
+        self.internal_reset
+    }
+
     pub fn phase(&self) -> Phase {
         self.phase
     }

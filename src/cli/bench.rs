@@ -41,7 +41,7 @@ fn rtl_vcd(cycles: u64, dir: &Path) -> Result<f64, String> {
         BotSim::builder().firmware(fw).motors(MotCtl::FORWARD).vcd(&path).build().map_err(|e| e.to_string())?;
     let t = Instant::now();
     bot.run(cycles).map_err(|e| e.to_string())?;
-    bot.close_vcd();
+    bot.close_vcd().map_err(|e| e.to_string())?;
     let r = rate(cycles, t.elapsed().as_secs_f64());
     let _ = std::fs::remove_file(&path);
     Ok(r)

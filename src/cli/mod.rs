@@ -1,4 +1,5 @@
-//! Subcommands of `botsim`. Every error is one line on stderr and exit status 1.
+//! Subcommands of `botsim`. Every error is one line on stderr and exit status 1; a run stopped
+//! by Ctrl-C writes its outputs up to there and exits with 130.
 
 mod asm;
 mod bench;
@@ -14,6 +15,16 @@ use clap::{Parser, Subcommand};
 pub const EXIT_OK: i32 = 0;
 /// Exit status for any error: bad input, bad usage, a failed run.
 pub const EXIT_ERROR: i32 = 1;
+/// Exit status after Ctrl-C (SIGINT) stopped a run: its outputs are complete up to there.
+pub const EXIT_INTERRUPTED: i32 = 130;
+
+/// Set by the Ctrl-C handler that `botsim run` installs; long loops stop at the next check.
+pub static INTERRUPTED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Whether Ctrl-C was pressed.
+pub fn interrupted() -> bool {
+    INTERRUPTED.load(std::sync::atomic::Ordering::Relaxed)
+}
 
 #[derive(Parser)]
 #[command(name = "botsim", version, about = "Cycle-exact RTL co-simulation of the Rojobot BotSim 2.0", long_about = None)]
@@ -53,6 +64,7 @@ pub fn main() -> i32 {
         Command::Disasm(a) => disasm::run(a),
     };
     match result {
+        Ok(()) if interrupted() => EXIT_INTERRUPTED,
         Ok(()) => EXIT_OK,
         Err(msg) => {
             eprintln!("{msg}");

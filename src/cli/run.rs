@@ -8,7 +8,7 @@ use std::time::Instant;
 use botsim::driver::{Driver, LineFollower, ScriptDriver};
 use botsim::files::write_atomic;
 use botsim::firmware::{Compat, Firmware, Timing};
-use botsim::kcpsm6::asm::Options;
+use botsim::kcpsm6::asm::{Options, RomSize};
 use botsim::kcpsm6::image::{Format, Image};
 use botsim::render::{path_picture, PathStyle};
 use botsim::script::MotorScript;
@@ -166,14 +166,19 @@ pub fn run_with_frame(args: Args, frame_out: Option<PathBuf>) -> Result<(), Stri
     let image = match &args.program {
         None => firmware.assemble().map_err(|d| d.to_string())?,
         Some(p) => {
-            let opts = Options { defines: firmware.defines(), ..Options::default() };
+            // bot_pgm is a 1K ROM: a .psm that runs past it fails at the line that does.
+            let opts = Options { defines: firmware.defines(), rom_size: Some(RomSize::K1), ..Options::default() };
             if Format::of(p) != Some(Format::Psm)
                 && (args.threshold.is_some() || args.timing.is_some() || args.compat.is_some())
                 && !args.quiet
             {
                 eprintln!("{}: warning: --threshold, --timing and --compat only apply to .psm programs", p.display());
             }
-            Image::load(p, &opts).map_err(|d| d.to_string())?
+            let image = Image::load(p, &opts).map_err(|d| d.to_string())?;
+            if let Some(last) = image.words.iter().rposition(|&w| w != 0).filter(|&a| a >= 1024) {
+                return Err(format!("{}: error: {}", p.display(), Error::ProgramTooLarge(last)));
+            }
+            image
         }
     };
     let world = match &args.map {
@@ -227,8 +232,18 @@ pub fn run_with_frame(args: Args, frame_out: Option<PathBuf>) -> Result<(), Stri
     });
 
     let vcd_part = args.vcd.as_ref().map(|p| part_name(p));
-    let mut window =
-        vcd_part.clone().map(|part| Window { part, from: args.trace_from, to: args.trace_to, state: State::Before });
+    let _unfinished = Unfinished(vcd_part.clone());
+    let mut window = args.vcd.clone().map(|path| Window {
+        part: part_name(&path),
+        path,
+        from: args.trace_from,
+        to: args.trace_to,
+        state: State::Before,
+    });
+    // Ctrl-C stops the run between two checks (at most ~1 M cycles apart); the outputs are
+    // then written for the samples taken, as at a normal end.
+    let _ = ctrlc::set_handler(|| super::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
+    let mut stopped_at = None;
     let start = Instant::now();
     let mut snaps: Vec<Snapshot> = vec![];
     let mut json = String::new();
@@ -236,7 +251,19 @@ pub fn run_with_frame(args: Args, frame_out: Option<PathBuf>) -> Result<(), Stri
         if let Some(w) = window.as_mut() {
             w.before_sample(&mut bot, k)?;
         }
-        let s = next_sample(&mut bot, window.as_mut()).map_err(|e| format!("error: sample {k}: {e}"))?;
+        let s = match next_sample(&mut bot, window.as_mut()) {
+            Ok(s) => s,
+            Err(Wait::Interrupted) => {
+                stopped_at = Some((k, bot.cycle()));
+                break;
+            }
+            Err(Wait::Sim(Error::Waveform(why))) => {
+                let p = args.vcd.as_deref().unwrap_or(Path::new("waveform"));
+                return Err(format!("{}: error: cannot write file: {why} (in sample {k})", p.display()));
+            }
+            Err(Wait::Sim(e)) => return Err(format!("error: sample {k}: {e}")),
+            Err(Wait::Other(msg)) => return Err(msg),
+        };
         let m = driver.next(&s);
         json.push_str(&json_row(&s, m));
         snaps.push(s);
@@ -259,7 +286,7 @@ pub fn run_with_frame(args: Args, frame_out: Option<PathBuf>) -> Result<(), Stri
         bot.set_motors(m);
     }
     if let Some(w) = window.as_mut() {
-        w.close(&mut bot);
+        w.close(&mut bot)?;
     }
     let cycles = bot.cycle();
     let wall = start.elapsed().as_secs_f64();
@@ -308,7 +335,13 @@ pub fn run_with_frame(args: Args, frame_out: Option<PathBuf>) -> Result<(), Stri
             eprintln!("{}: warning: the trace window was never reached; no waveform written", p.display());
         }
     }
-    let last = snaps.last().copied().expect("at least sample 0");
+    if let Some((k, cycle)) = stopped_at {
+        eprintln!(
+            "interrupted: stopped in sample {k} at cycle {cycle}; the outputs hold samples 0-{}",
+            k.saturating_sub(1)
+        );
+    }
+    let Some(last) = snaps.last().copied() else { return Ok(()) };
     if args.json {
         let v = serde_json::json!({
             "samples": snaps.len(), "cycles": cycles, "simulated_seconds": cycles as f64 / 1e8,
@@ -347,6 +380,17 @@ pub fn run_with_frame(args: Args, frame_out: Option<PathBuf>) -> Result<(), Stri
     Ok(())
 }
 
+/// Removes a waveform still under its temporary name when the run ends in an error.
+struct Unfinished(Option<PathBuf>);
+
+impl Drop for Unfinished {
+    fn drop(&mut self) {
+        if let Some(p) = &self.0 {
+            let _ = std::fs::remove_file(p);
+        }
+    }
+}
+
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum State {
     Before,
@@ -356,6 +400,7 @@ enum State {
 
 /// The waveform window: opens at `from` (a sample's start or a cycle), closes after `to`.
 struct Window {
+    path: PathBuf,
     part: PathBuf,
     from: Option<Point>,
     to: Option<Point>,
@@ -369,11 +414,16 @@ impl Window {
         Ok(())
     }
 
-    fn close(&mut self, bot: &mut BotSim) {
-        if self.state == State::Open {
-            bot.close_vcd();
-        }
+    fn close(&mut self, bot: &mut BotSim) -> Result<(), String> {
+        let open = self.state == State::Open;
         self.state = State::Done;
+        if open {
+            bot.close_vcd().map_err(|e| match e {
+                Error::Waveform(why) => format!("{}: error: cannot write file: {why}", self.path.display()),
+                e => e.to_string(),
+            })?;
+        }
+        Ok(())
     }
 
     /// Before waiting for sample `k`: open a whole-run or sample window.
@@ -396,7 +446,7 @@ impl Window {
         if let (State::Open, Some(Point::Sample(s))) = (self.state, self.to) {
             if k >= s {
                 bot.run(3).map_err(|e| e.to_string())?;
-                self.close(bot);
+                self.close(bot)?;
             }
         }
         Ok(())
@@ -414,30 +464,58 @@ impl Window {
     fn cross_boundary(&mut self, bot: &mut BotSim) -> Result<(), String> {
         match self.state {
             State::Before => self.open(bot),
-            _ => {
-                self.close(bot);
-                Ok(())
-            }
+            _ => self.close(bot),
         }
     }
 }
 
-/// Wait for the next pulse, opening or closing a cycle window on the way.
-fn next_sample(bot: &mut BotSim, mut window: Option<&mut Window>) -> Result<Snapshot, String> {
+/// Why a wait for the next sample ended without one.
+enum Wait {
+    Interrupted,
+    Sim(Error),
+    Other(String),
+}
+
+impl From<String> for Wait {
+    fn from(e: String) -> Wait {
+        Wait::Other(e)
+    }
+}
+
+/// Cycles between two looks at the Ctrl-C flag (~0.07 s of RTL time here).
+const CHECK_EVERY: u64 = 1 << 20;
+
+/// Wait for the next pulse within the bot's update budget, opening or closing a cycle window
+/// on the way and stopping early on Ctrl-C.
+fn next_sample(bot: &mut BotSim, mut window: Option<&mut Window>) -> Result<Snapshot, Wait> {
+    let deadline = bot.cycle() + bot.update_budget();
     loop {
-        let boundary = window.as_ref().and_then(|w| w.boundary());
-        let Some(c) = boundary else { return bot.wait_update().map_err(|e| e.to_string()) };
+        if super::interrupted() {
+            return Err(Wait::Interrupted);
+        }
         let now = bot.cycle();
-        if c > now {
-            let budget = (c - now).min(bot.update_budget());
-            match bot.wait_update_within(budget) {
+        if now >= deadline {
+            let budget = bot.update_budget();
+            return Err(Wait::Sim(Error::Timeout {
+                waited_for: "upd_sysregs pulse",
+                budget,
+                cycle: now,
+                cpu: bot.cpu_at(),
+            }));
+        }
+        let boundary = window.as_ref().and_then(|w| w.boundary());
+        let stop = boundary.filter(|&c| c > now).unwrap_or(deadline).min(deadline).min(now + CHECK_EVERY);
+        if boundary.map_or(true, |c| c > now) {
+            match bot.wait_update_within(stop - now) {
                 Ok(s) => return Ok(s),
-                Err(Error::Timeout { .. }) if bot.cycle() >= c => {}
-                Err(e) => return Err(e.to_string()),
+                Err(Error::Timeout { .. }) => {}
+                Err(e) => return Err(Wait::Sim(e)),
             }
         }
-        if let Some(w) = window.as_mut() {
-            w.cross_boundary(bot)?;
+        if let (Some(w), Some(c)) = (window.as_mut(), boundary) {
+            if bot.cycle() >= c {
+                w.cross_boundary(bot)?;
+            }
         }
     }
 }

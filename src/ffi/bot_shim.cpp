@@ -115,4 +115,10 @@ uint64_t bot_sim_run(BotSim* b, uint64_t cycles) {
 }
 
 uint64_t bot_sim_cycle(const BotSim* b) { return b->sim.cycle; }
+
+int bot_sim_cpu_in_reset(const BotSim* b, uint16_t* pc) {
+    const auto* r = b->sim.top->rootp;
+    *pc = r->bot__DOT__BOTSIMCPU__DOT__pc;
+    return r->bot__DOT__BOTSIMCPU__DOT__internal_reset;
+}
 }

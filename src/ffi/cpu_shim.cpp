@@ -1,5 +1,6 @@
 // cpu_shim.cpp: the KCPSM6 harness models behind shim.h.
 #include <cstring>
+#include <string>
 
 #include "shim.h"
 #include "sim.h"
@@ -17,6 +18,28 @@ void vl_finish(const char* filename, int linenum, const char* hier) VL_MT_UNSAFE
     (void)linenum;
     (void)hier;
     Verilated::threadContextp()->gotFinish(true);
+}
+
+// A fatal runtime error (a VCD write that failed on a full disk, say) stops the model instead
+// of aborting the process: the message is kept for the caller (botsim_take_fatal).
+static thread_local std::string fatal_message;
+
+void vl_fatal(const char* filename, int linenum, const char* hier, const char* msg) VL_MT_UNSAFE {
+    (void)filename;
+    (void)linenum;
+    (void)hier;
+    Verilated::threadContextp()->gotError(true);
+    Verilated::threadContextp()->gotFinish(true);
+    if (fatal_message.empty()) fatal_message = msg;
+}
+
+extern "C" size_t botsim_take_fatal(char* buf, size_t len) {
+    size_t n = fatal_message.size();
+    if (n >= len) n = len - 1;
+    std::memcpy(buf, fatal_message.data(), n);
+    buf[n] = 0;
+    fatal_message.clear();
+    return n;
 }
 
 struct CpuSim {

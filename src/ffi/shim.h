@@ -108,6 +108,11 @@ int bot_sim_run_until_update(BotSim* sim, uint64_t budget, uint64_t* cycle, BotR
 /* `cycles` cycles in one call; returns the cycles run. */
 uint64_t bot_sim_run(BotSim* sim, uint64_t cycles);
 uint64_t bot_sim_cycle(const BotSim* sim);
+/* The message of the fatal runtime error that stopped a model on this thread (a failed VCD
+ * write, say), NUL-terminated into `buf`; its length, 0 if none. Clears it. */
+size_t botsim_take_fatal(char* buf, size_t len);
+/* Where the CPU is: its program counter; 1 if it is held in (internal) reset. */
+int bot_sim_cpu_in_reset(const BotSim* sim, uint16_t* pc);
 
 #ifdef __cplusplus
 }

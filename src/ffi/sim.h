@@ -39,6 +39,13 @@ struct Sim {
         ctx->threads(1);
         ctx->fatalOnError(false);
         ctx->traceEverOn(true);
+        // X hygiene: with BOTSIM_X_SEED=N every variable without a power-up value starts
+        // from random bits (the build uses --x-initial unique), so a test run with several
+        // seeds shows the RTL depends on no state the device does not initialise.
+        if (const char* seed = std::getenv("BOTSIM_X_SEED")) {
+            ctx->randReset(2);
+            ctx->randSeed(std::atoi(seed));
+        }
         top = new V{ctx, "TOP"};
         top->clk = 0;
         top->eval();  // initialisation: never an edge

@@ -17,6 +17,7 @@ use std::ptr::NonNull;
 
 use kcpsm6::{Diagnostics, Image};
 
+use crate::backend::{PortAccess, PortEvent};
 use crate::firmware::{Compat, Firmware, Timing};
 use crate::regs::{MotCtl, Registers, Snapshot};
 use crate::rtl::ffi;
@@ -34,6 +35,9 @@ pub enum Error {
     /// The waveform could not be written (a full disk, say); the model stopped.
     #[error("cannot write the waveform: {0}")]
     Waveform(String),
+    /// The RTL and the ISS backend disagreed in a lock-step run.
+    #[error("lock-step mismatch: {0}")]
+    Mismatch(String),
     /// Another fatal runtime error stopped the model.
     #[error("the simulation stopped: {0}")]
     Stopped(String),
@@ -334,6 +338,69 @@ impl BotSim {
                 Err(Error::Timeout { waited_for: "upd_sysregs pulse", budget, cycle: self.cycle(), cpu: self.cpu_at() })
             }
             _ => Err(stopped()),
+        }
+    }
+
+    /// As [`BotSim::wait_update`], appending every port access of the CPU to `events`.
+    pub fn wait_update_recording(&mut self, events: &mut Vec<PortEvent>) -> Result<Snapshot, Error> {
+        match self.record(self.budget, true, events)? {
+            Some(s) => Ok(s),
+            None => Err(Error::Timeout {
+                waited_for: "upd_sysregs pulse",
+                budget: self.budget,
+                cycle: self.cycle(),
+                cpu: self.cpu_at(),
+            }),
+        }
+    }
+
+    /// Run `cycles` cycles, appending every port access of the CPU to `events` (upd_sysregs
+    /// pulses in them are not reported as samples).
+    pub fn run_recording(&mut self, cycles: u64, events: &mut Vec<PortEvent>) -> Result<(), Error> {
+        self.record(cycles, false, events).map(|_| ())
+    }
+
+    fn record(&mut self, budget: u64, stop: bool, events: &mut Vec<PortEvent>) -> Result<Option<Snapshot>, Error> {
+        let mut left = budget;
+        loop {
+            let mut buf = vec![ffi::BotPortEvent::default(); 4096];
+            let (mut cycle, mut n) = (0, 0);
+            let mut r = ffi::BotRegs::default();
+            let start = self.cycle();
+            // SAFETY: live model; `buf` holds `buf.len()` events, the outputs are writable.
+            let rc = unsafe {
+                ffi::bot_sim_run_recording(
+                    self.sim.as_ptr(),
+                    left,
+                    stop as i32,
+                    &mut cycle,
+                    &mut r,
+                    buf.as_mut_ptr(),
+                    buf.len(),
+                    &mut n,
+                )
+            };
+            events.extend(buf[..n].iter().map(|e| PortEvent {
+                cycle: e.cycle,
+                access: match e.kind {
+                    0 => PortAccess::Read,
+                    1 => PortAccess::Write,
+                    _ => PortAccess::WriteK,
+                },
+                port: e.port,
+                value: e.value,
+            }));
+            match rc {
+                1 => {
+                    let s = Snapshot { sample: self.next_sample, cycle, regs: regs(&r) };
+                    self.next_sample += 1;
+                    return Ok(Some(s));
+                }
+                0 => return Ok(None),
+                // The buffer filled up: carry on from where the model stopped.
+                -2 => left -= self.cycle() - start,
+                _ => return Err(stopped()),
+            }
         }
     }
 

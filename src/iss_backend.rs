@@ -9,10 +9,13 @@
 //! registers every cycle while a flag is high, and upd_sysregs is high from the cycle after a
 //! rising toggle.
 //!
-//! The scoreboard compares every snapshot and its cycle with the RTL on random worlds and
-//! motor commands. The firmware reads the map with zero slack on the late side only, so that
-//! comparison pins a map or MotCtl path that is a clock too slow, not one that is a clock too
-//! fast; a port-level lock-step on programs that read at every distance will pin both.
+//! [`crate::lockstep`] compares every snapshot and every port access (with its cycle) with
+//! the RTL, on the firmware and on random programs that read every port at every distance
+//! after writing it. Port strobes come in the second cycle of an instruction, so two strobes
+//! are always an even number of cycles apart: a bus-to-bus latency that is one clock off is
+//! invisible to every program (the lock-step cannot fail on it, and no user can see it),
+//! while two clocks off fails it. MotCtl, set from outside at any cycle, is pinned to the
+//! clock.
 //!
 //! ```
 //! use botsim::iss_backend::IssBot;
@@ -28,6 +31,7 @@
 use kcpsm6::iss::{Bus, Config, Cpu};
 use kcpsm6::Image;
 
+use crate::backend::{PortAccess, PortEvent};
 use crate::botsim::{CpuAt, Error};
 use crate::regs::{MotCtl, Registers, Snapshot};
 use crate::world::World;
@@ -71,6 +75,16 @@ struct WorldIf {
     upd: bool,
     /// Set when upd_sysregs rises: the first cycle it is high.
     pulse: Option<u64>,
+    /// Every port access, when recording (lock-step runs).
+    events: Option<Vec<PortEvent>>,
+}
+
+impl WorldIf {
+    fn record(&mut self, cycle: u64, access: PortAccess, port: u8, value: u8) {
+        if let Some(v) = self.events.as_mut() {
+            v.push(PortEvent { cycle, access, port, value });
+        }
+    }
 }
 
 impl WorldIf {
@@ -93,6 +107,24 @@ impl WorldIf {
 
 impl Bus for WorldIf {
     fn input(&mut self, port: u8, cycle: u64) -> u8 {
+        let v = self.read(port, cycle);
+        self.record(cycle, PortAccess::Read, port, v);
+        v
+    }
+
+    fn output(&mut self, port: u8, value: u8, cycle: u64) {
+        self.record(cycle, PortAccess::Write, port, value);
+        self.write(port, value, cycle);
+    }
+
+    fn output_k(&mut self, port: u8, value: u8, cycle: u64) {
+        self.record(cycle, PortAccess::WriteK, port, value);
+    }
+}
+
+impl WorldIf {
+    /// in_port during `cycle`.
+    fn read(&self, port: u8, cycle: u64) -> u8 {
         // The read mux registered at the end of cycle - 1.
         let t = cycle - 1;
         match port & 15 {
@@ -106,7 +138,7 @@ impl Bus for WorldIf {
         }
     }
 
-    fn output(&mut self, port: u8, value: u8, cycle: u64) {
+    fn write(&mut self, port: u8, value: u8, cycle: u64) {
         self.catch_up();
         match port & 15 {
             p @ 1..=6 => self.holding[p as usize] = value,
@@ -124,8 +156,6 @@ impl Bus for WorldIf {
             _ => {}
         }
     }
-
-    fn output_k(&mut self, _port: u8, _value: u8, _cycle: u64) {}
 }
 
 /// A BotSim whose CPU is the ISS.
@@ -152,6 +182,7 @@ impl IssBot {
                 load_dist: false,
                 upd: false,
                 pulse: None,
+                events: None,
             },
             next_sample: 0,
         }
@@ -166,6 +197,28 @@ impl IssBot {
     /// The next cycle to simulate.
     pub fn cycle(&self) -> u64 {
         self.cpu.cycle()
+    }
+
+    /// Record every port access from now on ([`IssBot::take_events`]), or stop recording.
+    pub fn record_ports(&mut self, on: bool) {
+        self.bus.events = on.then(Vec::new);
+    }
+
+    /// The port accesses recorded since the last call.
+    pub fn take_events(&mut self) -> Vec<PortEvent> {
+        self.bus.events.as_mut().map(std::mem::take).unwrap_or_default()
+    }
+
+    /// Run exactly `cycles` cycles (upd_sysregs pulses in them are not reported as samples).
+    pub fn run(&mut self, cycles: u64) {
+        let end = self.cpu.cycle() + cycles;
+        // Whole instructions to just before the end, then single cycles.
+        self.cpu.run_fast(&mut self.bus, end.saturating_sub(2), |_| false);
+        while self.cpu.cycle() < end {
+            self.cpu.tick(kcpsm6::iss::Pins::default(), &mut self.bus);
+        }
+        self.bus.pulse = None;
+        self.bus.catch_up();
     }
 
     /// Run to the next upd_sysregs pulse within `budget` cycles; stops at the start of the

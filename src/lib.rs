@@ -10,13 +10,17 @@
 //! | [`firmware`] | the BotSim firmware and its assembly-time constants |
 //! | [`cpu`] | the KCPSM6 RTL core in a test harness (lock-step DUT) |
 //! | [`iss_backend`] | the same bot on the ISS, with cycle-timed Rust models of world_if and map |
+//! | [`backend`] | the [`backend::Backend`] trait all of them implement; port events |
+//! | [`lockstep`] | RTL and ISS side by side, every snapshot and port event compared |
 
+pub mod backend;
 pub mod botsim;
 pub mod cpu;
 pub mod driver;
 pub mod files;
 pub mod firmware;
 pub mod iss_backend;
+pub mod lockstep;
 pub mod model;
 mod picture;
 pub mod regs;

@@ -104,6 +104,36 @@ int bot_sim_run_until_update(BotSim* b, uint64_t budget, uint64_t* cycle, BotReg
     return 0;
 }
 
+int bot_sim_run_recording(BotSim* b, uint64_t budget, int stop_on_update, uint64_t* cycle, BotRegs* regs,
+                          BotPortEvent* events, size_t cap, size_t* count) {
+    b->sim.enter();
+    const auto* r = b->sim.top->rootp;
+    *count = 0;
+    for (uint64_t n = 0; n < budget; n++) {
+        if (b->sim.finished()) return -1;
+        b->settle();
+        if (stop_on_update && b->sim.top->upd_sysregs && !b->prev_upd) {
+            *cycle = b->sim.cycle;
+            b->regs(regs);
+            b->prev_upd = true;
+            return 1;
+        }
+        // The strobes are registered in the CPU: at most one is high in a cycle.
+        int kind = r->bot__DOT__read_strobe ? 0 : r->bot__DOT__write_strobe ? 1 : r->bot__DOT__k_write_strobe ? 2 : -1;
+        if (kind >= 0) {
+            if (*count == cap) return -2;
+            BotPortEvent& e = events[(*count)++];
+            e.cycle = b->sim.cycle;
+            e.kind = (uint8_t)kind;
+            e.port = r->bot__DOT__port_id;
+            e.value = kind == 0 ? r->bot__DOT__in_port : r->bot__DOT__out_port;
+        }
+        b->rise();
+    }
+    *cycle = b->sim.cycle;
+    return 0;
+}
+
 uint64_t bot_sim_run(BotSim* b, uint64_t cycles) {
     b->sim.enter();
     uint64_t n = 0;

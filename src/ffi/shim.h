@@ -88,6 +88,15 @@ typedef struct {
     uint8_t vid_pixel_out;
 } BotOutputs;
 
+/* A port access on the CPU bus: the cycle its strobe is high, port_id and the data (out_port
+ * for writes, in_port for reads). kind: 0 read (read_strobe), 1 write, 2 OUTPUTK write. */
+typedef struct {
+    uint64_t cycle;
+    uint8_t kind;
+    uint8_t port;
+    uint8_t value;
+} BotPortEvent;
+
 BotSim* bot_sim_new(void);
 void bot_sim_free(BotSim* sim);
 int bot_sim_open_vcd(BotSim* sim, const char* path);
@@ -107,6 +116,11 @@ int bot_sim_tick(BotSim* sim, BotOutputs* out);
 int bot_sim_run_until_update(BotSim* sim, uint64_t budget, uint64_t* cycle, BotRegs* regs);
 /* `cycles` cycles in one call; returns the cycles run. */
 uint64_t bot_sim_run(BotSim* sim, uint64_t cycles);
+/* As bot_sim_run_until_update (with `stop_on_update`) or bot_sim_run (without, returning 0
+ * after `budget` cycles), recording every port access into `events` (capacity `cap`; `*count`
+ * is set). Returns 1, 0 or -1 as bot_sim_run_until_update, or -2 when `events` is full. */
+int bot_sim_run_recording(BotSim* sim, uint64_t budget, int stop_on_update, uint64_t* cycle, BotRegs* regs,
+                          BotPortEvent* events, size_t cap, size_t* count);
 uint64_t bot_sim_cycle(const BotSim* sim);
 /* The message of the fatal runtime error that stopped a model on this thread (a failed VCD
  * write, say), NUL-terminated into `buf`; its length, 0 if none. Clears it. */

@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod lockstep;
+pub mod strategies;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

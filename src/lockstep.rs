@@ -1,0 +1,126 @@
+//! The RTL and the ISS backend side by side on the same program, world and motor commands:
+//! every upd_sysregs snapshot and every port access (kind, port, data and cycle) must agree.
+//! A difference stops the run with both sides of the first one.
+//!
+//! ```
+//! use botsim::lockstep::Lockstep;
+//! use botsim::{Firmware, MotCtl, Timing, World};
+//! let fw = Firmware { timing: Timing::Fast, ..Firmware::default() };
+//! let mut both = Lockstep::new(&fw.assemble().unwrap(), World::builtin()).unwrap();
+//! both.wait_update().unwrap();
+//! both.set_motors(MotCtl::FORWARD);
+//! for _ in 0..16 {
+//!     both.wait_update().unwrap();
+//! }
+//! assert!(both.events_compared() > 16 * 20); // about 25 accesses per main-loop iteration
+//! ```
+
+use kcpsm6::Image;
+
+use crate::backend::{Backend, PortEvent, ISS_UPDATE_BUDGET};
+use crate::botsim::{BotSim, Error};
+use crate::iss_backend::IssBot;
+use crate::regs::{MotCtl, Snapshot};
+use crate::world::World;
+
+/// Both backends, stepped together.
+pub struct Lockstep {
+    rtl: BotSim,
+    iss: IssBot,
+    compared: u64,
+    rtl_events: Vec<PortEvent>,
+}
+
+/// How the two backends differed, or why the run stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum Mismatch {
+    #[error("port access {index} differs: RTL {rtl}, ISS {iss}")]
+    Port { index: u64, rtl: String, iss: String },
+    #[error("snapshots differ: RTL {rtl:?}, ISS {iss:?}")]
+    Snapshot { rtl: Box<Snapshot>, iss: Box<Snapshot> },
+    #[error("RTL: {0}")]
+    Rtl(Error),
+    #[error("ISS: {0}")]
+    Iss(Error),
+}
+
+impl Lockstep {
+    /// Both backends with `program` in `world`, at configuration.
+    pub fn new(program: &Image, world: World) -> Result<Lockstep, Error> {
+        let rtl = BotSim::builder().program(program.clone()).world(world.clone()).build()?;
+        Ok(Lockstep::pair(rtl, IssBot::new(program, world)))
+    }
+
+    /// Two backends built separately (say, with a firmware or world of your own each).
+    pub fn pair(rtl: BotSim, mut iss: IssBot) -> Lockstep {
+        iss.record_ports(true);
+        Lockstep { rtl, iss, compared: 0, rtl_events: Vec::new() }
+    }
+
+    /// MotCtl_in of both, from the next cycle on.
+    pub fn set_motors(&mut self, m: MotCtl) {
+        self.rtl.set_motors(m);
+        self.iss.set_motors(m);
+    }
+
+    /// Port accesses compared so far.
+    pub fn events_compared(&self) -> u64 {
+        self.compared
+    }
+
+    /// The next snapshot of both, after comparing every port access on the way.
+    pub fn wait_update(&mut self) -> Result<Snapshot, Mismatch> {
+        let mut ev = std::mem::take(&mut self.rtl_events);
+        let rtl = self.rtl.wait_update_recording(&mut ev);
+        self.rtl_events = ev;
+        let iss = self.iss.wait_update(ISS_UPDATE_BUDGET);
+        self.compare()?;
+        match (rtl, iss) {
+            (Ok(a), Ok(b)) if a == b => Ok(a),
+            (Ok(a), Ok(b)) => Err(Mismatch::Snapshot { rtl: Box::new(a), iss: Box::new(b) }),
+            (Err(e), _) => Err(Mismatch::Rtl(e)),
+            (_, Err(e)) => Err(Mismatch::Iss(e)),
+        }
+    }
+
+    /// Run both for `cycles` cycles (pulses are not samples), comparing every port access.
+    pub fn run(&mut self, cycles: u64) -> Result<(), Mismatch> {
+        let mut ev = std::mem::take(&mut self.rtl_events);
+        let r = self.rtl.run_recording(cycles, &mut ev);
+        self.rtl_events = ev;
+        r.map_err(Mismatch::Rtl)?;
+        self.iss.run(cycles);
+        self.compare()
+    }
+
+    /// Compare the accesses both sides made since the last comparison.
+    fn compare(&mut self) -> Result<(), Mismatch> {
+        let iss = self.iss.take_events();
+        let rtl = std::mem::take(&mut self.rtl_events);
+        for i in 0..rtl.len().max(iss.len()) {
+            let (a, b) = (rtl.get(i), iss.get(i));
+            if a != b {
+                let show = |e: Option<&PortEvent>| e.map_or("nothing".to_string(), |e| e.to_string());
+                return Err(Mismatch::Port { index: self.compared + i as u64, rtl: show(a), iss: show(b) });
+            }
+        }
+        self.compared += rtl.len() as u64;
+        Ok(())
+    }
+}
+
+impl Backend for Lockstep {
+    /// The common snapshot; a difference is [`Error::Mismatch`] with its description.
+    fn wait_update(&mut self) -> Result<Snapshot, Error> {
+        Lockstep::wait_update(self).map_err(|m| match m {
+            Mismatch::Rtl(e) | Mismatch::Iss(e) => e,
+            m => Error::Mismatch(m.to_string()),
+        })
+    }
+    fn set_motors(&mut self, m: MotCtl) {
+        Lockstep::set_motors(self, m)
+    }
+    fn cycle(&self) -> u64 {
+        self.rtl.cycle()
+    }
+}

@@ -21,7 +21,7 @@
 //! assert_eq!(forward(&mut iss), (65, 64));
 //! ```
 
-use crate::botsim::{BotSim, Error};
+use crate::botsim::{BotSim, CpuAt, Error};
 use crate::iss_backend::IssBot;
 use crate::regs::{MotCtl, Snapshot};
 
@@ -58,17 +58,29 @@ impl std::fmt::Display for PortEvent {
 
 /// A simulated BotSim 2.0, whatever runs it.
 pub trait Backend {
-    /// Run to the next upd_sysregs pulse within the backend's cycle budget.
-    fn wait_update(&mut self) -> Result<Snapshot, Error>;
+    /// Run to the next upd_sysregs pulse within `budget` cycles; stop at the start of the
+    /// pulse's first cycle.
+    fn wait_update_within(&mut self, budget: u64) -> Result<Snapshot, Error>;
+    /// The budget of [`Backend::wait_update`]: two `hw` sample periods unless set otherwise.
+    fn update_budget(&self) -> u64;
     /// MotCtl_in from the next cycle on.
     fn set_motors(&mut self, m: MotCtl);
     /// The next cycle to simulate.
     fn cycle(&self) -> u64;
+    /// Where the CPU is now.
+    fn cpu_at(&self) -> CpuAt;
+    /// Run to the next upd_sysregs pulse within the backend's cycle budget.
+    fn wait_update(&mut self) -> Result<Snapshot, Error> {
+        self.wait_update_within(self.update_budget())
+    }
 }
 
 impl Backend for BotSim {
-    fn wait_update(&mut self) -> Result<Snapshot, Error> {
-        BotSim::wait_update(self)
+    fn wait_update_within(&mut self, budget: u64) -> Result<Snapshot, Error> {
+        BotSim::wait_update_within(self, budget)
+    }
+    fn update_budget(&self) -> u64 {
+        BotSim::update_budget(self)
     }
     fn set_motors(&mut self, m: MotCtl) {
         BotSim::set_motors(self, m)
@@ -76,19 +88,28 @@ impl Backend for BotSim {
     fn cycle(&self) -> u64 {
         BotSim::cycle(self)
     }
+    fn cpu_at(&self) -> CpuAt {
+        BotSim::cpu_at(self)
+    }
 }
 
 /// The ISS backend waits at most this many cycles for a pulse: two `hw` sample periods.
 pub const ISS_UPDATE_BUDGET: u64 = 2 * 5_314_000 + 10_000;
 
 impl Backend for IssBot {
-    fn wait_update(&mut self) -> Result<Snapshot, Error> {
-        IssBot::wait_update(self, ISS_UPDATE_BUDGET)
+    fn wait_update_within(&mut self, budget: u64) -> Result<Snapshot, Error> {
+        IssBot::wait_update(self, budget)
+    }
+    fn update_budget(&self) -> u64 {
+        ISS_UPDATE_BUDGET
     }
     fn set_motors(&mut self, m: MotCtl) {
         IssBot::set_motors(self, m)
     }
     fn cycle(&self) -> u64 {
         IssBot::cycle(self)
+    }
+    fn cpu_at(&self) -> CpuAt {
+        IssBot::cpu_at(self)
     }
 }

@@ -343,14 +343,20 @@ impl BotSim {
 
     /// As [`BotSim::wait_update`], appending every port access of the CPU to `events`.
     pub fn wait_update_recording(&mut self, events: &mut Vec<PortEvent>) -> Result<Snapshot, Error> {
-        match self.record(self.budget, true, events)? {
+        self.wait_update_recording_within(self.budget, events)
+    }
+
+    /// As [`BotSim::wait_update_within`], appending every port access of the CPU to `events`.
+    pub fn wait_update_recording_within(
+        &mut self,
+        budget: u64,
+        events: &mut Vec<PortEvent>,
+    ) -> Result<Snapshot, Error> {
+        match self.record(budget, true, events)? {
             Some(s) => Ok(s),
-            None => Err(Error::Timeout {
-                waited_for: "upd_sysregs pulse",
-                budget: self.budget,
-                cycle: self.cycle(),
-                cpu: self.cpu_at(),
-            }),
+            None => {
+                Err(Error::Timeout { waited_for: "upd_sysregs pulse", budget, cycle: self.cycle(), cpu: self.cpu_at() })
+            }
         }
     }
 

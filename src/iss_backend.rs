@@ -235,7 +235,15 @@ impl IssBot {
             self.next_sample += 1;
             return Ok(s);
         }
-        let cpu = if self.cpu.in_reset() { CpuAt::Reset } else { CpuAt::Address(self.cpu.pc()) };
-        Err(Error::Timeout { waited_for: "upd_sysregs pulse", budget, cycle: self.cpu.cycle(), cpu })
+        Err(Error::Timeout { waited_for: "upd_sysregs pulse", budget, cycle: self.cpu.cycle(), cpu: self.cpu_at() })
+    }
+
+    /// Where the CPU is now.
+    pub fn cpu_at(&self) -> CpuAt {
+        if self.cpu.in_reset() {
+            CpuAt::Reset
+        } else {
+            CpuAt::Address(self.cpu.pc())
+        }
     }
 }

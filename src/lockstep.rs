@@ -18,7 +18,7 @@
 use kcpsm6::Image;
 
 use crate::backend::{Backend, PortEvent, ISS_UPDATE_BUDGET};
-use crate::botsim::{BotSim, Error};
+use crate::botsim::{BotSim, CpuAt, Error};
 use crate::iss_backend::IssBot;
 use crate::regs::{MotCtl, Snapshot};
 use crate::world::World;
@@ -28,7 +28,9 @@ pub struct Lockstep {
     rtl: BotSim,
     iss: IssBot,
     compared: u64,
+    /// Accesses not compared yet.
     rtl_events: Vec<PortEvent>,
+    iss_events: Vec<PortEvent>,
 }
 
 /// How the two backends differed, or why the run stopped.
@@ -54,7 +56,7 @@ impl Lockstep {
     /// Two backends built separately (say, with a firmware or world of your own each).
     pub fn pair(rtl: BotSim, mut iss: IssBot) -> Lockstep {
         iss.record_ports(true);
-        Lockstep { rtl, iss, compared: 0, rtl_events: Vec::new() }
+        Lockstep { rtl, iss, compared: 0, rtl_events: Vec::new(), iss_events: Vec::new() }
     }
 
     /// MotCtl_in of both, from the next cycle on.
@@ -70,10 +72,13 @@ impl Lockstep {
 
     /// The next snapshot of both, after comparing every port access on the way.
     pub fn wait_update(&mut self) -> Result<Snapshot, Mismatch> {
-        let mut ev = std::mem::take(&mut self.rtl_events);
-        let rtl = self.rtl.wait_update_recording(&mut ev);
-        self.rtl_events = ev;
-        let iss = self.iss.wait_update(ISS_UPDATE_BUDGET);
+        self.wait_update_within(ISS_UPDATE_BUDGET)
+    }
+
+    /// As [`Lockstep::wait_update`], within `budget` cycles.
+    pub fn wait_update_within(&mut self, budget: u64) -> Result<Snapshot, Mismatch> {
+        let rtl = self.rtl.wait_update_recording_within(budget, &mut self.rtl_events);
+        let iss = self.iss.wait_update(budget);
         self.compare()?;
         match (rtl, iss) {
             (Ok(a), Ok(b)) if a == b => Ok(a),
@@ -85,42 +90,50 @@ impl Lockstep {
 
     /// Run both for `cycles` cycles (pulses are not samples), comparing every port access.
     pub fn run(&mut self, cycles: u64) -> Result<(), Mismatch> {
-        let mut ev = std::mem::take(&mut self.rtl_events);
-        let r = self.rtl.run_recording(cycles, &mut ev);
-        self.rtl_events = ev;
-        r.map_err(Mismatch::Rtl)?;
+        self.rtl.run_recording(cycles, &mut self.rtl_events).map_err(Mismatch::Rtl)?;
         self.iss.run(cycles);
         self.compare()
     }
 
-    /// Compare the accesses both sides made since the last comparison.
+    /// Compare the accesses both sides made up to the cycle both have reached (one side may
+    /// have run a cycle further: its later accesses wait for the next comparison).
     fn compare(&mut self) -> Result<(), Mismatch> {
-        let iss = self.iss.take_events();
-        let rtl = std::mem::take(&mut self.rtl_events);
-        for i in 0..rtl.len().max(iss.len()) {
-            let (a, b) = (rtl.get(i), iss.get(i));
+        self.iss_events.extend(self.iss.take_events());
+        let upto = self.rtl.cycle().min(self.iss.cycle());
+        let n_rtl = self.rtl_events.iter().take_while(|e| e.cycle < upto).count();
+        let n_iss = self.iss_events.iter().take_while(|e| e.cycle < upto).count();
+        for i in 0..n_rtl.max(n_iss) {
+            let (a, b) = (self.rtl_events[..n_rtl].get(i), self.iss_events[..n_iss].get(i));
             if a != b {
                 let show = |e: Option<&PortEvent>| e.map_or("nothing".to_string(), |e| e.to_string());
                 return Err(Mismatch::Port { index: self.compared + i as u64, rtl: show(a), iss: show(b) });
             }
         }
-        self.compared += rtl.len() as u64;
+        self.rtl_events.drain(..n_rtl);
+        self.iss_events.drain(..n_iss);
+        self.compared += n_rtl as u64;
         Ok(())
     }
 }
 
 impl Backend for Lockstep {
     /// The common snapshot; a difference is [`Error::Mismatch`] with its description.
-    fn wait_update(&mut self) -> Result<Snapshot, Error> {
-        Lockstep::wait_update(self).map_err(|m| match m {
+    fn wait_update_within(&mut self, budget: u64) -> Result<Snapshot, Error> {
+        Lockstep::wait_update_within(self, budget).map_err(|m| match m {
             Mismatch::Rtl(e) | Mismatch::Iss(e) => e,
             m => Error::Mismatch(m.to_string()),
         })
+    }
+    fn update_budget(&self) -> u64 {
+        ISS_UPDATE_BUDGET
     }
     fn set_motors(&mut self, m: MotCtl) {
         Lockstep::set_motors(self, m)
     }
     fn cycle(&self) -> u64 {
         self.rtl.cycle()
+    }
+    fn cpu_at(&self) -> CpuAt {
+        self.rtl.cpu_at()
     }
 }

@@ -98,6 +98,7 @@ fn bad_input_table() {
         ("asm digit.psm -o out.exe", "out.exe: error: unknown output format"),
         // bad usage
         ("run --samples x", "error: invalid value 'x' for '--samples <N>'"),
+        ("run --backend iss --vcd w.vcd", "error: --vcd needs the RTL backend; --backend iss has no waveform"),
     ];
     for (args, want) in table {
         let o = botsim(&args.split_whitespace().collect::<Vec<_>>(), p);

@@ -5,17 +5,21 @@ use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use botsim::backend::Backend;
 use botsim::driver::{Driver, LineFollower, ScriptDriver};
 use botsim::files::write_atomic;
 use botsim::firmware::{Compat, Firmware, Timing};
+use botsim::iss_backend::IssBot;
 use botsim::kcpsm6::asm::{Options, RomSize};
 use botsim::kcpsm6::image::{Format, Image};
+use botsim::lockstep::Lockstep;
 use botsim::render::{path_picture, PathStyle};
 use botsim::script::MotorScript;
 use botsim::world::World;
 use botsim::{BotSim, Error, MotCtl, Snapshot};
 
-/// Run the BotSim 2.0 RTL (Verilator) on a world, driven by a motor script or a driver.
+/// Run BotSim 2.0 (the RTL under Verilator, or the ISS with --backend) on a world, driven by a
+/// motor script or a driver.
 ///
 /// With --motors, MotCtl_in follows the script: the first segment's value from reset, each
 /// later value applied right after an upd_sysregs pulse, so main-loop iteration k sees the
@@ -27,6 +31,7 @@ use botsim::{BotSim, Error, MotCtl, Snapshot};
   botsim run --timing fast --driver line-follow --png path.png --trace-csv trace.csv
   botsim run --timing fast --motors drive.txt --vcd bot.vcd --trace-from 10 --trace-to 12
   botsim run --map world_map_lr.txt --program bot_pgm.hex --samples 50 --json
+  botsim run --backend iss --motors drive.txt --samples 1000 --trace-csv trace.csv
 
 Motor script lines: '<MOTCTL> <COUNT>', e.g. '33 15' or 'forward 15'; '#' starts a comment.
 Trace windows: a number of samples (e.g. 10), or of cycles with a 'c' suffix (e.g. 2500000c).")]
@@ -87,6 +92,34 @@ pub struct Args {
     /// Print only errors (no summary, no progress bar)
     #[arg(short, long)]
     quiet: bool,
+    /// What simulates the bot: rtl (Verilator), iss (the instruction-set simulator with
+    /// cycle-timed models, ~80 x faster, no waveform), or lockstep (both, every snapshot and
+    /// port access compared)
+    #[arg(long, value_name = "rtl|iss|lockstep", default_value = "rtl", value_parser = ["rtl", "iss", "lockstep"])]
+    backend: String,
+}
+
+/// What runs the bot: the RTL (which can also write a waveform), or another [`Backend`].
+enum Engine {
+    Rtl(BotSim),
+    Other(Box<dyn Backend>),
+}
+
+impl Engine {
+    fn backend(&mut self) -> &mut dyn Backend {
+        match self {
+            Engine::Rtl(b) => b,
+            Engine::Other(b) => b.as_mut(),
+        }
+    }
+
+    /// The RTL model, for the waveform window (which needs the RTL backend).
+    fn rtl(&mut self) -> Result<&mut BotSim, String> {
+        match self {
+            Engine::Rtl(b) => Ok(b),
+            Engine::Other(_) => Err("error: a waveform needs the RTL backend (--backend rtl)".into()),
+        }
+    }
 }
 
 /// A point of a trace window.
@@ -197,30 +230,53 @@ pub fn run_with_frame(args: Args, frame_out: Option<PathBuf>) -> Result<(), Stri
         }
         (None, None) => (Box::new(ScriptDriver::new(MotorScript::default())), args.samples.unwrap_or(20), MotCtl::STOP),
     };
+    if args.backend != "rtl" && args.vcd.is_some() {
+        return Err(format!("error: --vcd needs the RTL backend; --backend {} has no waveform", args.backend));
+    }
     let outputs = [&args.trace_csv, &args.trace_json, &args.vcd, &args.png, &frame_out];
     for p in outputs.into_iter().flatten() {
         check_writable(p)?;
     }
     // Frames show the world as read through the RTL video port, scanned once in a model of
-    // its own (so no sample of the run is skipped).
-    let frames = match &args.frames {
-        None => None,
-        Some(dir) => {
-            std::fs::create_dir_all(dir).map_err(|e| format!("{}: error: cannot create folder: {e}", dir.display()))?;
+    // its own (so no sample of the run is skipped, whatever the backend).
+    let video = match args.frames.is_some() || frame_out.is_some() {
+        false => None,
+        true => {
             let mut scan =
                 BotSim::builder().program(image.clone()).world(world.clone()).build().map_err(|e| e.to_string())?;
-            Some((dir.clone(), World::from_cells(&scan.scan_video().map_err(|e| e.to_string())?)))
+            Some(World::from_cells(&scan.scan_video().map_err(|e| e.to_string())?))
         }
+    };
+    let frames = match (&args.frames, &video) {
+        (Some(dir), Some(video)) => {
+            std::fs::create_dir_all(dir).map_err(|e| format!("{}: error: cannot create folder: {e}", dir.display()))?;
+            Some((dir.clone(), video.clone()))
+        }
+        _ => None,
     };
     let mut frames_written = 0;
 
-    let mut bot = BotSim::builder()
-        .firmware(firmware)
-        .program(image)
-        .world(world.clone())
-        .motors(initial)
-        .build()
-        .map_err(|e| e.to_string())?;
+    let mut bot = match args.backend.as_str() {
+        "rtl" => Engine::Rtl(
+            BotSim::builder()
+                .firmware(firmware)
+                .program(image)
+                .world(world.clone())
+                .motors(initial)
+                .build()
+                .map_err(|e| e.to_string())?,
+        ),
+        "iss" => {
+            let mut iss = IssBot::new(&image, world.clone());
+            iss.set_motors(initial);
+            Engine::Other(Box::new(iss))
+        }
+        _ => {
+            let mut both = Lockstep::new(&image, world.clone()).map_err(|e| e.to_string())?;
+            both.set_motors(initial);
+            Engine::Other(Box::new(both))
+        }
+    };
 
     let progress = (!args.quiet && !args.json && std::io::stderr().is_terminal() && samples > 50).then(|| {
         let bar = indicatif::ProgressBar::new(samples + 1);
@@ -249,12 +305,12 @@ pub fn run_with_frame(args: Args, frame_out: Option<PathBuf>) -> Result<(), Stri
     let mut json = String::new();
     for k in 0..=samples {
         if let Some(w) = window.as_mut() {
-            w.before_sample(&mut bot, k)?;
+            w.before_sample(bot.rtl()?, k)?;
         }
         let s = match next_sample(&mut bot, window.as_mut()) {
             Ok(s) => s,
             Err(Wait::Interrupted) => {
-                stopped_at = Some((k, bot.cycle()));
+                stopped_at = Some((k, bot.backend().cycle()));
                 break;
             }
             Err(Wait::Sim(Error::Waveform(why))) => {
@@ -275,7 +331,7 @@ pub fn run_with_frame(args: Args, frame_out: Option<PathBuf>) -> Result<(), Stri
             }
         }
         if let Some(w) = window.as_mut() {
-            w.after_sample(&mut bot, k)?;
+            w.after_sample(bot.rtl()?, k)?;
         }
         if let Some(b) = &progress {
             b.set_position(k + 1);
@@ -283,20 +339,15 @@ pub fn run_with_frame(args: Args, frame_out: Option<PathBuf>) -> Result<(), Stri
         if driver.finished() {
             break;
         }
-        bot.set_motors(m);
+        bot.backend().set_motors(m);
     }
     if let Some(w) = window.as_mut() {
-        w.close(&mut bot)?;
+        w.close(bot.rtl()?)?;
     }
-    let cycles = bot.cycle();
+    let cycles = bot.backend().cycle();
     let wall = start.elapsed().as_secs_f64();
-    let end_frame = match &frame_out {
-        Some(_) => Some(botsim::render::display::frame(
-            &World::from_cells(&bot.scan_video().map_err(|e| e.to_string())?),
-            snaps.last(),
-        )),
-        None => None,
-    };
+    let end_frame =
+        video.as_ref().filter(|_| frame_out.is_some()).map(|v| botsim::render::display::frame(v, snaps.last()));
     drop(bot);
     if let Some(b) = progress {
         b.finish_and_clear();
@@ -487,12 +538,13 @@ const CHECK_EVERY: u64 = 1 << 20;
 
 /// Wait for the next pulse within the bot's update budget, opening or closing a cycle window
 /// on the way and stopping early on Ctrl-C.
-fn next_sample(bot: &mut BotSim, mut window: Option<&mut Window>) -> Result<Snapshot, Wait> {
-    let deadline = bot.cycle() + bot.update_budget();
+fn next_sample(engine: &mut Engine, mut window: Option<&mut Window>) -> Result<Snapshot, Wait> {
+    let deadline = engine.backend().cycle() + engine.backend().update_budget();
     loop {
         if super::interrupted() {
             return Err(Wait::Interrupted);
         }
+        let bot = engine.backend();
         let now = bot.cycle();
         if now >= deadline {
             let budget = bot.update_budget();
@@ -513,8 +565,8 @@ fn next_sample(bot: &mut BotSim, mut window: Option<&mut Window>) -> Result<Snap
             }
         }
         if let (Some(w), Some(c)) = (window.as_mut(), boundary) {
-            if bot.cycle() >= c {
-                w.cross_boundary(bot)?;
+            if engine.backend().cycle() >= c {
+                w.cross_boundary(engine.rtl()?)?;
             }
         }
     }

@@ -7,7 +7,8 @@
 # Usage: scripts/fuzz.sh [SECONDS-PER-TARGET] [TARGET...]   (default 60 s, all targets)
 # The corpus grows in fuzz/corpus/TARGET (seeded from fuzz/seeds/TARGET); a finding is written
 # to fuzz/artifacts/TARGET and makes the script fail. Keep reproducers in fuzz/regressions/
-# TARGET: tests/fuzz_corpus.rs replays them and the corpora in every `cargo test`.
+# TARGET: tests/fuzz_corpus.rs replays them and the corpora in every `cargo test`. The
+# committed corpora are minimised (`cargo fuzz cmin`) and keep the inputs of up to 4 KB.
 # Needs cargo-fuzz (`cargo install cargo-fuzz`); stable Rust runs it with RUSTC_BOOTSTRAP=1.
 set -euo pipefail
 cd "$(dirname "$0")/.."

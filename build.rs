@@ -109,7 +109,13 @@ fn main() {
         model_libs.push((format!("{}_model", d.prefix), files, inputs, mdir.clone()));
         include_dirs.push(mdir);
     }
-    let config = format!("{:?} coverage={coverage}", compiler_flags());
+    // Everything besides the inputs' contents that shapes the objects: a change rebuilds all.
+    let config = format!(
+        "{:?} {DEFINES:?} opt=2 coverage={coverage} cxx={:?} root={}",
+        compiler_flags(),
+        env::var("CXX").ok(),
+        vroot.display()
+    );
     let cpp = |includes: &[PathBuf]| {
         let mut b = cc::Build::new();
         b.cpp(true)

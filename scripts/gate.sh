@@ -139,7 +139,7 @@ rust() {
 }
 
 total0=$(date +%s)
-run_stage build cargo build --release -q
+run_stage build cargo build --release
 run_stage lint lint
 run_stage icarus icarus
 run_stage yosys yosys_synth

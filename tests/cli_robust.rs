@@ -206,12 +206,14 @@ fn ctrl_c_stops_a_long_run_and_leaves_complete_files() {
     assert_eq!(left, Vec::<String>::new(), "temporary files left");
 }
 
-/// `botsim ARGS` with the file size limited to `kbytes` (as on a full disk: writes fail).
+/// `botsim ARGS` with the file size limited to `kbytes` (as on a full disk: writes fail),
+/// killed after two minutes (exit 124): Verilator's own fatal-error path hangs here, which
+/// the shim's `vl_fatal` replaces.
 fn with_file_limit(dir: &Path, kbytes: u32, args: &str) -> std::process::Output {
     let bin = env!("CARGO_BIN_EXE_botsim");
     Command::new("sh")
         .arg("-c")
-        .arg(format!("trap '' XFSZ; ulimit -f {kbytes}; exec {bin} {args}"))
+        .arg(format!("trap '' XFSZ; ulimit -f {kbytes}; exec timeout 120 {bin} {args}"))
         .current_dir(dir)
         .output()
         .unwrap()

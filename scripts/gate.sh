@@ -139,7 +139,9 @@ rust() {
 }
 
 total0=$(date +%s)
-run_stage build cargo build --release
+# The same build as the tests (`cargo build` alone resolves features without the dev-dependencies
+# and would compile everything again).
+run_stage build cargo test --workspace --release --no-run
 run_stage lint lint
 run_stage icarus icarus
 run_stage yosys yosys_synth

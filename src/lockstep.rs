@@ -77,8 +77,14 @@ impl Lockstep {
 
     /// As [`Lockstep::wait_update`], within `budget` cycles.
     pub fn wait_update_within(&mut self, budget: u64) -> Result<Snapshot, Mismatch> {
-        let rtl = self.rtl.wait_update_recording_within(budget, &mut self.rtl_events);
+        let mut rtl = self.rtl.wait_update_recording_within(budget, &mut self.rtl_events);
         let iss = self.iss.wait_update(budget);
+        // The ISS runs whole instructions and may pass the budget by a cycle or two: when that
+        // found the pulse, give the RTL the same reach.
+        if let (Err(Error::Timeout { .. }), Ok(s)) = (&rtl, &iss) {
+            let reach = (s.cycle + 1).saturating_sub(self.rtl.cycle());
+            rtl = self.rtl.wait_update_recording_within(reach, &mut self.rtl_events);
+        }
         self.compare()?;
         match (rtl, iss) {
             (Ok(a), Ok(b)) if a == b => Ok(a),

@@ -100,3 +100,24 @@ fn a_difference_is_reported_with_both_sides() {
     assert!(e.starts_with("port access 2 differs: RTL cycle "), "{e}");
     assert!(e.contains(": INPUT port 0A value 00, ISS cycle ") && e.ends_with(": INPUT port 0A value 02"), "{e}");
 }
+
+#[test]
+fn waits_in_small_chunks_agree_too() {
+    // As the CLI waits (in chunks, to look at Ctrl-C): budgets that end anywhere in a sample.
+    let fw = Firmware { timing: Timing::Fast, ..Firmware::default() };
+    let mut both = Lockstep::new(&fw.assemble().unwrap(), World::builtin()).unwrap();
+    both.set_motors(MotCtl::FORWARD);
+    let mut samples = 0;
+    let mut chunk = 1;
+    while samples < 30 {
+        chunk = chunk % 97 + 1;
+        match both.wait_update_within(chunk) {
+            Ok(s) => {
+                assert_eq!(s.sample, samples);
+                samples += 1;
+            }
+            Err(botsim::lockstep::Mismatch::Rtl(botsim::Error::Timeout { .. })) => {}
+            Err(e) => panic!("{e}"),
+        }
+    }
+}

@@ -108,14 +108,14 @@ tee -o $work/xstat.txt stat" > "$work/xilinx.log" 2>&1; then
 }
 
 generated() {
-  cargo test --release -q --test generated 2>&1 | tail -3
+  cargo test --workspace --release -q --test generated 2>&1 | tail -3
   test "${PIPESTATUS[0]}" -eq 0
 }
 
 xinit() {
   local seed
   for seed in 1 2 3 4; do
-    BOTSIM_X_SEED=$seed cargo test --release -q --test cpu_lockstep --test cpu_timing --test bot_spec \
+    BOTSIM_X_SEED=$seed cargo test --workspace --release -q --test cpu_lockstep --test cpu_timing --test bot_spec \
       --test scoreboard --test many_models >"$work/xinit.log" 2>&1 \
       || { tail -30 "$work/xinit.log"; echo "gate: fails with BOTSIM_X_SEED=$seed" >&2; return 1; }
   done
@@ -139,8 +139,9 @@ rust() {
 }
 
 total0=$(date +%s)
-# The same build as the tests (`cargo build` alone resolves features without the dev-dependencies
-# and would compile everything again).
+# Every cargo command here uses --workspace, as the README's test command does: Cargo resolves
+# features differently for one package, or without dev-dependencies (`cargo build`), and would
+# compile the models again.
 run_stage build cargo test --workspace --release --no-run
 run_stage lint lint
 run_stage icarus icarus

@@ -287,8 +287,6 @@ pub fn run_with_frame(args: Args, frame_out: Option<PathBuf>) -> Result<(), Stri
         bar
     });
 
-    let vcd_part = args.vcd.as_ref().map(|p| part_name(p));
-    let _unfinished = Unfinished(vcd_part.clone());
     let mut window = args.vcd.clone().map(|path| Window {
         part: part_name(&path),
         path,
@@ -296,6 +294,7 @@ pub fn run_with_frame(args: Args, frame_out: Option<PathBuf>) -> Result<(), Stri
         to: args.trace_to,
         state: State::Before,
     });
+    let _unfinished = Unfinished(window.as_ref().map(|w| w.part.clone()));
     // Ctrl-C stops the run between two checks (at most ~1 M cycles apart); the outputs are
     // then written for the samples taken, as at a normal end.
     let _ = ctrlc::set_handler(|| super::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
@@ -378,12 +377,12 @@ pub fn run_with_frame(args: Args, frame_out: Option<PathBuf>) -> Result<(), Stri
         write_atomic(p, &path_picture(&world, &snaps, firmware.threshold, &PathStyle::default()))?;
         written.push(p.clone());
     }
-    if let (Some(p), Some(part)) = (&args.vcd, &vcd_part) {
+    if let Some(Window { path, part, .. }) = &window {
         if part.exists() {
-            std::fs::rename(part, p).map_err(|e| format!("{}: error: cannot write file: {e}", p.display()))?;
-            written.push(p.clone());
+            std::fs::rename(part, path).map_err(|e| format!("{}: error: cannot write file: {e}", path.display()))?;
+            written.push(path.clone());
         } else {
-            eprintln!("{}: warning: the trace window was never reached; no waveform written", p.display());
+            eprintln!("{}: warning: the trace window was never reached; no waveform written", path.display());
         }
     }
     if let Some((k, cycle)) = stopped_at {

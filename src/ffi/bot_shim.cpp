@@ -6,6 +6,31 @@
 #include "Vbot.h"
 #include "Vbot___024root.h"
 
+// Port accesses of the CPU, appended to a caller's buffer.
+struct Recorder {
+    BotPortEvent* events;
+    size_t cap;
+    size_t* count;
+
+    // Record this cycle's access, if any; false when the buffer is full.
+    bool take(const Sim<Vbot>& sim) {
+        const auto* r = sim.top->rootp;
+        // The strobes are registered in the CPU: at most one is high in a cycle.
+        const int kind = r->bot__DOT__read_strobe    ? 0
+                         : r->bot__DOT__write_strobe ? 1
+                         : r->bot__DOT__k_write_strobe ? 2
+                                                       : -1;
+        if (kind < 0) return true;
+        if (*count == cap) return false;
+        BotPortEvent& e = events[(*count)++];
+        e.cycle = sim.cycle;
+        e.kind = (uint8_t)kind;
+        e.port = r->bot__DOT__port_id;
+        e.value = kind == 0 ? r->bot__DOT__in_port : r->bot__DOT__out_port;
+        return true;
+    }
+};
+
 struct BotSim {
     Sim<Vbot> sim;
     bool prev_upd = false;  // upd_sysregs in the previous cycle
@@ -15,6 +40,31 @@ struct BotSim {
     void rise() {
         prev_upd = sim.top->upd_sysregs;
         sim.rise();
+    }
+
+    // The clock loop behind every run call: up to `budget` cycles, stopping at the start of
+    // a cycle in which upd_sysregs rises when `stop_on_update` (1, with its cycle and the
+    // registers); 0 when the budget is spent (`*cycle` is then the next cycle), -1 once
+    // finished. With Record, every port access is appended to `rec` (-2 when it is full; the
+    // next call resumes with the same cycle). One template, so the plain loop has no recording
+    // test in it.
+    template <bool Record>
+    int clock(uint64_t budget, bool stop_on_update, uint64_t* cycle, BotRegs* regs, Recorder* rec) {
+        sim.enter();
+        for (uint64_t n = 0; n < budget; n++) {
+            if (sim.finished()) return -1;
+            settle();
+            if (stop_on_update && sim.top->upd_sysregs && !prev_upd) {
+                *cycle = sim.cycle;
+                this->regs(regs);
+                prev_upd = true;  // seen: the next call continues with this cycle's edge
+                return 1;
+            }
+            if (Record && !rec->take(sim)) return -2;
+            rise();
+        }
+        *cycle = sim.cycle;
+        return 0;
     }
 
     void regs(BotRegs* r) const {
@@ -89,59 +139,21 @@ int bot_sim_tick(BotSim* b, BotOutputs* out) {
 }
 
 int bot_sim_run_until_update(BotSim* b, uint64_t budget, uint64_t* cycle, BotRegs* regs) {
-    b->sim.enter();
-    for (uint64_t n = 0; n < budget; n++) {
-        if (b->sim.finished()) return -1;
-        b->settle();
-        if (b->sim.top->upd_sysregs && !b->prev_upd) {
-            *cycle = b->sim.cycle;
-            b->regs(regs);
-            b->prev_upd = true;  // seen: the next call continues with this cycle's edge
-            return 1;
-        }
-        b->rise();
-    }
-    return 0;
+    return b->clock<false>(budget, true, cycle, regs, nullptr);
 }
 
 int bot_sim_run_recording(BotSim* b, uint64_t budget, int stop_on_update, uint64_t* cycle, BotRegs* regs,
                           BotPortEvent* events, size_t cap, size_t* count) {
-    b->sim.enter();
-    const auto* r = b->sim.top->rootp;
+    Recorder rec{events, cap, count};
     *count = 0;
-    for (uint64_t n = 0; n < budget; n++) {
-        if (b->sim.finished()) return -1;
-        b->settle();
-        if (stop_on_update && b->sim.top->upd_sysregs && !b->prev_upd) {
-            *cycle = b->sim.cycle;
-            b->regs(regs);
-            b->prev_upd = true;
-            return 1;
-        }
-        // The strobes are registered in the CPU: at most one is high in a cycle.
-        int kind = r->bot__DOT__read_strobe ? 0 : r->bot__DOT__write_strobe ? 1 : r->bot__DOT__k_write_strobe ? 2 : -1;
-        if (kind >= 0) {
-            if (*count == cap) return -2;
-            BotPortEvent& e = events[(*count)++];
-            e.cycle = b->sim.cycle;
-            e.kind = (uint8_t)kind;
-            e.port = r->bot__DOT__port_id;
-            e.value = kind == 0 ? r->bot__DOT__in_port : r->bot__DOT__out_port;
-        }
-        b->rise();
-    }
-    *cycle = b->sim.cycle;
-    return 0;
+    return b->clock<true>(budget, stop_on_update != 0, cycle, regs, &rec);
 }
 
 uint64_t bot_sim_run(BotSim* b, uint64_t cycles) {
-    b->sim.enter();
-    uint64_t n = 0;
-    for (; n < cycles && !b->sim.finished(); n++) {
-        b->settle();
-        b->rise();
-    }
-    return n;
+    const uint64_t start = b->sim.cycle;
+    uint64_t cycle;
+    b->clock<false>(cycles, false, &cycle, nullptr, nullptr);
+    return b->sim.cycle - start;
 }
 
 uint64_t bot_sim_cycle(const BotSim* b) { return b->sim.cycle; }

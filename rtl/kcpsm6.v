@@ -1,20 +1,24 @@
 // kcpsm6.v: a clean-room, cycle-exact KCPSM6 (PicoBlaze-6) core.
 //
 // Behavioural and synthesizable Verilog-2005 with the module name, port list and parameters of
-// Xilinx's kcpsm6, so it drops into an existing design. Written from the botsim specification
-// (spec/kcpsm6.md); no Xilinx code. The ISS in kcpsm6/src/iss.rs follows the same cycle model
-// and runs in lock-step with this core in the tests.
+// Xilinx's kcpsm6, so it drops into an existing design in place of the netlist. Written from
+// the botsim specification (spec/kcpsm6.md); no Xilinx code. The ISS in kcpsm6/src/iss.rs
+// follows the same flops, one for one, and runs in lock-step with this core in the tests.
 //
-// Sequencing (spec 2.2): every instruction takes a D cycle (decode; PC, stack, IE and bank
-// update at its end) and a second cycle, normally F, which fetches the next word. Register,
-// flag and scratch-pad writes and the port strobes happen in that second cycle, driven by
-// flip-flops loaded at the end of D; the ALU reads the word still held on `instruction`.
+// Sequencing (spec 2.2): every instruction takes a D cycle and a second cycle, normally F.
+//   D   the word is on `instruction`; operands are read and the ALU result, carry and zero are
+//       registered (2.8); PC, call-stack depth, IE and bank update at its end; the stack RAM
+//       is written; the second-cycle action flops are loaded.
+//   F   bram_enable: the ROM loads the next word at its end; the register, flag and
+//       scratch-pad writes and the port strobes of the instruction happen here (or in the
+//       first idle cycle when sleep stops the fetch, or during a reset: 2.4, 2.5).
 //
-//   t_state  00 idle (reset sequence, sleep)   10 F (bram_enable)   01 D
+//   t_state  00 idle (reset sequence, sleep)   10 F   01 D
 //   00 -> F unless sleeping; F -> D; D -> F unless sleeping, else 00; internal reset -> 00.
 //
-// Reset (spec 2.4) goes through two flops, `run` and `internal_reset`; a stack overflow or
-// underflow (spec 2.5) clears `run` and so replays the power-up self-start sequence.
+// Reset (2.4) goes through two flops, `run` and `internal_reset`. A stack overflow or
+// underflow (2.5) is a wrapping depth counter reaching 31, seen in the F after the offending
+// D, and acts like the reset pin sampled high at the end of that F.
 `timescale 1ns / 1ps
 module kcpsm6 #(
     parameter [7:0] hwbuild = 8'h00,
@@ -40,7 +44,6 @@ module kcpsm6 #(
     // ---- parameters --------------------------------------------------------------------------
     localparam integer SPM_BITS = scratch_pad_memory_size == 256 ? 8 :
                                   scratch_pad_memory_size == 128 ? 7 : 6;
-    localparam [4:0] STACK_DEPTH = 5'd30;
 
     generate
         if (scratch_pad_memory_size != 64 && scratch_pad_memory_size != 128 &&
@@ -54,34 +57,35 @@ module kcpsm6 #(
     localparam [1:0] T_IDLE = 2'b00, T_FETCH = 2'b10, T_DECODE = 2'b01;
 
     reg  [ 1:0] t_state = T_IDLE;
-    reg         run = 1'b0;             // cleared by reset and by a stack error
-    reg         internal_reset = 1'b0;  // holds PC, flags, IE, bank and stack pointer at 0
-    reg         sleep_q = 1'b0;         // registered pins
+    reg         run = 1'b0;               // cleared by reset and by a stack error
+    reg         internal_reset = 1'b0;    // clears PC, flags, IE, bank and depth at its end
+    reg         sleep_q = 1'b0;           // registered pins
     reg         interrupt_q = 1'b0;
-    reg         take_interrupt = 1'b0;  // recognised in F: the next D is an interrupt entry
+    reg         active_interrupt = 1'b0;  // recognised in the last F: this D is an entry
     reg         interrupt_ack_q = 1'b0;
 
     reg  [11:0] pc = 12'h000;
     reg         carry = 1'b0;
     reg         zero = 1'b0;
     reg         interrupt_enable = 1'b0;
-    reg         bank = 1'b0;            // active register bank (0 = A)
-    reg         bank_rd = 1'b0;         // registered copy that addresses the register file
-    reg  [ 4:0] stack_pointer = 5'd0;
+    reg         bank = 1'b0;              // active register bank (0 = A)
+    reg         xb = 1'b0;                // bank of the sX read port and the write port (2.8)
+    reg  [ 4:0] depth = 5'd0;             // call-stack depth, wraps modulo 32 (2.5)
 
-    reg  [ 7:0] registers [0:31];       // {bank, sX}
+    reg  [ 7:0] registers [0:31];         // {bank, register}
     reg  [ 7:0] scratch_pad [0:scratch_pad_memory_size-1];
-    reg  [14:0] stack_ram [0:31];       // {bank, zero, carry, pc}
+    reg  [14:0] stack_ram [0:31];         // {bank, zero, carry, pc}
 
-    // Second-cycle actions, loaded at the end of D.
+    // Second-cycle actions and the ALU result, loaded at the end of D (2.2, 2.8).
     reg         register_write_q = 1'b0;
     reg         flag_write_q = 1'b0;
-    reg         flag_restore_q = 1'b0;  // RETURNI: flags from the stack
-    reg  [ 1:0] restored_flags_q = 2'b00;
     reg         scratch_pad_write_q = 1'b0;
     reg         read_strobe_q = 1'b0;
     reg         write_strobe_q = 1'b0;
     reg         k_write_strobe_q = 1'b0;
+    reg  [ 7:0] result_q = 8'h00;
+    reg         carry_q = 1'b0;
+    reg         zero_q = 1'b0;
 
     integer i;
     initial begin
@@ -94,16 +98,20 @@ module kcpsm6 #(
     wire in_decode = t_state == T_DECODE;
     wire in_fetch  = t_state == T_FETCH;
 
-    // ---- instruction fields and operands -------------------------------------------------------
+    // ---- instruction fields --------------------------------------------------------------------
     wire [ 5:0] opcode  = instruction[17:12];
     wire [ 3:0] sx_addr = instruction[11:8];
     wire [ 3:0] sy_addr = instruction[7:4];
     wire [ 7:0] kk      = instruction[7:0];
     wire [11:0] aaa     = instruction[11:0];
 
-    wire [ 7:0] sx = registers[{bank_rd, sx_addr}];
-    wire [ 7:0] sy = registers[{bank_rd, sy_addr}];
+    // ---- register file: two kinds of read port (2.8) -------------------------------------------
+    // sY follows the live bank flop; sX (and the write port) the registered `xb`, so after a
+    // bank switch out_port lags port_id by a cycle, and after STAR's D xb is the other bank.
+    wire [ 7:0] sx = registers[{xb, sx_addr}];
+    wire [ 7:0] sy = registers[{bank, sy_addr}];
     wire [ 7:0] operand = opcode[0] ? kk : sy;  // odd opcodes take the constant
+    wire [SPM_BITS-1:0] spm_addr = operand[SPM_BITS-1:0];
 
     // ---- decode: register/flag/scratch-pad/port class (spec 1.7) -------------------------------
     wire op_load        = opcode[5:1] == 5'b00000;  // 00-01
@@ -125,7 +133,8 @@ module kcpsm6 #(
 
     wire writes_register = op_load | op_logic | op_input | op_fetch | op_add | op_shift |
                            op_star | op_sub | op_load_return;
-    wire writes_flags    = op_logic | op_test | op_add | op_shift | op_sub | op_compare;
+    wire writes_flags    = op_logic | op_test | op_add | op_shift | op_sub | op_compare |
+                           op_returni;  // RETURNI: the flags saved on the stack
 
     // ---- decode: control flow (spec 1.2, bit 17 = 1) -------------------------------------------
     wire       conditional = opcode[5] & opcode[4];
@@ -145,20 +154,21 @@ module kcpsm6 #(
 
     wire [11:0] target = (op_call_at | op_jump_at) ? {sx[3:0], sy} : aaa;
 
-    // ---- stack (spec 2.5) ------------------------------------------------------------------
-    wire        stack_push  = take_interrupt | do_call;
-    wire        stack_pop   = ~take_interrupt & (do_return | op_returni);
-    wire [ 4:0] stack_top_addr = stack_pointer - 5'd1;
-    wire [14:0] stack_top   = stack_ram[stack_top_addr];
-    wire        stack_error = in_decode & (stack_push ? stack_pointer >= STACK_DEPTH :
-                                           stack_pop  ? stack_pointer == 5'd0 : 1'b0);
+    // ---- call stack (spec 2.5) -----------------------------------------------------------------
+    // The RAM is written in every D at index `depth`; a pop reads depth - 1. A pre-empted
+    // instruction does not pop; the entry D pushes.
+    wire        stack_push  = active_interrupt | do_call;
+    wire        stack_pop   = ~active_interrupt & (do_return | op_returni);
+    wire [14:0] stack_top   = stack_ram[depth - 5'd1];
+    // Overflow (30 + 1) and underflow (0 - 1) both leave 31; checked in F only.
+    wire        stack_error = in_fetch & (depth == 5'd31);
 
-    wire [11:0] next_pc = take_interrupt ? interrupt_vector :
+    wire [11:0] next_pc = active_interrupt ? interrupt_vector :
                           (do_call | do_jump) ? target :
                           do_return ? stack_top[11:0] + 12'd1 :
                           op_returni ? stack_top[11:0] : pc + 12'd1;
 
-    // ---- ALU (second cycle) --------------------------------------------------------------------
+    // ---- ALU, evaluated in D (2.8: the second cycle writes what D computed) --------------------
     wire       carry_in  = with_carry & carry;
     wire [8:0] sum       = {1'b0, sx} + {1'b0, operand} + {8'd0, carry_in};
     wire [8:0] diff      = {1'b0, sx} - {1'b0, operand} - {8'd0, carry_in};  // [8] = borrow
@@ -176,21 +186,22 @@ module kcpsm6 #(
                               shift_right ? {shift_in, sx[7:1]} : {sx[6:0], shift_in};
     wire       shift_carry  = hwbuild_op | (shift_right ? sx[0] : sx[7]);
 
-    wire [7:0] register_data = op_logic  ? logic_result :
-                               op_add    ? sum[7:0] :
-                               op_sub    ? diff[7:0] :
-                               op_shift  ? shift_result :
-                               op_input  ? in_port :
-                               op_fetch  ? scratch_pad[operand[SPM_BITS-1:0]] :
-                               op_load_return ? kk : operand;  // LOAD, STAR
+    wire [7:0] alu_result  = op_logic  ? logic_result :
+                             op_add    ? sum[7:0] :
+                             op_sub    ? diff[7:0] :
+                             op_shift  ? shift_result :
+                             op_fetch  ? scratch_pad[spm_addr] :
+                             op_load_return ? kk : operand;  // LOAD, STAR
     wire [7:0] flag_result = op_logic ? logic_result : op_test ? test_result :
                              op_add ? sum[7:0] : op_shift ? shift_result : diff[7:0];
-    wire       alu_carry   = op_logic ? 1'b0 :
+    wire       alu_carry   = op_returni ? stack_top[12] :
+                             op_logic ? 1'b0 :
                              op_test  ? (^test_result) ^ carry_in :
                              op_add   ? sum[8] :
                              op_shift ? shift_carry : diff[8];
     wire       z_chain     = with_carry & (op_test | op_add | op_sub | op_compare);
-    wire       alu_zero    = (flag_result == 8'd0) & (~z_chain | zero);
+    wire       alu_zero    = op_returni ? stack_top[13] :
+                             (flag_result == 8'd0) & (~z_chain | zero);
 
     // ---- outputs -------------------------------------------------------------------------------
     assign address        = pc;
@@ -207,9 +218,8 @@ module kcpsm6 #(
         sleep_q        <= sleep;
         interrupt_q    <= interrupt;
         run            <= ~reset & (run | internal_reset) & ~stack_error;
-        internal_reset <= reset | ~run;
-        bank_rd        <= bank;
-        interrupt_ack_q <= in_decode & take_interrupt;
+        internal_reset <= reset | ~run | stack_error;
+        xb             <= in_fetch ? bank : bank ^ op_star;
 
         if (internal_reset)
             t_state <= T_IDLE;
@@ -219,60 +229,62 @@ module kcpsm6 #(
         endcase
     end
 
-    // Interrupt recognition: only in F cycles, with interrupts enabled (spec 2.6).
+    // Interrupt recognition (2.6): one flop loaded every cycle and never reset, so a request
+    // seen in an F whose D starts a reset still acknowledges two cycles later.
     always @(posedge clk) begin
-        if (internal_reset)
-            take_interrupt <= 1'b0;
-        else if (in_fetch && interrupt_enable && interrupt_q)
-            take_interrupt <= 1'b1;
-        else if (in_decode)
-            take_interrupt <= 1'b0;
+        active_interrupt <= in_fetch & interrupt_enable & interrupt_q;
+        interrupt_ack_q  <= active_interrupt;
     end
 
-    // D: PC, stack, IE, bank; the second-cycle action flops.
+    // D: stack RAM, the registered ALU result and the second-cycle action flops. Only an
+    // accepted interrupt cancels the actions; a reset does not (2.4).
     always @(posedge clk) begin
         if (in_decode) begin
-            stack_ram[stack_pointer] <= {bank, zero, carry, pc};  // written in every D
-            restored_flags_q <= stack_top[13:12];
+            stack_ram[depth] <= {bank, zero, carry, pc};  // written in every D
+            result_q <= alu_result;
+            carry_q  <= alu_carry;
+            zero_q   <= alu_zero;
         end
-        register_write_q    <= in_decode & ~take_interrupt & writes_register;
-        flag_write_q        <= in_decode & ~take_interrupt & writes_flags;
-        flag_restore_q      <= in_decode & ~take_interrupt & op_returni;
-        scratch_pad_write_q <= in_decode & ~take_interrupt & op_store;
-        read_strobe_q       <= in_decode & ~take_interrupt & op_input;
-        write_strobe_q      <= in_decode & ~take_interrupt & op_output;
-        k_write_strobe_q    <= in_decode & ~take_interrupt & op_outputk;
+        register_write_q    <= in_decode & ~active_interrupt & writes_register;
+        flag_write_q        <= in_decode & ~active_interrupt & writes_flags;
+        scratch_pad_write_q <= in_decode & ~active_interrupt & op_store;
+        read_strobe_q       <= in_decode & ~active_interrupt & op_input;
+        write_strobe_q      <= in_decode & ~active_interrupt & op_output;
+        k_write_strobe_q    <= in_decode & ~active_interrupt & op_outputk;
+    end
 
+    // End of D: PC, depth, IE and bank; all cleared by the internal reset.
+    always @(posedge clk) begin
         if (internal_reset) begin
             pc <= 12'h000;
+            depth <= 5'd0;
             interrupt_enable <= 1'b0;
             bank <= 1'b0;
-            stack_pointer <= 5'd0;
         end else if (in_decode) begin
             pc <= next_pc;
-            if (stack_push) stack_pointer <= stack_pointer + 5'd1;
-            if (stack_pop) stack_pointer <= stack_top_addr;
-            if (take_interrupt)
+            depth <= depth + {4'd0, stack_push} - {4'd0, stack_pop};
+            if (active_interrupt)
                 interrupt_enable <= 1'b0;
             else if (op_set_ie | op_returni)
                 interrupt_enable <= instruction[0];
-            if (~take_interrupt & op_regbank) bank <= instruction[0];
-            if (stack_pop & op_returni) bank <= stack_top[14];
+            // The bank has no interrupt input: a pre-empted REGBANK or RETURNI still switches
+            // it (RETURNI to the saved bank, without popping); the entry pushed the old one.
+            if (op_regbank) bank <= instruction[0];
+            if (op_returni) bank <= stack_top[14];
         end
     end
 
-    // Second cycle: register, flag and scratch-pad writes.
+    // Second cycle: register, flag and scratch-pad writes. INPUT takes in_port live; STORE
+    // addresses the scratch pad through the sY port.
     always @(posedge clk) begin
         if (register_write_q)
-            registers[{op_star ? ~bank_rd : bank_rd, sx_addr}] <= register_data;
+            registers[{xb, sx_addr}] <= op_input ? in_port : result_q;
         if (scratch_pad_write_q)
-            scratch_pad[operand[SPM_BITS-1:0]] <= sx;
+            scratch_pad[spm_addr] <= sx;
         if (internal_reset)
             {carry, zero} <= 2'b00;
-        else if (flag_restore_q)
-            {zero, carry} <= restored_flags_q;
         else if (flag_write_q)
-            {carry, zero} <= {alu_carry, alu_zero};
+            {carry, zero} <= {carry_q, zero_q};
     end
 
 endmodule

@@ -46,7 +46,8 @@ pub struct Ports {
     pub interrupt_ack: bool,
 }
 
-/// The core's architectural state, read from the RTL.
+/// The core's state after a clock edge, read from the RTL: architectural state and the
+/// sequencer flops the ISS models one for one.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct ArchState {
     pub pc: u16,
@@ -56,7 +57,15 @@ pub struct ArchState {
     pub interrupt_enable: bool,
     /// Active bank: false = A.
     pub bank: bool,
-    pub stack_pointer: u8,
+    /// The bank of the sX read port and the write port (spec §2.8).
+    pub sx_bank: bool,
+    /// The wrapping call-stack depth counter (spec §2.5).
+    pub depth: u8,
+    pub run: bool,
+    pub internal_reset: bool,
+    /// This cycle is an interrupt entry D (or its reset-cancelled twin): the flop that also
+    /// times `interrupt_ack` (spec §2.6).
+    pub interrupt_entry: bool,
     /// Bank A's s0..sF, then bank B's.
     pub registers: [u8; 32],
     pub scratch_pad: Vec<u8>,
@@ -176,7 +185,11 @@ impl CpuHarness {
             zero: s.zero != 0,
             interrupt_enable: s.interrupt_enable != 0,
             bank: s.bank != 0,
-            stack_pointer: s.stack_pointer,
+            sx_bank: s.xb != 0,
+            depth: s.depth,
+            run: s.run != 0,
+            internal_reset: s.internal_reset != 0,
+            interrupt_entry: s.active_interrupt != 0,
             registers: s.registers,
             scratch_pad: s.scratch_pad[..s.scratch_pad_size as usize].to_vec(),
         }

@@ -7,6 +7,7 @@ mod common;
 use std::collections::BTreeSet;
 
 use botsim::cpu::SIZES;
+use common::cpu_coverage::{Coverage, Stimulus};
 use common::lockstep::Lockstep;
 use kcpsm6::asm::assemble_str;
 use kcpsm6::iss::{Pins, RetireKind, ScratchPad};
@@ -122,7 +123,7 @@ fn directed_program_in_every_variant() {
         let prog = with_isr(DIRECTED, vector);
         let mut ls = Lockstep::new(size, &prog, inputs(0x3C));
         // A long interrupt request now and then, overlapping the ENABLE ... DISABLE window.
-        ls.run(6000, |c| Pins { interrupt: c % 700 > 400, ..Pins::default() })
+        ls.run(6000, |cpu| Pins { interrupt: cpu.cycle() % 700 > 400, ..Pins::default() })
             .unwrap_or_else(|e| panic!("{size:?}: {e}"));
         let ops: BTreeSet<u32> =
             ls.retired.iter().filter(|r| r.kind == RetireKind::Executed).map(|r| r.word >> 12).collect();
@@ -139,10 +140,13 @@ fn directed_program_in_every_variant() {
 fn reset_sleep_and_interrupt_sequences_in_lockstep() {
     let prog = with_isr(DIRECTED, 0x3FF);
     let mut ls = Lockstep::new(ScratchPad::B64, &prog, inputs(1));
-    ls.run(3000, |c| Pins {
-        reset: (500..503).contains(&c) || c == 1201,
-        sleep: (800..830).contains(&c) || (2000..2001).contains(&c),
-        interrupt: (1500..1540).contains(&c) || c % 97 == 0,
+    ls.run(3000, |cpu| {
+        let c = cpu.cycle();
+        Pins {
+            reset: (500..503).contains(&c) || c == 1201,
+            sleep: (800..830).contains(&c) || (2000..2001).contains(&c),
+            interrupt: (1500..1540).contains(&c) || c % 97 == 0,
+        }
     })
     .unwrap();
 }
@@ -161,7 +165,7 @@ fn stack_overflow_and_underflow_reset_in_lockstep() {
     let mut prog = assemble_str(isr_deep).unwrap().image.words.to_vec();
     prog[0x3FF] = 0x22001; // vector: JUMP rec
     let mut ls = Lockstep::new(ScratchPad::B64, &prog, inputs(0));
-    ls.run(400, |c| Pins { interrupt: c > 60, ..Pins::default() }).unwrap();
+    ls.run(400, |cpu| Pins { interrupt: cpu.cycle() > 60, ..Pins::default() }).unwrap();
 }
 
 /// A random instruction word, biased towards meaningful programs of `len` words.
@@ -187,53 +191,61 @@ fn word(len: u32) -> impl Strategy<Value = u32> {
     ]
 }
 
-/// Pin stimulus: rare resets, sleep bursts, interrupt bursts, from a seed.
-fn stimulus(seed: u64, reset_rate: u32, sleep_rate: u32, irq_rate: u32) -> impl FnMut(u64) -> Pins {
-    let mut x = seed | 1;
-    let (mut sleep_left, mut irq_left) = (0u32, 0u32);
-    move |_| {
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        let r = (x % 10_000) as u32;
-        if sleep_left == 0 && r < sleep_rate {
-            sleep_left = 1 + (x >> 20) as u32 % 12;
-        }
-        if irq_left == 0 && (x >> 32) as u32 % 10_000 < irq_rate {
-            irq_left = 1 + (x >> 40) as u32 % 8;
-        }
-        let pins =
-            Pins { reset: (x >> 48) as u32 % 10_000 < reset_rate, sleep: sleep_left > 0, interrupt: irq_left > 0 };
-        sleep_left = sleep_left.saturating_sub(1);
-        irq_left = irq_left.saturating_sub(1);
-        pins
-    }
-}
-
-proptest! {
-    #![proptest_config(ProptestConfig { cases: 1500, failure_persistence: None, ..ProptestConfig::default() })]
-
-    /// Random programs and random pins: ports equal in every cycle, state after every instruction.
-    #[test]
-    fn random_programs_in_lockstep(
-        body in prop::collection::vec(word(48), 48),
-        isr in prop::collection::vec(word(48), 4),
-        size in prop::sample::select(SIZES.to_vec()),
-        seed in any::<u64>(),
-        input_seed in any::<u8>(),
-        rates in (0u32..30, 0u32..300, 0u32..800),
-    ) {
-        let mut prog = body.clone();
-        prog.resize(4096, 0);
-        prog[48] = 0x22000; // JUMP 000
-        prog[49] = 0x22000;
-        let vector = botsim::cpu::CpuHarness::new(size).config().interrupt_vector as usize;
-        for (i, w) in isr.iter().enumerate() {
-            prog[vector + i] = *w;
-        }
-        prog[vector + isr.len()] = 0x29001; // RETURNI ENABLE
-        let mut ls = Lockstep::new(size, &prog, inputs(input_seed));
-        let result = ls.run(400, stimulus(seed, rates.0, rates.1, rates.2));
-        prop_assert!(result.is_ok(), "{}", result.unwrap_err());
-    }
+/// Random programs (48 words, an ISR of 4 at the variant's vector that often starts with a
+/// REGBANK, the rest of the ROM
+/// `JUMP 000`) with random pins and events aimed at the instruction in flight: ports and state
+/// equal in every cycle. Afterwards every coverage bin must have been reached: a reset landing
+/// on the D and on the second cycle, an interrupt pre-empting and recognised in the second
+/// cycle, and sleep in the second cycle, of REGBANK, RETURNI, STAR, CALL@, JUMP@, STORE,
+/// FETCH, OUTPUT and INPUT (sY), ADDCY, SUBCY and the shifts through carry; the carry forms
+/// with C = 1 under a reset; a pre-empted REGBANK and RETURNI that switch the bank; a stack
+/// error held through sleep.
+#[test]
+fn random_programs_in_lockstep() {
+    use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+    // A fixed seed keeps the coverage closure reproducible; BOTSIM_LOCKSTEP_SEED sweeps others.
+    let seed: u64 = std::env::var("BOTSIM_LOCKSTEP_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(2026);
+    println!("BOTSIM_LOCKSTEP_SEED={seed}");
+    let mut seed_bytes = [0u8; 32];
+    seed_bytes[..8].copy_from_slice(&seed.to_le_bytes());
+    let cases = 2000;
+    let mut runner = TestRunner::new_with_rng(
+        Config { cases, failure_persistence: None, ..Config::default() },
+        TestRng::from_seed(RngAlgorithm::ChaCha, &seed_bytes),
+    );
+    let coverage = std::cell::RefCell::new(Coverage::default());
+    let strategy = (
+        prop::collection::vec(word(48), 48),
+        // ISRs often start by switching the bank: REGBANK A or B first, half the time.
+        (prop::collection::vec(word(48), 4), prop::option::of(any::<bool>())).prop_map(|(mut isr, bank)| {
+            if let Some(b) = bank {
+                isr[0] = 0x37000 | b as u32;
+            }
+            isr
+        }),
+        prop::sample::select(SIZES.to_vec()),
+        any::<u64>(),
+        any::<u8>(),
+        (0u32..30, 0u32..300, 0u32..800),
+    );
+    runner
+        .run(&strategy, |(body, isr, size, seed, input_seed, rates)| {
+            let mut prog = vec![0x22000; 4096]; // JUMP 000 outside the program
+            prog[..body.len()].copy_from_slice(&body);
+            let vector = botsim::cpu::CpuHarness::new(size).config().interrupt_vector as usize;
+            prog[vector..vector + isr.len()].copy_from_slice(&isr);
+            prog[vector + isr.len()] = 0x29001; // RETURNI ENABLE
+            let mut ls = Lockstep::new(size, &prog, inputs(input_seed));
+            let mut stimulus = Stimulus::new(seed, rates, 600);
+            let result = ls.run(500, |cpu| {
+                coverage.borrow_mut().sample(cpu);
+                stimulus.pins(cpu)
+            });
+            prop_assert!(result.is_ok(), "{}", result.unwrap_err());
+            Ok(())
+        })
+        .unwrap_or_else(|e| panic!("{e}"));
+    let coverage = coverage.into_inner();
+    println!("coverage over {cases} programs:\n{coverage}");
+    assert!(coverage.holes().is_empty(), "bins never reached: {:?}\n{coverage}", coverage.holes());
 }

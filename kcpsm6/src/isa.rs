@@ -20,6 +20,131 @@ pub const WORD_MASK: u32 = 0x3_FFFF;
 /// Number of words in the 12-bit program address space.
 pub const ROM_WORDS: usize = 4096;
 
+/// What the hardware does with a word: the meaning of its 6-bit opcode `[17:12]` (spec §1.2,
+/// §1.7). Every opcode has one, so every 18-bit word executes; the four undefined opcodes are
+/// [`Opcode::Nop`]. The register/constant forms of a two-operand instruction share a name (bit
+/// 12 selects the constant), as do the conditional and unconditional control-flow forms (see
+/// [`Cond::of`]).
+///
+/// ```
+/// use kcpsm6::isa::{Cond, Opcode, PortKind};
+/// assert_eq!(Opcode::of(0x1112A), Opcode::Add);
+/// assert_eq!(Opcode::of(0x36004), Opcode::Jump);
+/// assert_eq!(Cond::of(0x36004), Some(Cond::NZ));
+/// assert_eq!(Opcode::of(0x2A000).strobe(), Some(PortKind::KWrite));
+/// assert_eq!(Opcode::of(0x23000), Opcode::Nop);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Opcode {
+    Load,
+    And,
+    Or,
+    Xor,
+    Input,
+    Fetch,
+    Test,
+    TestCy,
+    Add,
+    AddCy,
+    /// Shifts, rotates and HWBUILD (opcodes 14 and 15).
+    Shift,
+    Star,
+    Sub,
+    SubCy,
+    Compare,
+    CompareCy,
+    Call,
+    LoadReturn,
+    Jump,
+    CallAt,
+    Return,
+    JumpAt,
+    /// ENABLE / DISABLE INTERRUPT.
+    Interrupt,
+    ReturnI,
+    /// OUTPUTK and the undocumented opcode 2A.
+    OutputK,
+    Output,
+    Store,
+    RegBank,
+    /// The undefined opcodes 23, 27, 33, 3B, 3F.
+    Nop,
+}
+
+/// The opcode table, indexed by `[17:12]`: the single place that numbers the instructions.
+const OPCODES: [Opcode; 64] = {
+    use Opcode::*;
+    [
+        Load, Load, And, And, Or, Or, Xor, Xor, Input, Input, Fetch, Fetch, Test, Test, TestCy, TestCy, // 00-0F
+        Add, Add, AddCy, AddCy, Shift, Shift, Star, Star, Sub, Sub, SubCy, SubCy, Compare, Compare, CompareCy,
+        CompareCy, // 10-1F
+        Call, LoadReturn, Jump, Nop, CallAt, Return, JumpAt, Nop, Interrupt, ReturnI, OutputK, OutputK, Output, Output,
+        Store, Store, // 20-2F
+        Call, Return, Jump, Nop, Call, Return, Jump, RegBank, Call, Return, Jump, Nop, Call, Return, Jump,
+        Nop, // 30-3F
+    ]
+};
+
+impl Opcode {
+    /// The opcode of an 18-bit word.
+    #[inline]
+    pub fn of(word: u32) -> Opcode {
+        OPCODES[(word >> 12 & 63) as usize]
+    }
+
+    /// Writes sX (STAR: the other bank's) in the second cycle.
+    pub fn writes_register(self) -> bool {
+        use Opcode::*;
+        matches!(self, Load | And | Or | Xor | Input | Fetch | Add | AddCy | Shift | Star | Sub | SubCy | LoadReturn)
+    }
+
+    /// Writes C and Z in the second cycle (RETURNI: the flags saved on the stack).
+    pub fn writes_flags(self) -> bool {
+        use Opcode::*;
+        matches!(
+            self,
+            And | Or | Xor | Test | TestCy | Add | AddCy | Shift | Sub | SubCy | Compare | CompareCy | ReturnI
+        )
+    }
+
+    /// The CY forms (TESTCY, ADDCY, SUBCY, COMPARECY): they take the carry in and chain Z,
+    /// `Z = (r == 0) & Zold` (§1.4).
+    pub fn carry_form(self) -> bool {
+        matches!(self, Opcode::TestCy | Opcode::AddCy | Opcode::SubCy | Opcode::CompareCy)
+    }
+
+    /// The strobe the instruction raises in its second cycle.
+    pub fn strobe(self) -> Option<PortKind> {
+        match self {
+            Opcode::Input => Some(PortKind::Read),
+            Opcode::Output => Some(PortKind::Write),
+            Opcode::OutputK => Some(PortKind::KWrite),
+            _ => None,
+        }
+    }
+
+    /// Pushes the call stack when taken.
+    pub fn pushes(self) -> bool {
+        matches!(self, Opcode::Call | Opcode::CallAt)
+    }
+
+    /// Pops the call stack when taken.
+    pub fn pops(self) -> bool {
+        matches!(self, Opcode::Return | Opcode::LoadReturn | Opcode::ReturnI)
+    }
+}
+
+/// Which strobe a port access raises.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum PortKind {
+    /// `read_strobe` (INPUT).
+    Read,
+    /// `write_strobe` (OUTPUT).
+    Write,
+    /// `k_write_strobe` (OUTPUTK and the undocumented opcode 2A).
+    KWrite,
+}
+
 /// A register `s0`..`sF` of the active bank (the bank is machine state, not part of the name).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Reg(pub u8);
@@ -81,27 +206,34 @@ impl Op2 {
         Op2::Store,
     ];
 
-    /// The register-form opcode (`[17:12]`); the constant form is this plus one.
-    pub fn base_opcode(self) -> u32 {
+    /// The hardware opcode this instruction executes as.
+    pub fn opcode(self) -> Opcode {
         match self {
-            Op2::Load => 0x00,
-            Op2::And => 0x02,
-            Op2::Or => 0x04,
-            Op2::Xor => 0x06,
-            Op2::Input => 0x08,
-            Op2::Fetch => 0x0A,
-            Op2::Test => 0x0C,
-            Op2::TestCy => 0x0E,
-            Op2::Add => 0x10,
-            Op2::AddCy => 0x12,
-            Op2::Star => 0x16,
-            Op2::Sub => 0x18,
-            Op2::SubCy => 0x1A,
-            Op2::Compare => 0x1C,
-            Op2::CompareCy => 0x1E,
-            Op2::Output => 0x2C,
-            Op2::Store => 0x2E,
+            Op2::Load => Opcode::Load,
+            Op2::And => Opcode::And,
+            Op2::Or => Opcode::Or,
+            Op2::Xor => Opcode::Xor,
+            Op2::Input => Opcode::Input,
+            Op2::Fetch => Opcode::Fetch,
+            Op2::Test => Opcode::Test,
+            Op2::TestCy => Opcode::TestCy,
+            Op2::Add => Opcode::Add,
+            Op2::AddCy => Opcode::AddCy,
+            Op2::Star => Opcode::Star,
+            Op2::Sub => Opcode::Sub,
+            Op2::SubCy => Opcode::SubCy,
+            Op2::Compare => Opcode::Compare,
+            Op2::CompareCy => Opcode::CompareCy,
+            Op2::Output => Opcode::Output,
+            Op2::Store => Opcode::Store,
         }
+    }
+
+    /// The register-form opcode number (`[17:12]`, from the opcode table); the constant form
+    /// is this plus one.
+    pub fn base_opcode(self) -> u32 {
+        let op = self.opcode();
+        OPCODES.iter().position(|&o| o == op).expect("every Op2 is in the opcode table") as u32
     }
 
     pub fn mnemonic(self) -> &'static str {
@@ -131,8 +263,8 @@ impl Op2 {
         matches!(self, Op2::Input | Op2::Output | Op2::Fetch | Op2::Store)
     }
 
-    fn from_base(op: u32) -> Option<Op2> {
-        Op2::ALL.into_iter().find(|o| o.base_opcode() == op)
+    fn from_opcode(op: Opcode) -> Option<Op2> {
+        Op2::ALL.into_iter().find(|o| o.opcode() == op)
     }
 }
 
@@ -207,6 +339,30 @@ pub enum Cond {
 
 impl Cond {
     pub const ALL: [Cond; 4] = [Cond::Z, Cond::NZ, Cond::C, Cond::NC];
+
+    /// The condition of a control-flow word: bits `[17:16]` = 11 make it conditional, bits
+    /// `[15:14]` name it. (REGBANK, 37, has the same bits; its condition is not used.)
+    #[inline]
+    pub fn of(word: u32) -> Option<Cond> {
+        (word >> 16 & 3 == 3).then(|| Cond::ALL[(word >> 14 & 3) as usize])
+    }
+
+    /// Whether a control-flow word acts with the flags `c`, `z`: always when unconditional.
+    #[inline]
+    pub fn taken(word: u32, c: bool, z: bool) -> bool {
+        Cond::of(word).map_or(true, |cond| cond.holds(c, z))
+    }
+
+    /// Whether the condition holds for the flags `c`, `z`.
+    #[inline]
+    pub fn holds(self, c: bool, z: bool) -> bool {
+        match self {
+            Cond::Z => z,
+            Cond::NZ => !z,
+            Cond::C => c,
+            Cond::NC => !c,
+        }
+    }
 
     /// Bits `[15:14]` of a conditional control-flow word.
     fn bits(self) -> u32 {
@@ -286,36 +442,28 @@ impl Instr {
         if word > WORD_MASK {
             return None;
         }
-        let op = word >> 12;
         let sx = Reg((word >> 8 & 15) as u8);
         let sy = Reg((word >> 4 & 15) as u8);
         let kk = (word & 0xFF) as u8;
         let aaa = (word & 0xFFF) as u16;
-        let instr = match op {
-            0x14 if kk == 0x80 => Instr::HwBuild(sx),
-            0x14 => Instr::Shift(Shift::ALL.into_iter().find(|s| s.code() == kk as u32)?, sx),
-            0x2B => Instr::OutputK((word >> 4 & 0xFF) as u8, (word & 15) as u8),
-            0x20 => Instr::Call(None, aaa),
-            0x22 => Instr::Jump(None, aaa),
-            0x25 => Instr::Return(None),
-            0x24 => Instr::CallAt(sx, sy),
-            0x26 => Instr::JumpAt(sx, sy),
-            0x21 => Instr::LoadReturn(sx, kk),
-            0x28 => Instr::Interrupt(word & 1 == 1),
-            0x29 => Instr::ReturnI(word & 1 == 1),
-            0x37 => Instr::RegBank(word & 1 == 1),
-            0x30..=0x3F => {
-                let cond = Cond::ALL[(word >> 14 & 3) as usize];
-                match op & 3 {
-                    0 => Instr::Call(Some(cond), aaa),
-                    1 => Instr::Return(Some(cond)),
-                    2 => Instr::Jump(Some(cond), aaa),
-                    _ => return None,
-                }
-            }
-            _ => {
-                let o = Op2::from_base(op & !1)?;
-                if op & 1 == 1 {
+        let cond = Cond::of(word);
+        let instr = match Opcode::of(word) {
+            Opcode::Shift if kk == 0x80 => Instr::HwBuild(sx),
+            Opcode::Shift => Instr::Shift(Shift::ALL.into_iter().find(|s| s.code() == kk as u32)?, sx),
+            Opcode::OutputK => Instr::OutputK((word >> 4 & 0xFF) as u8, (word & 15) as u8),
+            Opcode::Call => Instr::Call(cond, aaa),
+            Opcode::Jump => Instr::Jump(cond, aaa),
+            Opcode::Return => Instr::Return(cond),
+            Opcode::CallAt => Instr::CallAt(sx, sy),
+            Opcode::JumpAt => Instr::JumpAt(sx, sy),
+            Opcode::LoadReturn => Instr::LoadReturn(sx, kk),
+            Opcode::Interrupt => Instr::Interrupt(word & 1 == 1),
+            Opcode::ReturnI => Instr::ReturnI(word & 1 == 1),
+            Opcode::RegBank => Instr::RegBank(word & 1 == 1),
+            Opcode::Nop => return None,
+            op => {
+                let o = Op2::from_opcode(op)?;
+                if word & 1 << 12 != 0 {
                     Instr::Op2(o, sx, Operand::Const(kk))
                 } else {
                     Instr::Op2(o, sx, Operand::Reg(sy))

@@ -1,10 +1,11 @@
 //! A cycle-exact KCPSM6 instruction-set simulator.
 //!
-//! The simulator follows the hardware's sequencing (spec §2): each instruction takes a **D**
-//! cycle (decode; PC, stack, IE and bank update at its end) and a second cycle (normally **F**,
-//! which fetches the next word) in which the register, flag and scratch-pad writes and the port
-//! strobes happen. Reset, sleep and interrupt are sampled per clock, so the cycle numbers of
-//! every port event match the RTL core, which is built from the same description.
+//! The simulator is the RTL core's flops in Rust, one for one (spec §2): each instruction takes
+//! a **D** cycle (operands read and the ALU result registered; PC, call-stack depth, IE and bank
+//! update at its end) and a second cycle (normally **F**, which fetches the next word) in which
+//! the register, flag and scratch-pad writes and the port strobes happen. Reset, sleep and
+//! interrupt are sampled per clock, so every port of every cycle matches `rtl/kcpsm6.v`; the
+//! lock-step tests compare the two cycle by cycle.
 //!
 //! Peripherals are modelled by a [`Bus`]; each completed instruction yields a [`Retired`]
 //! record for lock-step comparison.
@@ -21,10 +22,13 @@
 //! assert_eq!(r.port.unwrap().cycle, 10);
 //! ```
 
-use crate::isa::ROM_WORDS;
+use crate::isa::{Cond, Opcode, ROM_WORDS, WORD_MASK};
 
-/// Usable call-stack depth (an interrupt uses one level).
+/// Usable call-stack depth (an interrupt uses one level). One more level leaves the wrapping
+/// depth counter at [`STACK_ERROR_DEPTH`], as does a pop at depth 0.
 pub const STACK_DEPTH: u8 = 30;
+/// The depth that an F cycle recognises as a stack error (§2.5).
+pub const STACK_ERROR_DEPTH: u8 = 31;
 
 /// Core parameters, as on the Verilog module.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -104,16 +108,7 @@ impl Bus for NullBus {
     fn output_k(&mut self, _port: u8, _value: u8, _cycle: u64) {}
 }
 
-/// Which strobe a port event raised.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum PortKind {
-    /// `read_strobe` (INPUT): `value` is what was read.
-    Read,
-    /// `write_strobe` (OUTPUT).
-    Write,
-    /// `k_write_strobe` (OUTPUTK and the undocumented opcode 2A).
-    KWrite,
-}
+pub use crate::isa::PortKind;
 
 /// One strobe on the port bus.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -177,15 +172,20 @@ struct StackEntry {
     bank: bool,
 }
 
-/// Second-cycle work loaded at the end of a D cycle.
+/// The flops loaded at the end of a D cycle for the second cycle: what to do (the action
+/// flops, all clear when an interrupt pre-empted the instruction) and the ALU's registered
+/// result, carry and zero (§2.8: computed from the operands as they were in D).
 #[derive(Clone, Copy, Debug)]
 struct Pending {
     kind: RetireKind,
+    /// The D cycle.
     cycle: u64,
     pc: u16,
     word: u32,
-    /// Flags popped by RETURNI, written at the end of the second cycle.
-    restore: Option<(bool, bool)>,
+    op: Opcode,
+    result: u8,
+    carry: bool,
+    zero: bool,
 }
 
 /// A failure to reach a retirement within a cycle budget.
@@ -193,7 +193,7 @@ struct Pending {
 #[error("no instruction completed within {0} cycles")]
 pub struct Timeout(pub u64);
 
-/// The KCPSM6 core.
+/// The KCPSM6 core: the RTL's flops, named as there.
 #[derive(Clone)]
 pub struct Cpu {
     config: Config,
@@ -202,20 +202,24 @@ pub struct Cpu {
     regs: [u8; 32],
     spm: [u8; 256],
     stack: [StackEntry; 32],
-    sp: u8,
+    /// The wrapping call-stack depth counter (§2.5).
+    depth: u8,
     pc: u16,
     c: bool,
     z: bool,
     ie: bool,
+    /// The active bank: the sY read port's bank (§2.8).
     bank: bool,
-    /// Registered copy of `bank` used to address the register file (§2.8).
-    bank_rd: bool,
+    /// The bank of the sX read port and the write port, loaded every cycle with
+    /// `F ? bank : bank ^ is_STAR` (§2.8).
+    xb: bool,
     phase: Phase,
     run: bool,
     internal_reset: bool,
     sleep_reg: bool,
     irq_reg: bool,
-    take_interrupt: bool,
+    /// Loaded every cycle with `F & IE & irq_reg`, never reset: this D is an interrupt entry.
+    active_interrupt: bool,
     interrupt_ack: bool,
     /// The word on `instruction` (the ROM's output register).
     instr: u32,
@@ -223,12 +227,18 @@ pub struct Cpu {
     cycle: u64,
 }
 
+/// Register-file index of register `r` in bank `b`.
+#[inline]
+fn reg_index(b: bool, r: u32) -> usize {
+    (b as usize) << 4 | (r & 15) as usize
+}
+
 impl Cpu {
     /// A core in its configuration state (cycle 0), self-starting from address 000.
     pub fn new(config: Config, rom: &[u32]) -> Cpu {
         let mut image = Box::new([0u32; ROM_WORDS]);
         for (dst, src) in image.iter_mut().zip(rom) {
-            *dst = src & crate::isa::WORD_MASK;
+            *dst = src & WORD_MASK;
         }
         Cpu {
             config,
@@ -236,19 +246,19 @@ impl Cpu {
             regs: [0; 32],
             spm: [0; 256],
             stack: [StackEntry::default(); 32],
-            sp: 0,
+            depth: 0,
             pc: 0,
             c: false,
             z: false,
             ie: false,
             bank: false,
-            bank_rd: false,
+            xb: false,
             phase: Phase::Idle,
             run: false,
             internal_reset: false,
             sleep_reg: false,
             irq_reg: false,
-            take_interrupt: false,
+            active_interrupt: false,
             interrupt_ack: false,
             instr: 0,
             pending: None,
@@ -274,6 +284,12 @@ impl Cpu {
         self.internal_reset
     }
 
+    /// The `run` flop: clear from configuration, a reset or a stack error until the reset
+    /// sequence has passed it (§2.4).
+    pub fn running(&self) -> bool {
+        self.run
+    }
+
     pub fn phase(&self) -> Phase {
         self.phase
     }
@@ -295,18 +311,34 @@ impl Cpu {
         self.bank
     }
 
-    /// Call-stack depth (0..=31; 31 only transiently after an underflow).
+    /// The bank the sX read port and the write port address in this cycle (§2.8).
+    pub fn sx_bank(&self) -> bool {
+        self.xb
+    }
+
+    /// True in a D cycle that enters the interrupt (the request was recognised in the F
+    /// before it; the flop that also times `interrupt_ack`).
+    pub fn interrupt_entry(&self) -> bool {
+        self.active_interrupt
+    }
+
+    /// The registered `interrupt` pin: the request an F cycle would recognise now.
+    pub fn interrupt_registered(&self) -> bool {
+        self.irq_reg
+    }
+
+    /// Call-stack depth (0..=31; 31 only transiently, as a stack error, §2.5).
     pub fn depth(&self) -> u8 {
-        self.sp
+        self.depth
     }
 
     /// Register `r` (0..15) of bank A (`bank_b` false) or B.
     pub fn reg(&self, bank_b: bool, r: u8) -> u8 {
-        self.regs[(bank_b as usize) << 4 | (r & 15) as usize]
+        self.regs[reg_index(bank_b, r as u32)]
     }
 
     pub fn set_reg(&mut self, bank_b: bool, r: u8, v: u8) {
-        self.regs[(bank_b as usize) << 4 | (r & 15) as usize] = v;
+        self.regs[reg_index(bank_b, r as u32)] = v;
     }
 
     /// Both banks: A's s0..sF then B's.
@@ -325,7 +357,7 @@ impl Cpu {
 
     /// Replace one program word (for self-modifying test set-ups and ROM loading).
     pub fn write_rom(&mut self, addr: u16, word: u32) {
-        self.rom[addr as usize & 0xFFF] = word & crate::isa::WORD_MASK;
+        self.rom[addr as usize & 0xFFF] = word & WORD_MASK;
     }
 
     /// The `interrupt_ack` output in the current cycle.
@@ -343,8 +375,31 @@ impl Cpu {
         self.instr
     }
 
-    fn rd(&self, r: u32) -> u8 {
-        self.regs[(self.bank_rd as usize) << 4 | (r & 15) as usize]
+    /// sX of the word on `instruction`, through the `xb` port.
+    #[inline]
+    fn sx(&self) -> u8 {
+        self.regs[reg_index(self.xb, self.instr >> 8)]
+    }
+
+    /// sY of the word on `instruction`, through the live-bank port.
+    #[inline]
+    fn sy(&self) -> u8 {
+        self.regs[reg_index(self.bank, self.instr >> 4)]
+    }
+
+    /// The second operand: the constant of an odd opcode, else sY.
+    #[inline]
+    fn operand(&self) -> u8 {
+        if self.instr & 1 << 12 != 0 {
+            self.instr as u8
+        } else {
+            self.sy()
+        }
+    }
+
+    #[inline]
+    fn spm_addr(&self) -> usize {
+        self.operand() as usize & (self.config.scratch_pad_size.bytes() - 1)
     }
 
     /// `out_port` in the current cycle: `instruction[13] ? instruction[11:4] : sX`.
@@ -352,7 +407,7 @@ impl Cpu {
         if self.instr & 1 << 13 != 0 {
             (self.instr >> 4) as u8
         } else {
-            self.rd(self.instr >> 8)
+            self.sx()
         }
     }
 
@@ -361,7 +416,7 @@ impl Cpu {
         if self.instr & 1 << 12 != 0 {
             self.instr as u8
         } else {
-            self.rd(self.instr >> 4)
+            self.sy()
         }
     }
 
@@ -371,12 +426,7 @@ impl Cpu {
         if p.kind != RetireKind::Executed {
             return None;
         }
-        match p.word >> 12 {
-            0x08 | 0x09 => Some(PortKind::Read),
-            0x2C | 0x2D => Some(PortKind::Write),
-            0x2A | 0x2B => Some(PortKind::KWrite),
-            _ => None,
-        }
+        p.op.strobe()
     }
 
     /// Simulate one clock cycle: the state during cycle [`Cpu::cycle`] and the rising edge
@@ -385,44 +435,20 @@ impl Cpu {
     pub fn tick<B: Bus>(&mut self, pins: Pins, bus: &mut B) -> Option<Retired> {
         let cycle = self.cycle;
         let phase = self.phase;
-        let bank_before = self.bank;
-        let mut stack_error = false;
-        let mut retired = None;
+        let in_fetch = phase == Phase::Fetch;
 
-        // Second-cycle actions of the instruction decoded in the previous cycle.
-        if let Some(p) = self.pending.take() {
-            retired = Some(self.second_cycle(p, bus, cycle));
-        }
-        let entering_interrupt = phase == Phase::Decode && self.take_interrupt;
+        // Flops loaded from this cycle's values, taken before anything below changes them.
+        let xb_next = if in_fetch { self.bank } else { self.bank ^ (Opcode::of(self.instr) == Opcode::Star) };
+        let active_next = in_fetch && self.ie && self.irq_reg;
+        let stack_error = in_fetch && self.depth == STACK_ERROR_DEPTH;
 
+        // The second cycle of the instruction decoded in the previous cycle (never a D).
+        let mut retired = self.pending.take().map(|p| self.second_cycle(p, bus, cycle));
         match phase {
-            Phase::Fetch => {
-                // Interrupt recognition samples the registered request in F cycles only.
-                if self.ie && self.irq_reg && !self.internal_reset {
-                    self.take_interrupt = true;
-                }
-                self.instr = self.rom[self.pc as usize];
-            }
-            Phase::Decode => {
-                // The stack RAM is written in every D cycle at the pointer's entry.
-                self.stack[self.sp as usize] = StackEntry { pc: self.pc, c: self.c, z: self.z, bank: self.bank };
-                let p = Pending { kind: RetireKind::Executed, cycle, pc: self.pc, word: self.instr, restore: None };
-                if entering_interrupt {
-                    self.take_interrupt = false;
-                    stack_error = self.push();
-                    self.pc = self.config.interrupt_vector & 0xFFF;
-                    self.ie = false;
-                    self.pending = Some(Pending { kind: RetireKind::Interrupt, ..p });
-                } else {
-                    let (restore, err) = self.decode();
-                    stack_error = err;
-                    self.pending = Some(Pending { restore, ..p });
-                }
-            }
+            Phase::Decode => self.decode(cycle),
+            Phase::Fetch => self.instr = self.rom[self.pc as usize],
             Phase::Idle => {}
         }
-        self.interrupt_ack = entering_interrupt;
-        self.bank_rd = bank_before;
 
         if self.internal_reset {
             self.pc = 0;
@@ -430,10 +456,11 @@ impl Cpu {
             self.z = false;
             self.bank = false;
             self.ie = false;
-            self.sp = 0;
-            self.take_interrupt = false;
+            self.depth = 0;
         }
-
+        self.xb = xb_next;
+        self.interrupt_ack = self.active_interrupt;
+        self.active_interrupt = active_next;
         self.phase = if self.internal_reset {
             Phase::Idle
         } else {
@@ -444,7 +471,7 @@ impl Cpu {
             }
         };
         let run = !pins.reset && (self.run || self.internal_reset) && !stack_error;
-        self.internal_reset = pins.reset || !self.run;
+        self.internal_reset = pins.reset || !self.run || stack_error;
         self.run = run;
         self.sleep_reg = pins.sleep;
         self.irq_reg = pins.interrupt;
@@ -455,86 +482,104 @@ impl Cpu {
             r.z = self.z;
             r.bank = self.bank;
             r.ie = self.ie;
-            r.depth = self.sp;
+            r.depth = self.depth;
             r.next_pc = self.pc;
         }
         retired
     }
 
-    /// Push: returns true on overflow (the 31st level).
-    fn push(&mut self) -> bool {
-        let overflow = self.sp >= STACK_DEPTH;
-        self.sp = (self.sp + 1) & 31;
-        overflow
-    }
-
-    /// Pop: returns the popped entry and true on underflow.
-    fn pop(&mut self) -> (StackEntry, bool) {
-        let underflow = self.sp == 0;
-        self.sp = self.sp.wrapping_sub(1) & 31;
-        (self.stack[self.sp as usize], underflow)
-    }
-
-    /// Whether control-flow opcode `op` acts: unconditional forms always, conditional ones
-    /// (bit 16 set) when their condition (bits 15:14: Z, NZ, C, NC) holds.
-    fn taken(&self, op: u32) -> bool {
-        op & 0x10 == 0
-            || match op >> 2 & 3 {
-                0 => self.z,
-                1 => !self.z,
-                2 => self.c,
-                _ => !self.c,
-            }
-    }
-
-    /// D-cycle work: next PC, stack, IE and bank. Returns RETURNI's flags and a stack error.
-    fn decode(&mut self) -> (Option<(bool, bool)>, bool) {
+    /// The D cycle (§2.2, §2.5, §2.6, §2.8): the stack RAM write, the next PC, depth, IE and
+    /// bank, and the second-cycle flops with the ALU result computed from this cycle's
+    /// operands. The internal reset, if active, clears PC, depth, IE and bank afterwards.
+    fn decode(&mut self, cycle: u64) {
         let w = self.instr;
-        let op = w >> 12;
-        let aaa = (w & 0xFFF) as u16;
-        let next = (self.pc + 1) & 0xFFF;
-        let at_target = ((self.rd(w >> 8) as u16 & 15) << 8 | self.rd(w >> 4) as u16) & 0xFFF;
-        self.pc = next;
-        if op < 0x20 {
-            return (None, false);
+        let op = Opcode::of(w);
+        let entry = self.active_interrupt;
+        let top = self.stack[self.depth.wrapping_sub(1) as usize & 31];
+        // The stack RAM is written in every D at the depth counter's entry.
+        self.stack[self.depth as usize] = StackEntry { pc: self.pc, c: self.c, z: self.z, bank: self.bank };
+
+        let taken = Cond::taken(w, self.c, self.z);
+        let push = entry || (taken && op.pushes());
+        let pop = !entry && taken && op.pops();
+        let next_pc = if entry {
+            self.config.interrupt_vector & 0xFFF
+        } else {
+            match op {
+                Opcode::Call | Opcode::Jump if taken => (w & 0xFFF) as u16,
+                Opcode::CallAt | Opcode::JumpAt => (self.sx() as u16 & 15) << 8 | self.sy() as u16,
+                Opcode::Return | Opcode::LoadReturn if taken => (top.pc + 1) & 0xFFF,
+                Opcode::ReturnI => top.pc,
+                _ => (self.pc + 1) & 0xFFF,
+            }
+        };
+
+        let (result, carry, zero) = self.alu(op, top);
+        self.pending = Some(Pending {
+            kind: if entry { RetireKind::Interrupt } else { RetireKind::Executed },
+            cycle,
+            pc: self.pc,
+            word: w,
+            op,
+            result,
+            carry,
+            zero,
+        });
+
+        self.pc = next_pc;
+        self.depth = (self.depth + push as u8).wrapping_sub(pop as u8) & 31;
+        if entry {
+            self.ie = false;
+        } else if matches!(op, Opcode::Interrupt | Opcode::ReturnI) {
+            self.ie = w & 1 == 1;
         }
-        let taken = self.taken(op);
+        // The bank has no interrupt input: a pre-empted REGBANK or RETURNI still switches it.
         match op {
-            0x24 => {
-                self.pc = at_target;
-                return (None, self.push());
-            }
-            0x26 => self.pc = at_target,
-            0x28 => self.ie = w & 1 == 1,
-            0x29 => {
-                let (e, err) = self.pop();
-                self.pc = e.pc;
-                self.bank = e.bank;
-                self.ie = w & 1 == 1;
-                return (Some((e.c, e.z)), err);
-            }
-            0x37 => self.bank = w & 1 == 1,
-            0x20..=0x22 | 0x25 | 0x30..=0x3F if taken => match op & 3 {
-                0 => {
-                    // CALL: the pushed entry (written this cycle) holds the CALL's address.
-                    self.pc = aaa;
-                    return (None, self.push());
-                }
-                1 => {
-                    // RETURN and LOAD&RETURN resume after the CALL.
-                    let (e, err) = self.pop();
-                    self.pc = (e.pc + 1) & 0xFFF;
-                    return (None, err);
-                }
-                2 => self.pc = aaa,
-                _ => {}
-            },
+            Opcode::RegBank => self.bank = w & 1 == 1,
+            Opcode::ReturnI => self.bank = top.bank,
             _ => {}
         }
-        (None, false)
     }
 
-    /// Second-cycle work: register, flag and scratch-pad writes, strobes.
+    /// The ALU in D: the value the second cycle writes, its carry and zero (§1.2-§1.4; RETURNI:
+    /// the flags of the stack's top entry).
+    #[inline]
+    fn alu(&self, op: Opcode, top: StackEntry) -> (u8, bool, bool) {
+        let sx = self.sx();
+        let k = self.operand();
+        let cin = op.carry_form() && self.c;
+        let zero = |v: u8| v == 0 && (!op.carry_form() || self.z);
+        match op {
+            Opcode::And | Opcode::Or | Opcode::Xor => {
+                let v = match op {
+                    Opcode::And => sx & k,
+                    Opcode::Or => sx | k,
+                    _ => sx ^ k,
+                };
+                (v, false, v == 0)
+            }
+            Opcode::Test | Opcode::TestCy => {
+                let t = sx & k;
+                (t, (t.count_ones() & 1 == 1) ^ cin, zero(t))
+            }
+            Opcode::Add | Opcode::AddCy => {
+                let t = sx as u16 + k as u16 + cin as u16;
+                (t as u8, t > 0xFF, zero(t as u8))
+            }
+            Opcode::Sub | Opcode::SubCy | Opcode::Compare | Opcode::CompareCy => {
+                let t = (sx as i16) - (k as i16) - cin as i16;
+                (t as u8, t < 0, zero(t as u8))
+            }
+            Opcode::Shift => self.shift(self.instr as u8, sx),
+            Opcode::Fetch => (self.spm[self.spm_addr()], false, false),
+            Opcode::LoadReturn => (self.instr as u8, false, false),
+            Opcode::ReturnI => (0, top.c, top.z),
+            _ => (k, false, false), // LOAD, STAR
+        }
+    }
+
+    /// The second cycle: register, flag and scratch-pad writes and the strobe of the
+    /// instruction decoded in the cycle before (through the live ports of this cycle).
     fn second_cycle<B: Bus>(&mut self, p: Pending, bus: &mut B, cycle: u64) -> Retired {
         let mut r = Retired {
             kind: p.kind,
@@ -554,94 +599,39 @@ impl Cpu {
         if p.kind == RetireKind::Interrupt {
             return r;
         }
-        let w = p.word;
-        let op = w >> 12;
-        let x = w >> 8 & 15;
-        let sx = self.rd(x);
-        let operand = if op & 1 == 1 { w as u8 } else { self.rd(w >> 4) };
-        let spm_addr = (operand as usize) & (self.config.scratch_pad_size.bytes() - 1);
-        let mut write = |cpu: &mut Cpu, bank_b: bool, v: u8| {
-            cpu.regs[(bank_b as usize) << 4 | x as usize] = v;
-            r.reg_write = Some((bank_b, x as u8, v));
-        };
-        let bank = self.bank_rd;
-        match op {
-            0x00 | 0x01 => write(self, bank, operand),
-            0x02..=0x07 => {
-                let v = match op >> 1 {
-                    1 => sx & operand,
-                    2 => sx | operand,
-                    _ => sx ^ operand,
-                };
-                write(self, bank, v);
-                self.c = false;
-                self.z = v == 0;
-            }
-            0x08 | 0x09 => {
-                let port = self.port_id();
-                let v = bus.input(port, cycle);
-                write(self, bank, v);
-                r.port = Some(PortEvent { kind: PortKind::Read, port, value: v, cycle });
-            }
-            0x0A | 0x0B => write(self, bank, self.spm[spm_addr]),
-            0x0C..=0x0F => {
-                let t = sx & operand;
-                let parity = t.count_ones() & 1 == 1;
-                if op & 2 == 0 {
-                    self.c = parity;
-                    self.z = t == 0;
-                } else {
-                    self.c ^= parity;
-                    self.z = t == 0 && self.z;
+        let mut input = 0;
+        if let Some(kind) = p.op.strobe() {
+            let (port, out) = (self.port_id(), self.out_port());
+            let value = match kind {
+                PortKind::Read => {
+                    input = bus.input(port, cycle); // in_port, live at the end of this cycle
+                    input
                 }
-            }
-            0x10..=0x13 => {
-                let cy = op & 2 != 0;
-                let t = sx as u16 + operand as u16 + (cy && self.c) as u16;
-                let v = t as u8;
-                write(self, bank, v);
-                self.c = t > 0xFF;
-                self.z = v == 0 && (!cy || self.z);
-            }
-            0x14 | 0x15 => {
-                let (v, c, z) = self.shift(w as u8, sx);
-                write(self, bank, v);
-                self.c = c;
-                self.z = z;
-            }
-            0x16 | 0x17 => write(self, !bank, operand),
-            0x18..=0x1F => {
-                let cy = op & 2 != 0;
-                let t = (sx as i16) - (operand as i16) - (cy && self.c) as i16;
-                let v = t as u8;
-                if op & 4 == 0 {
-                    write(self, bank, v);
+                PortKind::Write => {
+                    bus.output(port, out, cycle);
+                    out
                 }
-                self.c = t < 0;
-                self.z = v == 0 && (!cy || self.z);
-            }
-            0x21 => write(self, bank, w as u8),
-            0x29 => {
-                if let Some((c, z)) = p.restore {
-                    self.c = c;
-                    self.z = z;
+                PortKind::KWrite => {
+                    bus.output_k(port, out, cycle);
+                    out
                 }
-            }
-            0x2A | 0x2B => {
-                let (port, value) = (self.port_id(), self.out_port());
-                bus.output_k(port, value, cycle);
-                r.port = Some(PortEvent { kind: PortKind::KWrite, port, value, cycle });
-            }
-            0x2C | 0x2D => {
-                let (port, value) = (self.port_id(), self.out_port());
-                bus.output(port, value, cycle);
-                r.port = Some(PortEvent { kind: PortKind::Write, port, value, cycle });
-            }
-            0x2E | 0x2F => {
-                self.spm[spm_addr] = sx;
-                r.spm_write = Some((spm_addr as u8, sx));
-            }
-            _ => {}
+            };
+            r.port = Some(PortEvent { kind, port, value, cycle });
+        }
+        if p.op == Opcode::Store {
+            let (addr, v) = (self.spm_addr(), self.sx());
+            self.spm[addr] = v;
+            r.spm_write = Some((addr as u8, v));
+        }
+        if p.op.writes_register() {
+            let v = if p.op == Opcode::Input { input } else { p.result };
+            let x = self.instr >> 8 & 15;
+            self.regs[reg_index(self.xb, x)] = v;
+            r.reg_write = Some((self.xb, x as u8, v));
+        }
+        if p.op.writes_flags() {
+            self.c = p.carry;
+            self.z = p.zero;
         }
         r
     }
@@ -683,8 +673,9 @@ impl Cpu {
     }
 
     /// True at an instruction boundary of the steady state: the next cycle is a D cycle with
-    /// nothing in flight, no reset sequence, no registered sleep or interrupt request. There,
-    /// with all pins low, instructions can be executed whole ([`Cpu::run_fast`]).
+    /// nothing in flight, no reset sequence, no registered sleep or interrupt request, and the
+    /// instruction about to be decoded leaves the stack depth legal. There, with all pins low,
+    /// instructions can be executed whole ([`Cpu::run_fast`]).
     fn steady(&self) -> bool {
         self.phase == Phase::Decode
             && self.pending.is_none()
@@ -692,17 +683,16 @@ impl Cpu {
             && !self.internal_reset
             && !self.sleep_reg
             && !self.irq_reg
-            && !self.take_interrupt
-            && self.bank_rd == self.bank
+            && !self.active_interrupt
+            && self.xb == self.bank
+            && !self.stack_error_ahead()
     }
 
-    /// Would the instruction about to be decoded overflow or underflow the stack?
+    /// Would the instruction about to be decoded leave the depth counter at the error value?
     fn stack_error_ahead(&self) -> bool {
-        let op = self.instr >> 12;
-        let taken = self.taken(op);
-        let push = op == 0x24 || (taken && matches!(op, 0x20 | 0x30 | 0x34 | 0x38 | 0x3C));
-        let pop = op == 0x29 || (taken && matches!(op, 0x21 | 0x25 | 0x31 | 0x35 | 0x39 | 0x3D));
-        (push && self.sp >= STACK_DEPTH) || (pop && self.sp == 0)
+        let op = Opcode::of(self.instr);
+        let taken = Cond::taken(self.instr, self.c, self.z);
+        taken && ((op.pushes() && self.depth >= STACK_DEPTH) || (op.pops() && self.depth == 0))
     }
 
     /// Run with all pins low, a whole instruction at a time, until cycle `until` is reached or
@@ -712,7 +702,7 @@ impl Cpu {
     /// `SUB sX, 01` / `JUMP NZ, <the SUB>` is fast-forwarded to its end in one step.
     pub fn run_fast<B: Bus>(&mut self, bus: &mut B, until: u64, mut stop: impl FnMut(&B) -> bool) {
         while self.cycle < until {
-            if !self.steady() || self.stack_error_ahead() {
+            if !self.steady() {
                 self.tick(Pins::default(), bus);
                 if stop(bus) {
                     return;
@@ -722,16 +712,15 @@ impl Cpu {
             if self.fast_forward_countdown(until) {
                 continue;
             }
-            // D cycle: the stack RAM write, PC, stack, IE, bank; then the second cycle.
+            // D, then its second cycle as an F that fetches the next word: what two ticks do
+            // in the steady state, without the sequencer's bookkeeping.
             let d = self.cycle;
-            let bank_before = self.bank;
-            self.stack[self.sp as usize] = StackEntry { pc: self.pc, c: self.c, z: self.z, bank: self.bank };
-            let p = Pending { kind: RetireKind::Executed, cycle: d, pc: self.pc, word: self.instr, restore: None };
-            let (restore, _) = self.decode();
-            self.bank_rd = bank_before;
-            self.second_cycle(Pending { restore, ..p }, bus, d + 1);
+            self.xb = self.bank ^ (Opcode::of(self.instr) == Opcode::Star);
+            self.decode(d);
+            let p = self.pending.take().expect("decode loads the second cycle");
+            self.second_cycle(p, bus, d + 1);
             self.instr = self.rom[self.pc as usize];
-            self.bank_rd = self.bank;
+            self.xb = self.bank;
             self.cycle = d + 2;
             if stop(bus) {
                 return;
@@ -748,8 +737,7 @@ impl Cpu {
         if w & 0xFF0FF != 0x19001 || next != (0x36000 | pc as u32) {
             return false;
         }
-        let x = (w >> 8 & 15) as usize;
-        let i = (self.bank as usize) << 4 | x;
+        let i = reg_index(self.bank, w >> 8);
         let passes = if self.regs[i] == 0 { 256 } else { self.regs[i] as u64 };
         let end = self.cycle + 4 * passes;
         if end > until {
@@ -761,7 +749,8 @@ impl Cpu {
         self.regs[i] = 0;
         self.z = true;
         self.c = false;
-        self.stack[self.sp as usize] = StackEntry { pc: ((pc + 1) & 0xFFF) as u16, c: false, z: true, bank: self.bank };
+        self.stack[self.depth as usize] =
+            StackEntry { pc: ((pc + 1) & 0xFFF) as u16, c: false, z: true, bank: self.bank };
         self.pc = ((pc + 2) & 0xFFF) as u16;
         self.instr = self.rom[self.pc as usize];
         self.cycle = end;

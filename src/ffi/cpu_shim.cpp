@@ -125,7 +125,11 @@ struct CpuModel final : CpuSim {
         s->zero = r->kcpsm6_harness__DOT__cpu__DOT__zero;
         s->interrupt_enable = r->kcpsm6_harness__DOT__cpu__DOT__interrupt_enable;
         s->bank = r->kcpsm6_harness__DOT__cpu__DOT__bank;
-        s->stack_pointer = r->kcpsm6_harness__DOT__cpu__DOT__stack_pointer;
+        s->xb = r->kcpsm6_harness__DOT__cpu__DOT__xb;
+        s->depth = r->kcpsm6_harness__DOT__cpu__DOT__depth;
+        s->run = r->kcpsm6_harness__DOT__cpu__DOT__run;
+        s->internal_reset = r->kcpsm6_harness__DOT__cpu__DOT__internal_reset;
+        s->active_interrupt = r->kcpsm6_harness__DOT__cpu__DOT__active_interrupt;
         for (int i = 0; i < 32; i++) s->registers[i] = r->kcpsm6_harness__DOT__cpu__DOT__registers[i];
         std::memset(s->scratch_pad, 0, sizeof s->scratch_pad);
         for (unsigned i = 0; i < SPM; i++) s->scratch_pad[i] = r->kcpsm6_harness__DOT__cpu__DOT__scratch_pad[i];

@@ -36,7 +36,7 @@ typedef struct {
     uint8_t interrupt_ack;
 } CpuPorts;
 
-/* Architectural state of the core. */
+/* The core's state: architectural, and the sequencer flops the lock-step also compares. */
 typedef struct {
     uint16_t pc;
     uint8_t t_state;
@@ -44,7 +44,11 @@ typedef struct {
     uint8_t zero;
     uint8_t interrupt_enable;
     uint8_t bank;
-    uint8_t stack_pointer;
+    uint8_t xb;
+    uint8_t depth;
+    uint8_t run;
+    uint8_t internal_reset;
+    uint8_t active_interrupt;
     uint8_t registers[32];
     uint8_t scratch_pad[256];
     uint16_t scratch_pad_size;

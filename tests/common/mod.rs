@@ -1,6 +1,7 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod cpu_coverage;
 pub mod lockstep;
 pub mod strategies;
 

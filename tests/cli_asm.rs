@@ -91,3 +91,23 @@ fn help_has_examples() {
         assert!(String::from_utf8_lossy(&o.stdout).contains("Examples:"), "{sub}");
     }
 }
+
+#[test]
+fn quiet_hides_warnings_also_when_the_assembly_fails() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("p.psm"), "CONSTANT unused, 01\nRETURN NZ,\nJUMP nowhere\n").unwrap();
+    let loud = common::botsim(&["asm", "p.psm", "-o", "p.hex"], dir.path());
+    let quiet = common::botsim(&["asm", "p.psm", "-o", "p.hex", "-q"], dir.path());
+    assert_eq!(loud.status.code(), Some(1));
+    assert_eq!(quiet.status.code(), Some(1));
+    assert_eq!(
+        common::stderr(&loud).lines().collect::<Vec<_>>(),
+        [
+            "p.psm:1:10: warning: constant 'unused' is never used",
+            "p.psm:2:10: warning: trailing ',' ignored",
+            "p.psm:3:6: error: undefined label 'nowhere'"
+        ]
+    );
+    assert_eq!(common::stderr(&quiet).trim_end(), "p.psm:3:6: error: undefined label 'nowhere'");
+    assert!(!dir.path().join("p.hex").exists());
+}

@@ -81,6 +81,11 @@ impl Diagnostics {
     pub fn errors(&self) -> impl Iterator<Item = &Diagnostic> {
         self.0.iter().filter(|d| d.severity == Severity::Error)
     }
+
+    /// The same without the warnings (for `--quiet`).
+    pub fn without_warnings(&self) -> Diagnostics {
+        Diagnostics(self.errors().cloned().collect())
+    }
 }
 
 impl fmt::Display for Diagnostics {

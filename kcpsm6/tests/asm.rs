@@ -385,3 +385,132 @@ fn hostile_inputs_do_not_panic() {
         let _ = assemble_str(src);
     }
 }
+
+// ---- what kcpsm6.exe accepted in real programs (issue: two of 29 public programs) ------------
+
+#[test]
+fn windows_include_paths_with_back_slashes() {
+    // `INCLUDE ".\interfaces\ports.psm"` and `..\`: kcpsm6.exe ran on Windows.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(dir.path().join("src/interfaces")).unwrap();
+    std::fs::write(dir.path().join("src/main.psm"), "INCLUDE \".\\interfaces\\ports.psm\"\nOUTPUT s0, leds\n").unwrap();
+    std::fs::write(dir.path().join("src/interfaces/ports.psm"), "INCLUDE \"..\\..\\common.psm\"\nCONSTANT leds, 02\n")
+        .unwrap();
+    std::fs::write(dir.path().join("common.psm"), "LOAD s0, 5A\n").unwrap();
+    let p = assemble_file(&dir.path().join("src/main.psm"), &Options::default()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(&p.image.words[..2], &[0x0105A, 0x2D002]);
+    assert_eq!(p.files.len(), 3);
+    assert!(p.warnings.is_empty(), "{:?}", p.warnings);
+}
+
+#[test]
+fn include_names_that_differ_only_in_case_are_found_with_a_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("Lib")).unwrap();
+    std::fs::write(dir.path().join("main.psm"), "INCLUDE \"lib\\PORTS.psm\"\nOUTPUT s0, leds\n").unwrap();
+    std::fs::write(dir.path().join("Lib/ports.psm"), "CONSTANT leds, 02\n").unwrap();
+    let p = assemble_file(&dir.path().join("main.psm"), &Options::default()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(p.image.words[0], 0x2D002);
+    let w: Vec<String> = p.warnings.iter().map(|w| w.to_string()).collect();
+    assert_eq!(w.len(), 1);
+    assert!(w[0].contains("main.psm:1:9: warning: INCLUDE \"lib\\PORTS.psm\" found as"), "{w:?}");
+    assert!(w[0].ends_with("Lib/ports.psm' (the names differ in case, which Windows ignores)"), "{w:?}");
+}
+
+#[test]
+fn a_trailing_comma_after_a_condition_is_ignored_with_a_warning() {
+    let src = "loop: RETURN NZ, ;comment\nJUMP NZ, loop,\nCALL C, loop, ; x\nRETURN C,\n";
+    let p = assemble_source(Path::new("t.psm"), src, &Options::default()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(&p.image.words[..4], &[0x35000, 0x36000, 0x38000, 0x39000]);
+    let w: Vec<String> = p.warnings.iter().map(|w| w.to_string()).collect();
+    assert_eq!(
+        w,
+        [
+            "t.psm:1:16: warning: trailing ',' ignored",
+            "t.psm:2:14: warning: trailing ',' ignored",
+            "t.psm:3:13: warning: trailing ',' ignored",
+            "t.psm:4:9: warning: trailing ',' ignored",
+        ]
+    );
+    // A comma with nothing before it is still an error.
+    assert_eq!(errors("RETURN ,\n"), ["t.psm:1:8: error: missing operand before ','"]);
+}
+
+#[test]
+fn predefined_strings_and_stamps_can_be_set_with_d() {
+    // Rebuild an old ROM byte for byte: the date, time and version it was assembled with.
+    let src = "LOAD&RETURN s0, datestamp$\nLOAD&RETURN s1, timestamp$\nLOAD&RETURN s2, KCPSM6_version$\n\
+               LOAD s3, datestamp_year\nLOAD s4, timestamp_hours\n";
+    let opts = Options {
+        defines: vec![
+            ("datestamp$".into(), "11 Oct 2014".into()),
+            ("timestamp$".into(), "\"13:45:30\"".into()),
+            ("KCPSM6_version$".into(), "v2.63".into()),
+            ("datestamp_year".into(), "14'd".into()),
+            ("timestamp_hours".into(), "13'd".into()),
+        ],
+        timestamp: 0,
+        ..Options::default()
+    };
+    let p = assemble_source(Path::new("t.psm"), src, &opts).unwrap_or_else(|e| panic!("{e}"));
+    let bytes = |r: std::ops::Range<usize>| p.image.words[r].iter().map(|w| *w as u8).collect::<Vec<u8>>();
+    assert_eq!(bytes(0..11), b"11 Oct 2014");
+    assert_eq!(bytes(11..19), b"13:45:30");
+    assert_eq!(bytes(19..24), b"v2.63");
+    assert_eq!(&p.image.words[24..26], &[0x0130E, 0x0140D]);
+    let bad = Options { defines: vec![("x$".into(), "caf\u{e9}".into())], ..Options::default() };
+    assert_eq!(
+        errors_with("LOAD s0, 00\n", &bad),
+        ["-D x$=caf\u{e9}: error: STRING text may hold only printable ASCII, found '\\u{e9}'"]
+    );
+    // A user's STRING can be overridden too.
+    let user = Options { defines: vec![("s$".into(), "xy".into())], ..Options::default() };
+    let p = assemble_source(Path::new("t.psm"), "STRING s$, \"a\"\nOUTPUTK s$, 0\n", &user).unwrap();
+    assert_eq!(&p.image.words[..2], &[0x2B780, 0x2B790]);
+}
+
+#[test]
+fn an_unreadable_include_is_reported_alone() {
+    // The names it would have defined are not reported as undefined on top of it.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("main.psm"), "INCLUDE \"ports.psm\"\nOUTPUT s0, leds\nJUMP init\n").unwrap();
+    let e = assemble_file(&dir.path().join("main.psm"), &Options::default()).unwrap_err();
+    let lines: Vec<String> = e.0.iter().map(|d| d.to_string()).collect();
+    assert_eq!(lines.len(), 1, "{lines:?}");
+    assert!(lines[0].contains("main.psm:1:9: error: cannot read INCLUDE file"), "{lines:?}");
+    assert!(lines[0].ends_with("ports.psm': no such file or directory"), "{lines:?}");
+}
+
+#[test]
+fn leniencies_of_the_syntax_give_the_same_words() {
+    // Case, spacing, comments and separators as the spec allows them (§4.1); each word by
+    // hand from the opcode table. CR LF endings and trailing blanks included.
+    let src = "; a comment line\r\n\
+               \t; an indented one\r\n\
+               \tload\tS0,7b\t\t; tabs; mnemonic, register and hex digits in any case\r\n\
+               LOAD s1 ,  0F   \r\n\
+               lbl:LOAD s2,s3\n\
+               lbl2 :  ADD s2, 01\n\
+               JUMP   NZ ,lbl\n\
+               INPUT s4, ( s5 )\n\
+               OUTPUT S4,(s5)\n\
+               JUMP@ ( s6 ,s7 )\n\
+               ENABLE   interrupt\n\
+               returni Enable\n\
+               REGBANK b\n\
+               STORE s0, 3f\n\
+               FETCH s0, 10'D\n\
+               LOAD s0, 00001010'B\n\
+               TEST s0, \";\"\n\
+               LOAD s0, 01;no blank before the comment\n\
+               RETURN NZ, ;a trailing comma\n\
+               ADD sf, SA\n\
+               \n   \n\
+               stop: ; a label with only a comment\n\
+               JUMP stop\n";
+    let expect = [
+        0x0107B, 0x0110F, 0x00230, 0x11201, 0x36002, 0x08450, 0x2C450, 0x26670, 0x28001, 0x29001, 0x37001, 0x2F03F,
+        0x0B00A, 0x0100A, 0x0D03B, 0x01001, 0x35000, 0x10FA0, 0x22012,
+    ];
+    assert_eq!(words(src), expect);
+}

@@ -21,13 +21,14 @@ pub struct Args {
     /// Output file(s); the extension chooses the format (.hex, .mem, .v, .log).
     #[arg(short, long = "output", value_name = "OUT", required = true)]
     output: Vec<PathBuf>,
-    /// Define or override a CONSTANT (value as in the source: 0F, 15'd, 00001111'b, "A").
+    /// Define or override a CONSTANT (value as in the source: 0F, 15'd, 00001111'b, "A") or a
+    /// STRING (`-D 'datestamp$=11 Oct 2014'`, also the predefined ones, to rebuild an old ROM).
     #[arg(short = 'D', value_name = "NAME=VALUE", value_parser = parse_define)]
     define: Vec<(String, String)>,
     /// Refuse a program that does not fit this ROM (1K, 2K or 4K); also sizes the .v ROM.
     #[arg(long, value_name = "SIZE", value_parser = parse_rom_size)]
     rom_size: Option<RomSize>,
-    /// Do not print warnings.
+    /// Do not print warnings (also when the assembly fails).
     #[arg(short, long)]
     quiet: bool,
 }
@@ -65,7 +66,8 @@ pub fn run(args: Args) -> Result<(), String> {
         rom_size: args.rom_size,
         timestamp: timestamp(),
     };
-    let program = assemble_file(&args.input, &opts).map_err(|d| d.to_string())?;
+    let program =
+        assemble_file(&args.input, &opts).map_err(|d| if args.quiet { d.without_warnings() } else { d }.to_string())?;
     if !args.quiet {
         for w in &program.warnings {
             eprintln!("{w}");

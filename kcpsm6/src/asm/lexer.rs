@@ -43,6 +43,9 @@ pub struct Line {
     pub args: Vec<Arg>,
     /// The comment, without the `;`.
     pub comment: Option<String>,
+    /// The column of a `,` after the last operand (`RETURN NZ, ; done`): kcpsm6.exe ignores
+    /// it, and so does the assembler, with a warning.
+    pub trailing_comma: Option<usize>,
 }
 
 /// A lexing error: column and message.
@@ -150,7 +153,7 @@ pub fn lex_line(text: &str) -> Result<Line, LexError> {
             Tok::Punct(',', col) if want => return Err((*col, "missing operand before ','".into())),
             Tok::Punct(',', col) => {
                 if i == rest.len() {
-                    return Err((*col, "missing operand after ','".into()));
+                    line.trailing_comma = Some(*col);
                 }
                 want = true;
                 continue;
@@ -277,6 +280,13 @@ mod tests {
     fn errors_have_columns() {
         assert_eq!(lex_line("LOAD s0 01").unwrap_err().0, 9);
         assert_eq!(lex_line("LOAD s0, !").unwrap_err().0, 10);
-        assert_eq!(lex_line("LOAD s0,").unwrap_err().0, 8);
+        assert_eq!(lex_line("LOAD ,s0").unwrap_err().0, 6);
+    }
+
+    #[test]
+    fn a_trailing_comma_is_kept_aside() {
+        let l = lex_line("RETURN NZ, ;comment").unwrap();
+        assert_eq!((words(&l), l.trailing_comma), (vec!["NZ".to_string()], Some(10)));
+        assert_eq!(lex_line("RETURN NZ").unwrap().trailing_comma, None);
     }
 }

@@ -283,6 +283,9 @@ impl RegNames {
 struct Assembler<'a> {
     opts: &'a Options,
     diags: Vec<(usize, Diagnostic)>,
+    /// An INCLUDE could not be read: the program is incomplete, so nothing after loading is
+    /// checked (its undefined names would only bury the reason).
+    include_failed: bool,
     lines: Vec<SrcLine>,
     files: Vec<PathBuf>,
     symbols: Vec<Symbol>,
@@ -293,7 +296,15 @@ const MAX_INCLUDE_DEPTH: usize = 32;
 
 impl<'a> Assembler<'a> {
     fn new(opts: &'a Options) -> Assembler<'a> {
-        Assembler { opts, diags: vec![], lines: vec![], files: vec![], symbols: vec![], index: HashMap::new() }
+        Assembler {
+            opts,
+            diags: vec![],
+            include_failed: false,
+            lines: vec![],
+            files: vec![],
+            symbols: vec![],
+            index: HashMap::new(),
+        }
     }
 
     fn error(&mut self, seq: usize, loc: Loc, msg: impl Into<String>) {
@@ -306,8 +317,18 @@ impl<'a> Assembler<'a> {
         self.error(seq, loc, msg);
     }
 
+    fn warn_at(&mut self, src: usize, col: usize, msg: impl Into<String>) {
+        let loc = Loc { col, ..self.lines[src].loc.clone() };
+        let seq = self.lines[src].seq;
+        self.diags.push((seq, Diagnostic::warning(loc, msg)));
+    }
+
     fn run(mut self, path: &Path, text: &str) -> Result<Program, Diagnostics> {
         self.load(path, text, &mut vec![]);
+        if self.include_failed {
+            self.diags.sort_by_key(|(seq, d)| (*seq, d.loc.col));
+            return Err(Diagnostics(self.diags.into_iter().map(|(_, d)| d).collect()));
+        }
         self.predefine();
         self.define();
         let (placed, labels_at, default_jump) = self.lay_out();
@@ -363,7 +384,11 @@ impl<'a> Assembler<'a> {
             };
             let include = line.keyword.as_ref().is_some_and(|k| k.text.eq_ignore_ascii_case("INCLUDE"));
             let args = line.args.clone();
+            let trailing_comma = line.trailing_comma;
             self.lines.push(SrcLine { loc: loc.clone(), seq, line });
+            if let Some(col) = trailing_comma {
+                self.warn_at(seq, col, "trailing ',' ignored");
+            }
             if include {
                 self.include(seq, &loc, &args, stack);
             }
@@ -372,26 +397,43 @@ impl<'a> Assembler<'a> {
     }
 
     fn include(&mut self, src: usize, loc: &Loc, args: &[Arg], stack: &mut Vec<PathBuf>) {
+        let fail = |me: &mut Self, col: usize, msg: String| {
+            me.include_failed = true;
+            me.err_at(src, col, msg);
+        };
         let (name, col) = match args {
             [Arg::Str(w)] => (w.text.clone(), w.col),
-            [a, ..] => return self.err_at(src, a.col(), "INCLUDE needs a quoted file name, e.g. INCLUDE \"file.psm\""),
-            [] => return self.err_at(src, 1, "INCLUDE needs a quoted file name"),
+            [a, ..] => {
+                return fail(self, a.col(), "INCLUDE needs a quoted file name, e.g. INCLUDE \"file.psm\"".into())
+            }
+            [] => return fail(self, 1, "INCLUDE needs a quoted file name".into()),
         };
         if !name.to_ascii_lowercase().ends_with(".psm") {
-            return self.err_at(src, col, format!("INCLUDE file '{name}' must have the extension .psm"));
+            return fail(self, col, format!("INCLUDE file '{name}' must have the extension .psm"));
         }
-        let dir = loc.file.parent().unwrap_or(Path::new(""));
-        let path = dir.join(&name);
+        let written = include_path(loc.file.parent().unwrap_or(Path::new("")), &name);
+        let path = match find_ignoring_case(&written) {
+            Some(found) if found != written => {
+                self.warn_at(
+                    src,
+                    col,
+                    format!(
+                        "INCLUDE \"{name}\" found as '{}' (the names differ in case, which Windows ignores)",
+                        found.display()
+                    ),
+                );
+                found
+            }
+            _ => written,
+        };
         if stack.len() >= MAX_INCLUDE_DEPTH || stack.iter().any(|p| same_file(p, &path)) {
-            return self.err_at(src, col, format!("INCLUDE \"{name}\" includes itself"));
+            return fail(self, col, format!("INCLUDE \"{name}\" includes itself"));
         }
         match std::fs::read(&path) {
-            Err(e) => {
-                self.err_at(src, col, format!("cannot read INCLUDE file '{}': {}", path.display(), io_reason(&e)))
-            }
+            Err(e) => fail(self, col, format!("cannot read INCLUDE file '{}': {}", path.display(), io_reason(&e))),
             Ok(bytes) => match decode_text(&path, &bytes) {
                 Ok(text) => self.load(&path, &text, stack),
-                Err(d) => self.err_at(src, col, d.message),
+                Err(d) => fail(self, col, d.message),
             },
         }
     }
@@ -506,12 +548,7 @@ impl<'a> Assembler<'a> {
                         }
                         other => Err(format!("expected a quoted text, found '{}'", arg_text(other))),
                     };
-                    let checked = text.and_then(|t| match t.chars().find(|c| !(' '..='~').contains(c)) {
-                        Some(c) => {
-                            Err(format!("STRING text may hold only printable ASCII, found '{}'", c.escape_default()))
-                        }
-                        None => Ok(t.into_bytes()),
-                    });
+                    let checked = text.and_then(|t| printable(&t));
                     match (name.text.strip_suffix('$').map(check_name), checked) {
                         (None, _) => {
                             self.err_at(src, name.col, format!("a STRING name must end in '$': '{}'", name.text))
@@ -559,9 +596,30 @@ impl<'a> Assembler<'a> {
                 _ => {}
             }
         }
-        // Caller overrides: replace a constant's value or define a new one.
+        // Caller overrides: replace a constant's or a string's value, or define a new one.
         for (name, value) in &self.opts.defines {
             let loc = Loc::file(format!("-D {name}={value}"));
+            if let Some(stem) = name.strip_suffix('$') {
+                match (check_name(stem), string_value(value)) {
+                    (Err(m), _) | (_, Err(m)) => self.error(0, loc, m),
+                    (Ok(()), Ok(text)) => match self.index.get(name) {
+                        Some(&i) => match self.symbols[i].value {
+                            SymbolValue::String(_) => self.symbols[i].value = SymbolValue::String(text),
+                            _ => self.error(0, loc, format!("'{name}' is not a STRING")),
+                        },
+                        None => {
+                            self.index.insert(name.clone(), self.symbols.len());
+                            self.symbols.push(Symbol {
+                                name: name.clone(),
+                                value: SymbolValue::String(text),
+                                loc: None,
+                                used: true,
+                            });
+                        }
+                    },
+                }
+                continue;
+            }
             if check_name(name).is_err() && !name.to_ascii_uppercase().starts_with("PSM_") {
                 self.error(0, loc, format!("'{name}' is not a valid constant name"));
                 continue;
@@ -1085,6 +1143,47 @@ impl<'a> Assembler<'a> {
     }
 }
 
+/// The path an INCLUDE names, relative to the including file's folder `dir`: kcpsm6.exe ran on
+/// Windows, so `\` separates folders as well as `/` (`.\lib\ports.psm`, `..\common.psm`).
+fn include_path(dir: &Path, name: &str) -> PathBuf {
+    let mut path = if name.starts_with(['/', '\\']) { PathBuf::from("/") } else { dir.to_path_buf() };
+    for part in name.split(['\\', '/']) {
+        match part {
+            "" | "." => {}
+            part => path.push(part),
+        }
+    }
+    path
+}
+
+/// `path` if it exists; otherwise the one file whose components match it ignoring case (the
+/// way a Windows file system finds it), if there is exactly one.
+fn find_ignoring_case(path: &Path) -> Option<PathBuf> {
+    if path.exists() {
+        return Some(path.to_path_buf());
+    }
+    let mut found = PathBuf::new();
+    for part in path.components() {
+        let next = found.join(part);
+        if next.exists() || !matches!(part, std::path::Component::Normal(_)) {
+            found = next;
+            continue;
+        }
+        let want = part.as_os_str().to_string_lossy().to_lowercase();
+        let dir = if found.as_os_str().is_empty() { Path::new(".") } else { &found };
+        let mut matches = std::fs::read_dir(dir)
+            .ok()?
+            .filter_map(|e| e.ok())
+            .filter(|e| e.file_name().to_string_lossy().to_lowercase() == want);
+        let hit = matches.next()?;
+        if matches.next().is_some() {
+            return None;
+        }
+        found.push(hit.file_name());
+    }
+    Some(found)
+}
+
 fn same_file(a: &Path, b: &Path) -> bool {
     match (a.canonicalize(), b.canonicalize()) {
         (Ok(x), Ok(y)) => x == y,
@@ -1112,6 +1211,19 @@ fn char_value(text: &str) -> Result<u8, String> {
     match (chars.next(), chars.next()) {
         (Some(c), None) if c.is_ascii() => Ok(c as u8),
         _ => Err(format!("a character literal holds one ASCII character, found \"{text}\"")),
+    }
+}
+
+/// A STRING's text as given with `-D name$=text`: the text, or the text in double quotes.
+fn string_value(value: &str) -> Result<Vec<u8>, String> {
+    printable(value.strip_prefix('"').and_then(|v| v.strip_suffix('"')).unwrap_or(value))
+}
+
+/// A STRING's bytes: printable ASCII only (32-126).
+fn printable(text: &str) -> Result<Vec<u8>, String> {
+    match text.chars().find(|c| !(' '..='~').contains(c)) {
+        Some(c) => Err(format!("STRING text may hold only printable ASCII, found '{}'", c.escape_default())),
+        None => Ok(text.as_bytes().to_vec()),
     }
 }
 

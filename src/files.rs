@@ -28,6 +28,6 @@ pub fn write_atomic(path: &Path, data: &[u8]) -> Result<(), String> {
     })();
     result.map_err(|e| {
         let _ = std::fs::remove_file(&tmp);
-        format!("{}: error: cannot write file: {}", path.display(), kcpsm6::asm::io_reason(&e))
+        format!("{}: error: cannot write file: {}", path.display(), kcpsm6::diag::io_reason(&e))
     })
 }

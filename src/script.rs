@@ -35,7 +35,7 @@ impl MotorScript {
     /// Read a script file.
     pub fn load(path: &Path) -> Result<MotorScript, Diagnostic> {
         let text = std::fs::read_to_string(path).map_err(|e| {
-            Diagnostic::error(Loc::file(path), format!("cannot read file: {}", kcpsm6::asm::io_reason(&e)))
+            Diagnostic::error(Loc::file(path), format!("cannot read file: {}", kcpsm6::diag::io_reason(&e)))
         })?;
         MotorScript::parse(path, &text)
     }

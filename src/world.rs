@@ -161,7 +161,7 @@ impl World {
         let fmt = WorldFormat::of(path)
             .ok_or_else(|| err(path, 0, 0, "unknown world format (expected .txt, .coe, .mem or .png)"))?;
         let bytes = std::fs::read(path)
-            .map_err(|e| err(path, 0, 0, format!("cannot read file: {}", kcpsm6::asm::io_reason(&e))))?;
+            .map_err(|e| err(path, 0, 0, format!("cannot read file: {}", kcpsm6::diag::io_reason(&e))))?;
         match fmt {
             WorldFormat::Png => World::from_png(path, &bytes),
             _ => {
@@ -345,42 +345,26 @@ impl World {
         s
     }
 
-    /// `$readmemh` text: hex values, `@address` lines and `//` comments.
+    /// `$readmemh` text ([`kcpsm6::readmemh`]): hex values, `@address` lines and comments.
     pub fn parse_mem(path: &Path, text: &str) -> Result<World, Diagnostic> {
-        let mut w = World::empty();
-        let mut addr = 0usize;
-        let mut any = false;
-        for (i, line) in text.lines().enumerate() {
-            let code = line.split("//").next().unwrap_or("");
-            let mut col = 1;
-            for tok in code.split([' ', '\t']) {
-                let here = col;
-                col += tok.chars().count() + 1;
-                let tok = tok.trim();
-                if tok.is_empty() {
-                    continue;
-                }
-                if let Some(a) = tok.strip_prefix('@') {
-                    addr = usize::from_str_radix(a, 16)
-                        .ok()
-                        .filter(|&a| a < CELLS)
-                        .ok_or_else(|| err(path, i + 1, here, format!("'{tok}' is not an address 0000-3FFF")))?;
-                    continue;
-                }
-                let v = u8::from_str_radix(tok, 16)
-                    .ok()
-                    .filter(|&v| v <= 3)
-                    .ok_or_else(|| err(path, i + 1, here, format!("'{tok}' is not a cell value 0-3")))?;
-                if addr >= CELLS {
-                    return Err(err(path, i + 1, here, "value past the last cell (address 3FFF)"));
-                }
-                w.cells[addr] = Cell::from_bits(v);
-                addr += 1;
-                any = true;
+        use kcpsm6::readmemh::{entries, Error};
+        let items = entries(text, CELLS).map_err(|e| match e {
+            Error::BadAddress { token, line, col } => {
+                err(path, line, col, format!("'{token}' is not an address 0000-3FFF"))
             }
-        }
-        if !any {
+            Error::PastEnd { line, col } => err(path, line, col, "value past the last cell (address 3FFF)"),
+            Error::UnclosedComment { line, col } => err(path, line, col, "'/*' comment without its '*/'"),
+        })?;
+        if items.is_empty() {
             return Err(err(path, 0, 0, "no cell values found"));
+        }
+        let mut w = World::empty();
+        for e in items {
+            let v = u8::from_str_radix(&e.value, 16)
+                .ok()
+                .filter(|&v| v <= 3)
+                .ok_or_else(|| err(path, e.line, e.col, format!("'{}' is not a cell value 0-3", e.value)))?;
+            w.cells[e.address] = Cell::from_bits(v);
         }
         Ok(w)
     }

@@ -2,7 +2,7 @@
 //!
 //! | format | read | write |
 //! |---|---|---|
-//! | `.psm` | assembled ([`crate::asm`]) | ([`crate::disasm`]) |
+//! | `.psm` | assembled ([`crate::asm`], through [`crate::loader`]) | ([`crate::disasm`]) |
 //! | `.hex` | 4096 lines of 5 hex digits (KCPSM6, CR LF or LF) | exactly as KCPSM6 (CR LF) |
 //! | `.mem` | `@address` lines and hex words (opbasm, `$readmemh`) | `@00000000` + 4096 words, LF |
 //! | `.v` | Xilinx-template ROM (INIT_xx / INITP_xx) or our behavioural ROM | [`crate::output::verilog_rom`] |
@@ -18,8 +18,7 @@
 
 use std::path::Path;
 
-use crate::asm::{self, io_reason, Options};
-use crate::diag::{Diagnostic, Diagnostics, Loc};
+use crate::diag::{Diagnostic, Loc};
 use crate::isa::{ROM_WORDS, WORD_MASK};
 
 /// A full 4K program memory.
@@ -76,29 +75,6 @@ impl Image {
         img
     }
 
-    /// Load a program from `.psm`, `.hex`, `.mem` or `.v`, chosen by extension.
-    pub fn load(path: &Path, opts: &Options) -> Result<Image, Diagnostics> {
-        let fmt = Format::of(path).ok_or_else(|| {
-            Diagnostics::single(Diagnostic::error(
-                Loc::file(path),
-                "unknown program format (expected .psm, .hex, .mem or .v)",
-            ))
-        })?;
-        if fmt == Format::Psm {
-            return asm::assemble_file(path, opts).map(|p| p.image);
-        }
-        let bytes = std::fs::read(path).map_err(|e| {
-            Diagnostics::single(Diagnostic::error(Loc::file(path), format!("cannot read file: {}", io_reason(&e))))
-        })?;
-        let text = String::from_utf8_lossy(&bytes);
-        match fmt {
-            Format::Hex => Image::parse_hex(path, &text),
-            Format::Mem => Image::parse_mem(path, &text),
-            _ => Image::parse_verilog(path, &text),
-        }
-        .map_err(Diagnostics::single)
-    }
-
     /// KCPSM6 `.hex`: 4096 lines of 5 hex digits (CR LF as written; LF accepted).
     pub fn parse_hex(path: &Path, text: &str) -> Result<Image, Diagnostic> {
         let mut img = Image::zeroed();
@@ -125,39 +101,26 @@ impl Image {
         Ok(img)
     }
 
-    /// `.mem` as `$readmemh` reads it: `@address` lines, hex words, `//` comments.
+    /// `.mem` as `$readmemh` reads it ([`crate::readmemh`]): `@address` lines, hex words,
+    /// comments.
     pub fn parse_mem(path: &Path, text: &str) -> Result<Image, Diagnostic> {
-        let mut img = Image::zeroed();
-        let mut addr: usize = 0;
-        let mut any = false;
-        for (i, line) in text.lines().enumerate() {
-            let code = line.split("//").next().unwrap_or("");
-            let mut col = 0;
-            for tok in code.split(|c: char| c.is_whitespace()) {
-                let here = col;
-                col += tok.len() + 1;
-                if tok.is_empty() {
-                    continue;
-                }
-                let loc = Loc::new(path, i + 1, here + 1);
-                if let Some(a) = tok.strip_prefix('@') {
-                    addr = usize::from_str_radix(a, 16)
-                        .ok()
-                        .filter(|&a| a < ROM_WORDS)
-                        .ok_or_else(|| Diagnostic::error(loc, format!("'{tok}' is not an address 000-FFF")))?;
-                    continue;
-                }
-                let w = parse_word(tok).map_err(|m| Diagnostic::error(loc.clone(), m))?;
-                if addr >= ROM_WORDS {
-                    return Err(Diagnostic::error(loc, "word past address FFF"));
-                }
-                img.words[addr] = w;
-                addr += 1;
-                any = true;
+        use crate::readmemh::{entries, Error};
+        let items = entries(text, ROM_WORDS).map_err(|e| match e {
+            Error::BadAddress { token, line, col } => {
+                Diagnostic::error(Loc::new(path, line, col), format!("'{token}' is not an address 000-FFF"))
             }
-        }
-        if !any {
+            Error::PastEnd { line, col } => Diagnostic::error(Loc::new(path, line, col), "word past address FFF"),
+            Error::UnclosedComment { line, col } => {
+                Diagnostic::error(Loc::new(path, line, col), "'/*' comment without its '*/'")
+            }
+        })?;
+        if items.is_empty() {
             return Err(Diagnostic::error(Loc::file(path), "no program words found"));
+        }
+        let mut img = Image::zeroed();
+        for e in items {
+            img.words[e.address] =
+                parse_word(&e.value).map_err(|m| Diagnostic::error(Loc::new(path, e.line, e.col), m))?;
         }
         Ok(img)
     }

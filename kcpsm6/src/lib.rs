@@ -19,7 +19,9 @@ pub mod disasm;
 pub mod image;
 pub mod isa;
 pub mod iss;
+pub mod loader;
 pub mod output;
+pub mod readmemh;
 pub mod time;
 
 pub use diag::{Diagnostic, Diagnostics, Loc};

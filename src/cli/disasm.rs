@@ -4,7 +4,6 @@ use std::path::PathBuf;
 
 use kcpsm6::asm::Options;
 use kcpsm6::disasm::disassemble;
-use kcpsm6::image::Image;
 
 use botsim::files::write_atomic;
 
@@ -22,7 +21,7 @@ pub struct Args {
 
 pub fn run(args: Args) -> Result<(), String> {
     let opts = Options { timestamp: super::asm::timestamp(), ..Options::default() };
-    let image = Image::load(&args.input, &opts).map_err(|d| d.to_string())?;
+    let image = kcpsm6::loader::load(&args.input, &opts).map_err(|d| d.to_string())?;
     let text = disassemble(&image);
     match args.output {
         Some(out) => write_atomic(&out, text.as_bytes()),

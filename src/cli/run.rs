@@ -11,7 +11,7 @@ use botsim::files::write_atomic;
 use botsim::firmware::{Compat, Firmware, Timing};
 use botsim::iss_backend::IssBot;
 use botsim::kcpsm6::asm::{Options, RomSize};
-use botsim::kcpsm6::image::{Format, Image};
+use botsim::kcpsm6::image::Format;
 use botsim::lockstep::Lockstep;
 use botsim::render::{path_picture, PathStyle};
 use botsim::script::MotorScript;
@@ -207,7 +207,7 @@ pub fn run_with_frame(args: Args, frame_out: Option<PathBuf>) -> Result<(), Stri
             {
                 eprintln!("{}: warning: --threshold, --timing and --compat only apply to .psm programs", p.display());
             }
-            let image = Image::load(p, &opts).map_err(|d| d.to_string())?;
+            let image = kcpsm6::loader::load(p, &opts).map_err(|d| d.to_string())?;
             if let Some(last) = image.words.iter().rposition(|&w| w != 0).filter(|&a| a >= 1024) {
                 return Err(format!("{}: error: {}", p.display(), Error::ProgramTooLarge(last)));
             }

@@ -48,8 +48,19 @@ pub struct Line {
     pub trailing_comma: Option<usize>,
 }
 
-/// A lexing error: column and message.
-pub type LexError = (usize, String);
+/// An error at a column of the line being read.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ColError {
+    /// 1-based column.
+    pub col: usize,
+    pub message: String,
+}
+
+impl ColError {
+    pub fn new(col: usize, message: impl Into<String>) -> ColError {
+        ColError { col, message: message.into() }
+    }
+}
 
 fn is_name_char(c: char) -> bool {
     c.is_ascii_alphanumeric() || matches!(c, '_' | '$' | '#' | '\'' | '&' | '@' | '%' | '~')
@@ -63,7 +74,7 @@ enum Tok {
 }
 
 /// Lex a line into tokens (without the comment).
-fn tokens(chars: &[char], string_directive: bool) -> Result<(Vec<Tok>, Option<String>), LexError> {
+fn tokens(chars: &[char], string_directive: bool) -> Result<(Vec<Tok>, Option<String>), ColError> {
     let mut out = Vec::new();
     let mut i = 0;
     let last_quote = chars.iter().rposition(|&c| c == '"');
@@ -80,14 +91,14 @@ fn tokens(chars: &[char], string_directive: bool) -> Result<(Vec<Tok>, Option<St
                 // STRING: the text runs to the last quote of the line.
                 match last_quote {
                     Some(j) if j > i => j,
-                    _ => return Err((col, "unterminated string: expected a closing '\"'".into())),
+                    _ => return Err(ColError::new(col, "unterminated string: expected a closing '\"'")),
                 }
             } else if i + 2 < chars.len() && chars[i + 2] == '"' {
                 i + 2
             } else {
                 match chars[i + 1..].iter().position(|&c| c == '"') {
                     Some(j) => i + 1 + j,
-                    None => return Err((col, "unterminated string: expected a closing '\"'".into())),
+                    None => return Err(ColError::new(col, "unterminated string: expected a closing '\"'")),
                 }
             };
             out.push(Tok::Str(Word { text: chars[i + 1..end].iter().collect(), col }));
@@ -102,14 +113,14 @@ fn tokens(chars: &[char], string_directive: bool) -> Result<(Vec<Tok>, Option<St
             out.push(Tok::Punct(c, col));
             i += 1;
         } else {
-            return Err((col, format!("unexpected character '{}'", c.escape_default())));
+            return Err(ColError::new(col, format!("unexpected character '{}'", c.escape_default())));
         }
     }
     Ok((out, None))
 }
 
 /// Lex one line of source.
-pub fn lex_line(text: &str) -> Result<Line, LexError> {
+pub fn lex_line(text: &str) -> Result<Line, ColError> {
     let chars: Vec<char> = text.chars().collect();
     // Find out whether this is a STRING directive before lexing quotes.
     let string_directive = {
@@ -138,9 +149,11 @@ pub fn lex_line(text: &str) -> Result<Line, LexError> {
             line.keyword = Some(w.clone());
             rest = &rest[1..];
         }
-        Some(Tok::Punct(':', col)) => return Err((*col, "a label needs a name before ':'".into())),
-        Some(Tok::Punct(c, col)) => return Err((*col, format!("expected an instruction or directive, found '{c}'"))),
-        Some(Tok::Str(w)) => return Err((w.col, "expected an instruction or directive, found a string".into())),
+        Some(Tok::Punct(':', col)) => return Err(ColError::new(*col, "a label needs a name before ':'")),
+        Some(Tok::Punct(c, col)) => {
+            return Err(ColError::new(*col, format!("expected an instruction or directive, found '{c}'")))
+        }
+        Some(Tok::Str(w)) => return Err(ColError::new(w.col, "expected an instruction or directive, found a string")),
     }
 
     // Operands: the first follows the keyword, each later one follows a comma.
@@ -150,7 +163,7 @@ pub fn lex_line(text: &str) -> Result<Line, LexError> {
         let tok = &rest[i];
         i += 1;
         let arg = match tok {
-            Tok::Punct(',', col) if want => return Err((*col, "missing operand before ','".into())),
+            Tok::Punct(',', col) if want => return Err(ColError::new(*col, "missing operand before ','")),
             Tok::Punct(',', col) => {
                 if i == rest.len() {
                     line.trailing_comma = Some(*col);
@@ -158,8 +171,10 @@ pub fn lex_line(text: &str) -> Result<Line, LexError> {
                 want = true;
                 continue;
             }
-            Tok::Word(w) | Tok::Str(w) if !want => return Err((w.col, format!("expected ',' before '{}'", w.text))),
-            Tok::Punct(c, col) if !want => return Err((*col, format!("unexpected '{c}'"))),
+            Tok::Word(w) | Tok::Str(w) if !want => {
+                return Err(ColError::new(w.col, format!("expected ',' before '{}'", w.text)))
+            }
+            Tok::Punct(c, col) if !want => return Err(ColError::new(*col, format!("unexpected '{c}'"))),
             Tok::Word(w) => Arg::Word(w.clone()),
             Tok::Str(w) => Arg::Str(w.clone()),
             Tok::Punct('(', col) => {
@@ -179,7 +194,7 @@ pub fn lex_line(text: &str) -> Result<Line, LexError> {
                 };
                 Arg::List(items, suffix, *col)
             }
-            Tok::Punct(c, col) => return Err((*col, format!("unexpected '{c}'"))),
+            Tok::Punct(c, col) => return Err(ColError::new(*col, format!("unexpected '{c}'"))),
         };
         line.args.push(arg);
         want = false;
@@ -188,12 +203,12 @@ pub fn lex_line(text: &str) -> Result<Line, LexError> {
 }
 
 /// Table values (words or character literals) separated by commas up to `]`.
-fn table(toks: &[Tok], mut i: usize, open_col: usize) -> Result<(Vec<Arg>, usize), LexError> {
+fn table(toks: &[Tok], mut i: usize, open_col: usize) -> Result<(Vec<Arg>, usize), ColError> {
     let mut items = Vec::new();
     let mut want = true;
     loop {
         match toks.get(i) {
-            None => return Err((open_col, "missing ']'".into())),
+            None => return Err(ColError::new(open_col, "missing ']'")),
             Some(Tok::Punct(']', _)) if !want => return Ok((items, i + 1)),
             Some(Tok::Punct(',', _)) if !want => want = true,
             Some(Tok::Word(w)) if want => {
@@ -204,28 +219,28 @@ fn table(toks: &[Tok], mut i: usize, open_col: usize) -> Result<(Vec<Arg>, usize
                 items.push(Arg::Str(w.clone()));
                 want = false;
             }
-            Some(Tok::Punct(c, col)) => return Err((*col, format!("unexpected '{c}' in a table"))),
-            Some(Tok::Word(w) | Tok::Str(w)) => return Err((w.col, "expected ',' between table values".into())),
+            Some(Tok::Punct(c, col)) => return Err(ColError::new(*col, format!("unexpected '{c}' in a table"))),
+            Some(Tok::Word(w) | Tok::Str(w)) => return Err(ColError::new(w.col, "expected ',' between table values")),
         }
         i += 1;
     }
 }
 
 /// Words separated by commas up to the closing `close`; returns them and the index after it.
-fn group(toks: &[Tok], mut i: usize, close: char, open_col: usize) -> Result<(Vec<Word>, usize), LexError> {
+fn group(toks: &[Tok], mut i: usize, close: char, open_col: usize) -> Result<(Vec<Word>, usize), ColError> {
     let mut words = Vec::new();
     let mut want = true;
     loop {
         match toks.get(i) {
-            None => return Err((open_col, format!("missing '{close}'"))),
+            None => return Err(ColError::new(open_col, format!("missing '{close}'"))),
             Some(Tok::Punct(c, _)) if *c == close && !want => return Ok((words, i + 1)),
             Some(Tok::Punct(',', _)) if !want => want = true,
             Some(Tok::Word(w)) if want => {
                 words.push(w.clone());
                 want = false;
             }
-            Some(Tok::Punct(c, col)) => return Err((*col, format!("unexpected '{c}'"))),
-            Some(Tok::Word(w) | Tok::Str(w)) => return Err((w.col, format!("unexpected '{}'", w.text))),
+            Some(Tok::Punct(c, col)) => return Err(ColError::new(*col, format!("unexpected '{c}'"))),
+            Some(Tok::Word(w) | Tok::Str(w)) => return Err(ColError::new(w.col, format!("unexpected '{}'", w.text))),
         }
         i += 1;
     }
@@ -278,9 +293,9 @@ mod tests {
 
     #[test]
     fn errors_have_columns() {
-        assert_eq!(lex_line("LOAD s0 01").unwrap_err().0, 9);
-        assert_eq!(lex_line("LOAD s0, !").unwrap_err().0, 10);
-        assert_eq!(lex_line("LOAD ,s0").unwrap_err().0, 6);
+        assert_eq!(lex_line("LOAD s0 01").unwrap_err().col, 9);
+        assert_eq!(lex_line("LOAD s0, !").unwrap_err().col, 10);
+        assert_eq!(lex_line("LOAD ,s0").unwrap_err().col, 6);
     }
 
     #[test]

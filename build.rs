@@ -6,13 +6,16 @@
 //!    the Verilator runtime (with VL_USER_FINISH/VL_USER_FATAL) and the shims with `cc`,
 //!    optimised whatever the Cargo profile, each into a library rebuilt only when its inputs
 //!    change;
-//! 4. generate the FFI with bindgen from the plain C header `src/ffi/shim.h`.
+//! 4. generate the FFI with bindgen from the plain C header `src/sim/rtl/ffi/shim.h`.
 
 use std::collections::BTreeSet;
 use std::env;
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::Command;
+
+#[path = "build/sources.rs"]
+mod sources;
 
 /// One verilated design: a prefix, a top module, its sources and parameters.
 struct Design {
@@ -49,7 +52,7 @@ fn main() {
     let root = PathBuf::from(env::var("CARGO_MANIFEST_DIR").unwrap());
     let out = PathBuf::from(env::var("OUT_DIR").unwrap());
     println!("cargo:rerun-if-changed=build.rs");
-    println!("cargo:rerun-if-changed=src/ffi");
+    println!("cargo:rerun-if-changed=src/sim/rtl/ffi");
     println!("cargo:rerun-if-env-changed=VERILATOR");
     println!("cargo:rerun-if-env-changed=VERILATOR_ROOT");
     println!("cargo:rerun-if-env-changed=BOTSIM_COVERAGE");
@@ -102,7 +105,7 @@ fn main() {
         for var in ["VM_GLOBAL_FAST", "VM_GLOBAL_SLOW"] {
             runtime.extend(mk_list(&classes, var));
         }
-        rerun_for_sources(&mdir, d.prefix);
+        rerun_for_sources(&mdir, d.prefix, &vroot, &out);
         // The model's headers are part of its input too (the generated .h files).
         let mut inputs = files.clone();
         inputs.extend(list_dir(&mdir).into_iter().filter(|f| f.extension().is_some_and(|e| e == "h")));
@@ -127,7 +130,7 @@ fn main() {
             .define("VM_COVERAGE", if coverage { "1" } else { "0" })
             .include(vroot.join("include"))
             .include(vroot.join("include/vltstd"))
-            .include(root.join("src/ffi"));
+            .include(root.join("src/sim/rtl/ffi"));
         for f in compiler_flags() {
             b.flag_if_supported(f);
         }
@@ -140,9 +143,9 @@ fn main() {
         b
     };
     // The shims come first on the link line: they use the models, which use the runtime.
-    let shims = [root.join("src/ffi/cpu_shim.cpp"), root.join("src/ffi/bot_shim.cpp")];
+    let shims = [root.join("src/sim/rtl/ffi/cpu_shim.cpp"), root.join("src/sim/rtl/ffi/bot_shim.cpp")];
     let mut shim_inputs = shims.to_vec();
-    shim_inputs.extend(list_dir(&root.join("src/ffi")));
+    shim_inputs.extend(list_dir(&root.join("src/sim/rtl/ffi")));
     for mdir in &include_dirs {
         shim_inputs.extend(list_dir(mdir).into_iter().filter(|f| f.extension().is_some_and(|e| e == "h")));
     }
@@ -301,28 +304,16 @@ fn mk_list(text: &str, var: &str) -> Vec<String> {
     names
 }
 
-/// rerun-if-changed for every source Verilator read (its `__verFiles.dat`, `S` lines).
-fn out_dir() -> String {
-    env::var("OUT_DIR").unwrap_or_default()
-}
-
-fn rerun_for_sources(mdir: &Path, prefix: &str) {
+/// rerun-if-changed for every design source Verilator read (build/sources.rs).
+fn rerun_for_sources(mdir: &Path, prefix: &str, vroot: &Path, out: &Path) {
     let dat = fs::read_to_string(mdir.join(format!("{prefix}__verFiles.dat"))).unwrap_or_default();
-    for line in dat.lines() {
-        let mut parts = line.split_whitespace();
-        if parts.next() == Some("S") {
-            // Paths are quoted; the generated ROM in OUT_DIR follows the .psm (tracked above).
-            if let Some(path) = parts.last().map(|p| p.trim_matches('"')) {
-                if !path.starts_with("/usr") && !path.contains("verilator") && !path.starts_with(&*out_dir()) {
-                    println!("cargo:rerun-if-changed={path}");
-                }
-            }
-        }
+    for path in sources::design_sources(&dat, vroot, out) {
+        println!("cargo:rerun-if-changed={}", path.display());
     }
 }
 
 fn bindings(root: &Path, out: &Path) {
-    let header = root.join("src/ffi/shim.h");
+    let header = root.join("src/sim/rtl/ffi/shim.h");
     // bindgen panics when libclang cannot be loaded: keep the message to our one line.
     let hook = std::panic::take_hook();
     std::panic::set_hook(Box::new(|_| {}));
@@ -331,7 +322,6 @@ fn bindings(root: &Path, out: &Path) {
             .header(header.to_string_lossy())
             .allowlist_function("cpu_sim_.*")
             .allowlist_function("bot_sim_.*")
-            .allowlist_function("botsim_.*")
             .allowlist_type("Cpu.*")
             .allowlist_type("Bot.*")
             .derive_default(true)
@@ -340,7 +330,7 @@ fn bindings(root: &Path, out: &Path) {
     std::panic::set_hook(hook);
     match result {
         Ok(Ok(b)) => b.write_to_file(out.join("bindings.rs")).unwrap_or_else(|e| fail(&format!("bindings: {e}"))),
-        Ok(Err(e)) => fail(&format!("bindgen failed on src/ffi/shim.h: {e}")),
+        Ok(Err(e)) => fail(&format!("bindgen failed on src/sim/rtl/ffi/shim.h: {e}")),
         Err(_) => fail("libclang not found (bindgen needs it): run `bash scripts/setup.sh` (installs libclang-dev)"),
     }
 }

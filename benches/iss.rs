@@ -6,23 +6,23 @@
 //! - `cpu_run_fast`: whole instructions at a time, without the busy-wait fast-forward
 //!   (a program with no countdown loop).
 
-use botsim::iss_backend::IssBot;
 use botsim::kcpsm6::iss::{Config, Cpu, NullBus, Pins};
+use botsim::IssBot;
 use botsim::{Firmware, MotCtl, World};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 
 fn iss(c: &mut Criterion) {
     let mut g = c.benchmark_group("iss");
     let image = Firmware::default().assemble().unwrap();
-    let mut bot = IssBot::new(&image, World::builtin());
+    let mut bot = IssBot::new(&image, World::builtin()).unwrap();
     bot.set_motors(MotCtl::FORWARD);
     // Samples 0 and 1 come right after start-up; from then on a sample is a full period.
-    bot.wait_update(20_000_000).unwrap();
-    bot.wait_update(20_000_000).unwrap();
+    bot.wait_update_within(20_000_000).unwrap();
+    bot.wait_update_within(20_000_000).unwrap();
     let c0 = bot.cycle();
-    bot.wait_update(20_000_000).unwrap();
+    bot.wait_update_within(20_000_000).unwrap();
     g.throughput(Throughput::Elements(bot.cycle() - c0));
-    g.bench_function("backend_sample", |b| b.iter(|| bot.wait_update(20_000_000).unwrap()));
+    g.bench_function("backend_sample", |b| b.iter(|| bot.wait_update_within(20_000_000).unwrap()));
 
     let mut cpu = Cpu::new(Config::default(), &image.words[..1024]);
     let mut bus = NullBus::default();

@@ -5,18 +5,18 @@
 //! - `wait_update`: the same loop stopping at upd_sysregs (one `fast`-timing sample);
 //! - `tick`: one FFI call per cycle with the outputs returned, for comparison.
 
-use botsim::{BotSim, Firmware, MotCtl, Timing};
+use botsim::{Firmware, MotCtl, RtlBot, Timing};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 
 fn rtl(c: &mut Criterion) {
     let mut g = c.benchmark_group("rtl");
-    let mut bot = BotSim::builder().motors(MotCtl::FORWARD).build().unwrap();
+    let mut bot = RtlBot::builder().motors(MotCtl::FORWARD).build().unwrap();
     const CYCLES: u64 = 1_000_000;
     g.throughput(Throughput::Elements(CYCLES));
     g.bench_function("run", |b| b.iter(|| bot.run(CYCLES).unwrap()));
 
     let fw = Firmware { timing: Timing::Fast, ..Firmware::default() };
-    let mut fast = BotSim::builder().firmware(fw).motors(MotCtl::FORWARD).build().unwrap();
+    let mut fast = RtlBot::builder().firmware(fw).motors(MotCtl::FORWARD).build().unwrap();
     fast.wait_update().unwrap();
     fast.wait_update().unwrap(); // samples 0 and 1 come right after start-up
     let per_sample = {

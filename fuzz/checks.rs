@@ -5,8 +5,8 @@
 
 use std::path::Path;
 
-use botsim::script::MotorScript;
-use botsim::world::{World, WorldFormat};
+use botsim_core::script::MotorScript;
+use botsim_core::world::{World, WorldFormat};
 use kcpsm6::asm::{assemble_source, Options};
 use kcpsm6::output::{render, OutputFormat};
 use kcpsm6::Image;

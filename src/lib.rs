@@ -1,36 +1,28 @@
 //! botsim: a cycle-exact RTL co-simulation of the Rojobot BotSim 2.0 (PSU ECE 540), driven
-//! from Rust. The KCPSM6 toolchain lives in the `kcpsm6` crate, re-exported here.
+//! from Rust. This crate adds what needs Verilator to [`botsim_core`] (re-exported here, so
+//! `botsim::world::World` and `botsim_core::world::World` are the same): the RTL backends and
+//! their FFI ([`sim::rtl`]), lock-step of RTL and ISS ([`sim::lockstep`]), and the `botsim`
+//! command line. The KCPSM6 toolchain is the [`kcpsm6`] crate.
 //!
 //! | module | job |
 //! |---|---|
-//! | [`botsim`] | the testbench API: build, reset, motors, wait for updates, video port |
-//! | [`regs`] | typed registers: MotCtl, Orientation, Movement, Sensors, Snapshot |
-//! | [`world`] | the 128 x 128 world and its file formats; the built-in course |
-//! | [`model`] | the golden behavioural model of the spec |
-//! | [`firmware`] | the BotSim firmware and its assembly-time constants |
-//! | [`cpu`] | the KCPSM6 RTL core in a test harness (lock-step DUT) |
-//! | [`iss_backend`] | the same bot on the ISS, with cycle-timed Rust models of world_if and map |
-//! | [`backend`] | the [`backend::Backend`] trait all of them implement; port events |
-//! | [`lockstep`] | RTL and ISS side by side, every snapshot and port event compared |
+//! | [`sim`] | the [`Backend`] trait, [`Error`]; the RTL backends ([`sim::rtl`]), the ISS backend ([`sim::iss`]), lock-step ([`sim::lockstep`]) |
+//! | [`regs`], [`world`], [`script`], [`firmware`], [`golden`], [`driver`], [`render`], [`ports`], [`files`] | from [`botsim_core`] |
+//!
+//! ```
+//! use botsim::{MotCtl, Orientation, RtlBot, Timing};
+//! let mut bot = RtlBot::builder().timing(Timing::Fast).build().unwrap();
+//! let first = bot.wait_update().unwrap(); // sample 0: the register dump after start-up
+//! assert_eq!((first.location(), first.orientation()), ((64, 64), Orientation::East));
+//! ```
 
-pub mod backend;
-pub mod botsim;
-pub mod cpu;
-pub mod driver;
-pub mod files;
-pub mod firmware;
-pub mod iss_backend;
-pub mod lockstep;
-pub mod model;
-mod picture;
-pub mod regs;
-pub mod render;
-mod rtl;
-pub mod script;
-pub mod world;
+pub use botsim_core::{driver, files, firmware, golden, kcpsm6, ports, regs, render, script, world};
+pub use botsim_core::{
+    Cell, Compat, Firmware, MotCtl, Movement, Orientation, Registers, Sensors, Snapshot, Timing, World,
+};
 
-pub use crate::botsim::{BotSim, CpuAt, Error};
-pub use firmware::{Compat, Firmware, Timing};
-pub use kcpsm6;
-pub use regs::{MotCtl, Movement, Orientation, Registers, Sensors, Snapshot};
-pub use world::{Cell, World};
+pub mod sim;
+
+pub use sim::iss::IssBot;
+pub use sim::rtl::RtlBot;
+pub use sim::{Backend, CpuAt, Error};

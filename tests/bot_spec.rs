@@ -1,4 +1,4 @@
-//! BotSim 2.0 against spec/botsim.md, behaviour by behaviour. Expected values are written
+//! RtlBot 2.0 against spec/botsim.md, behaviour by behaviour. Expected values are written
 //! out from the spec's tables and worked traces (not taken from the model or the RTL).
 
 mod common;
@@ -6,17 +6,17 @@ mod common;
 use botsim::firmware::{Compat, Timing};
 use botsim::regs::{MotCtl, Movement, Orientation};
 use botsim::world::{Cell, World};
-use botsim::{BotSim, Snapshot};
+use botsim::{RtlBot, Snapshot};
 
 /// A bot in `fast` timing on `world`, past its sample 0.
-fn bot(world: World, threshold: u8, compat: Compat) -> (BotSim, Snapshot) {
+fn bot(world: World, threshold: u8, compat: Compat) -> (RtlBot, Snapshot) {
     let mut b =
-        BotSim::builder().timing(Timing::Fast).threshold(threshold).compat(compat).world(world).build().unwrap();
+        RtlBot::builder().timing(Timing::Fast).threshold(threshold).compat(compat).world(world).build().unwrap();
     let s0 = b.wait_update().unwrap();
     (b, s0)
 }
 
-fn run(b: &mut BotSim, m: u8, n: usize) -> Vec<Snapshot> {
+fn run(b: &mut RtlBot, m: u8, n: usize) -> Vec<Snapshot> {
     b.set_motors(MotCtl(m));
     b.run_samples(n).unwrap()
 }
@@ -44,7 +44,7 @@ const PROX: [[(i16, i16); 3]; 8] = [
 
 /// Turn from East to heading `o` with slow right turns (threshold 1), then stop; returns the
 /// first snapshot that shows heading `o`.
-fn face(b: &mut BotSim, o: u8) -> Snapshot {
+fn face(b: &mut RtlBot, o: u8) -> Snapshot {
     let turns = (o as usize + 8 - 2) % 8;
     if turns > 0 {
         run(b, 0x30, turns);
@@ -56,7 +56,7 @@ fn face(b: &mut BotSim, o: u8) -> Snapshot {
 
 #[test]
 fn reset_state_and_initial_dump() {
-    let mut b = BotSim::builder().timing(Timing::Fast).build().unwrap();
+    let mut b = RtlBot::builder().timing(Timing::Fast).build().unwrap();
     // All outputs are 0 from configuration until the first snapshot (spec §6).
     let mut cycles = 0;
     loop {
@@ -297,7 +297,7 @@ fn two_phase_load_and_the_two_clock_pulse() {
 
 #[test]
 fn hw_timing_sample_period_is_about_50_ms() {
-    let mut b = BotSim::builder().build().unwrap();
+    let mut b = RtlBot::builder().build().unwrap();
     let s: Vec<Snapshot> = (0..3).map(|_| b.wait_update().unwrap()).collect();
     let period = s[2].cycle - s[1].cycle;
     // 5,313,006 clocks of busy-wait (spec §11.2) plus the rest of the iteration; the 2014

@@ -8,7 +8,7 @@ use std::path::Path;
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use botsim::{BotSim, CpuAt, Error, Timing};
+use botsim::{CpuAt, Error, RtlBot, Timing};
 use common::{botsim, stderr};
 
 /// Run `botsim ARGS` in `dir`; the single stderr line and the exit status.
@@ -129,8 +129,41 @@ fn a_firmware_that_never_pulses_is_reported_with_where_the_cpu_is() {
 }
 
 #[test]
+fn every_backend_waits_the_budget_of_the_chosen_timing() {
+    // --backend iss and lockstep used the hw budget whatever --timing said.
+    let d = tempfile::tempdir().unwrap();
+    std::fs::write(d.path().join("stuck.psm"), "start: LOAD s0, 01\nhere: JUMP here\n").unwrap();
+    for backend in ["rtl", "iss", "lockstep"] {
+        let e = fails(d.path(), &format!("run --backend {backend} --program stuck.psm --timing fast"));
+        assert!(e.starts_with("error: sample 0: no upd_sysregs pulse within 16000 cycles"), "{backend}: {e}");
+    }
+}
+
+#[test]
+fn a_failed_run_keeps_the_previous_output_files() {
+    // The early writability check used to write and delete the outputs: a run that then failed
+    // lost the user's files from the last run.
+    let d = tempfile::tempdir().unwrap();
+    std::fs::write(d.path().join("stuck.psm"), "start: LOAD s0, 01\nhere: JUMP here\n").unwrap();
+    for name in ["t.csv", "t.json", "p.png", "w.vcd"] {
+        std::fs::write(d.path().join(name), "from the last run").unwrap();
+    }
+    fails(
+        d.path(),
+        "run --program stuck.psm --timing fast --trace-csv t.csv --trace-json t.json --png p.png --vcd w.vcd",
+    );
+    for name in ["t.csv", "t.json", "p.png", "w.vcd"] {
+        assert_eq!(std::fs::read_to_string(d.path().join(name)).unwrap(), "from the last run", "{name}");
+    }
+    let mut names: Vec<String> =
+        std::fs::read_dir(d.path()).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    names.sort();
+    assert_eq!(names, ["p.png", "stuck.psm", "t.csv", "t.json", "w.vcd"]);
+}
+
+#[test]
 fn a_cpu_held_in_reset_is_reported() {
-    let mut bot = BotSim::builder().timing(Timing::Fast).build().unwrap();
+    let mut bot = RtlBot::builder().timing(Timing::Fast).build().unwrap();
     bot.wait_update().unwrap();
     bot.hold_reset(true);
     match bot.wait_update_within(5_000) {
@@ -149,8 +182,8 @@ fn a_cpu_held_in_reset_is_reported() {
     assert_eq!((s.sample, s.location()), (0, (64, 64)));
     // The ISS backend says the same.
     let fw = botsim::Firmware { timing: Timing::Fast, ..Default::default() };
-    let mut iss = botsim::iss_backend::IssBot::new(&fw.assemble().unwrap(), botsim::World::builtin());
-    assert!(matches!(iss.wait_update(10), Err(Error::Timeout { cpu: CpuAt::Address(_), budget: 10, .. })));
+    let mut iss = botsim::IssBot::new(&fw.assemble().unwrap(), botsim::World::builtin()).unwrap();
+    assert!(matches!(iss.wait_update_within(10), Err(Error::Timeout { cpu: CpuAt::Address(_), budget: 10, .. })));
 }
 
 #[test]

@@ -6,7 +6,7 @@ mod common;
 
 use std::collections::BTreeSet;
 
-use botsim::cpu::SIZES;
+use botsim::sim::rtl::SIZES;
 use common::cpu_coverage::{Coverage, Stimulus};
 use common::lockstep::Lockstep;
 use kcpsm6::asm::assemble_str;
@@ -119,7 +119,7 @@ fn inputs(seed: u8) -> [u8; 256] {
 #[test]
 fn directed_program_in_every_variant() {
     for size in SIZES {
-        let vector = botsim::cpu::CpuHarness::new(size).config().interrupt_vector;
+        let vector = botsim::sim::rtl::CpuHarness::new(size).config().interrupt_vector;
         let prog = with_isr(DIRECTED, vector);
         let mut ls = Lockstep::new(size, &prog, inputs(0x3C));
         // A long interrupt request now and then, overlapping the ENABLE ... DISABLE window.
@@ -232,7 +232,7 @@ fn random_programs_in_lockstep() {
         .run(&strategy, |(body, isr, size, seed, input_seed, rates)| {
             let mut prog = vec![0x22000; 4096]; // JUMP 000 outside the program
             prog[..body.len()].copy_from_slice(&body);
-            let vector = botsim::cpu::CpuHarness::new(size).config().interrupt_vector as usize;
+            let vector = botsim::sim::rtl::CpuHarness::new(size).config().interrupt_vector as usize;
             prog[vector..vector + isr.len()].copy_from_slice(&isr);
             prog[vector + isr.len()] = 0x29001; // RETURNI ENABLE
             let mut ls = Lockstep::new(size, &prog, inputs(input_seed));

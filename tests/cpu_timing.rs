@@ -7,7 +7,7 @@
 
 mod common;
 
-use botsim::cpu::{CpuHarness, Ports};
+use botsim::sim::rtl::{CpuHarness, Ports};
 use common::lockstep::{both_cores, Core};
 use kcpsm6::asm::assemble_str;
 use kcpsm6::iss::{Phase, Pins, ScratchPad};

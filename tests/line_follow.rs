@@ -4,7 +4,7 @@ mod common;
 
 use botsim::driver::{Driver, LineFollower};
 use botsim::world::{Cell, World};
-use botsim::{BotSim, Compat, Orientation, Snapshot, Timing};
+use botsim::{Compat, Orientation, RtlBot, Snapshot, Timing};
 
 struct Run {
     follower: LineFollower,
@@ -12,9 +12,9 @@ struct Run {
     last: Snapshot,
 }
 
-/// Follow the line on the RTL (fast timing, threshold 15, BotSim 2.0 compatibility).
+/// Follow the line on the RTL (fast timing, threshold 15, RtlBot 2.0 compatibility).
 fn follow(world: &World, max_samples: u64) -> Run {
-    let mut bot = BotSim::builder().timing(Timing::Fast).compat(Compat::BotSim20).world(world.clone()).build().unwrap();
+    let mut bot = RtlBot::builder().timing(Timing::Fast).compat(Compat::BotSim20).world(world.clone()).build().unwrap();
     let mut follower = LineFollower::new(15);
     let mut path: Vec<(u8, u8)> = vec![];
     let mut last = None;

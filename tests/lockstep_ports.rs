@@ -14,11 +14,11 @@
 mod common;
 
 use botsim::firmware::{Compat, Firmware, Timing};
-use botsim::iss_backend::IssBot;
-use botsim::lockstep::Lockstep;
 use botsim::regs::MotCtl;
+use botsim::sim::lockstep::Lockstep;
 use botsim::world::{Cell, World};
-use botsim::BotSim;
+use botsim::IssBot;
+use botsim::RtlBot;
 use common::strategies::{motors, world};
 use proptest::prelude::*;
 
@@ -29,7 +29,7 @@ fn fail(e: impl std::fmt::Display) -> TestCaseError {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
 
-    /// The BotSim firmware on random worlds and motor sequences (any MotCtl byte).
+    /// The RtlBot firmware on random worlds and motor sequences (any MotCtl byte).
     #[test]
     fn firmware_on_random_worlds(world in world(), segments in motors(), threshold in 1u8..6, compat in any::<bool>()) {
         let compat = if compat { Compat::BotSim20 } else { Compat::Symmetric };
@@ -92,8 +92,8 @@ fn a_difference_is_reported_with_both_sides() {
     let program = botsim::kcpsm6::asm::assemble_str(source).unwrap();
     let mut walled = World::empty();
     walled.set(0x40, 0x40, Cell::Obstruction);
-    let rtl = BotSim::builder().program(program.image.clone()).world(World::empty()).build().unwrap();
-    let iss = IssBot::new(&program.image, walled);
+    let rtl = RtlBot::builder().program(program.image.clone()).world(World::empty()).build().unwrap();
+    let iss = IssBot::new(&program.image, walled).unwrap();
     let mut both = Lockstep::pair(rtl, iss);
     let e = both.run(200).unwrap_err().to_string();
     // Accesses 0 and 1 are the two OUTPUTs; the INPUT of the map is the third.
@@ -116,7 +116,7 @@ fn waits_in_small_chunks_agree_too() {
                 assert_eq!(s.sample, samples);
                 samples += 1;
             }
-            Err(botsim::lockstep::Mismatch::Rtl(botsim::Error::Timeout { .. })) => {}
+            Err(botsim::sim::lockstep::Mismatch::Rtl(botsim::Error::Timeout { .. })) => {}
             Err(e) => panic!("{e}"),
         }
     }

@@ -1,10 +1,10 @@
 //! The README's example test, kept compiling and passing.
 
-use botsim::{BotSim, MotCtl, Orientation, Timing};
+use botsim::{MotCtl, Orientation, RtlBot, Timing};
 
 #[test]
 fn drives_one_cell_east() {
-    let mut bot = BotSim::builder().timing(Timing::Fast).build().unwrap();
+    let mut bot = RtlBot::builder().timing(Timing::Fast).build().unwrap();
     let start = bot.wait_update().unwrap(); // sample 0: the dump after reset
     assert_eq!(start.location(), (64, 64));
     bot.set_motors(MotCtl::FORWARD);

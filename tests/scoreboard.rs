@@ -5,11 +5,11 @@
 mod common;
 
 use botsim::firmware::{Compat, Firmware, Timing};
-use botsim::iss_backend::IssBot;
-use botsim::model::Model;
+use botsim::golden::GoldenBot;
 use botsim::regs::MotCtl;
 use botsim::world::World;
-use botsim::BotSim;
+use botsim::IssBot;
+use botsim::RtlBot;
 use common::strategies::{motors, world};
 use proptest::prelude::*;
 
@@ -18,12 +18,12 @@ use proptest::prelude::*;
 fn check(world: World, threshold: u8, compat: Compat, segments: &[(u8, u8)]) -> Result<(), TestCaseError> {
     let fw = Firmware { threshold, timing: Timing::Fast, compat };
     let fail = |e: botsim::Error| TestCaseError::fail(e.to_string());
-    let mut bot = BotSim::builder().firmware(fw).world(world.clone()).build().map_err(fail)?;
-    let mut iss = IssBot::new(&fw.assemble().unwrap(), world.clone());
-    let mut model = Model::new(world, threshold, compat);
+    let mut bot = RtlBot::builder().firmware(fw).world(world.clone()).build().map_err(fail)?;
+    let mut iss = IssBot::new(&fw.assemble().unwrap(), world.clone()).unwrap();
+    let mut model = GoldenBot::new(world, threshold, compat);
     let s0 = bot.wait_update().map_err(fail)?;
     prop_assert_eq!(s0.regs, model.initial(), "sample 0");
-    prop_assert_eq!(iss.wait_update(10_000).map_err(fail)?, s0, "ISS backend, sample 0");
+    prop_assert_eq!(iss.wait_update_within(10_000).map_err(fail)?, s0, "ISS backend, sample 0");
     let mut k = 0;
     for &(m, n) in segments {
         bot.set_motors(MotCtl(m));
@@ -33,7 +33,7 @@ fn check(world: World, threshold: u8, compat: Compat, segments: &[(u8, u8)]) -> 
             let s = bot.wait_update().map_err(fail)?;
             let want = model.step(MotCtl(m));
             prop_assert_eq!(s.regs, want, "sample {} with MotCtl {:02X}", k, m);
-            prop_assert_eq!(iss.wait_update(10_000).map_err(fail)?, s, "ISS backend, sample {}", k);
+            prop_assert_eq!(iss.wait_update_within(10_000).map_err(fail)?, s, "ISS backend, sample {}", k);
         }
     }
     Ok(())

@@ -120,6 +120,18 @@ pub struct PortEvent {
     pub cycle: u64,
 }
 
+impl std::fmt::Display for PortEvent {
+    /// `cycle 10: OUTPUT port 07 value 42`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let what = match self.kind {
+            PortKind::Read => "INPUT",
+            PortKind::Write => "OUTPUT",
+            PortKind::KWrite => "OUTPUTK",
+        };
+        write!(f, "cycle {}: {what} port {:02X} value {:02X}", self.cycle, self.port, self.value)
+    }
+}
+
 /// What completed: an instruction, or the interrupt entry that cancelled one.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum RetireKind {

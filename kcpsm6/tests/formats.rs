@@ -149,11 +149,16 @@ fn tool(name: &str) -> bool {
 }
 
 /// The generated ROM must be clean under Verilator -Wall and accepted by Icarus and Yosys, in
-/// both instantiation styles. These tools come from scripts/setup.sh.
+/// both instantiation styles. These tools come from scripts/setup.sh: where one is missing the
+/// test says so and skips (the toolchain crate needs none of them), unless
+/// BOTSIM_REQUIRE_TOOLS is set, as in CI, where a missing tool is a failure.
 #[test]
 fn generated_rom_passes_verilator_icarus_and_yosys() {
-    for t in ["verilator", "iverilog", "yosys"] {
-        assert!(tool(t), "{t} is not installed: run scripts/setup.sh");
+    let missing: Vec<&str> = ["verilator", "iverilog", "vvp", "yosys"].into_iter().filter(|t| !tool(t)).collect();
+    if !missing.is_empty() {
+        assert!(std::env::var_os("BOTSIM_REQUIRE_TOOLS").is_none(), "{missing:?} not installed: run scripts/setup.sh");
+        eprintln!("note: {missing:?} not installed (scripts/setup.sh); skipping the simulator checks");
+        return;
     }
     let dir = tempfile::tempdir().unwrap();
     let p = assemble_str("start: LOAD s0, 01\nJUMP start\n").unwrap();

@@ -4,9 +4,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 
-use botsim::firmware::{Firmware, Timing};
-use botsim::iss_backend::IssBot;
-use botsim::{BotSim, MotCtl, World};
+use botsim::{Firmware, IssBot, MotCtl, RtlBot, Timing, World};
 
 /// Measure simulation speed: the RTL (Verilator, tracing compiled in but off), the RTL writing a
 /// full VCD, the ISS backend, and Icarus Verilog on the same RTL when it is installed; all on
@@ -28,7 +26,7 @@ fn rate(cycles: u64, seconds: f64) -> f64 {
 }
 
 fn rtl(cycles: u64) -> Result<f64, String> {
-    let mut bot = BotSim::builder().motors(MotCtl::FORWARD).build().map_err(|e| e.to_string())?;
+    let mut bot = RtlBot::builder().motors(MotCtl::FORWARD).build().map_err(|e| e.to_string())?;
     let t = Instant::now();
     bot.run(cycles).map_err(|e| e.to_string())?;
     Ok(rate(cycles, t.elapsed().as_secs_f64()))
@@ -38,7 +36,7 @@ fn rtl_vcd(cycles: u64, dir: &Path) -> Result<f64, String> {
     let path = dir.join("bench.vcd");
     let fw = Firmware { timing: Timing::Fast, ..Firmware::default() };
     let mut bot =
-        BotSim::builder().firmware(fw).motors(MotCtl::FORWARD).vcd(&path).build().map_err(|e| e.to_string())?;
+        RtlBot::builder().firmware(fw).motors(MotCtl::FORWARD).vcd(&path).build().map_err(|e| e.to_string())?;
     let t = Instant::now();
     bot.run(cycles).map_err(|e| e.to_string())?;
     bot.close_vcd().map_err(|e| e.to_string())?;
@@ -49,11 +47,11 @@ fn rtl_vcd(cycles: u64, dir: &Path) -> Result<f64, String> {
 
 fn iss(samples: u64) -> Result<f64, String> {
     let image = Firmware::default().assemble().map_err(|d| d.to_string())?;
-    let mut bot = IssBot::new(&image, World::builtin());
+    let mut bot = IssBot::new(&image, World::builtin()).map_err(|e| e.to_string())?;
     bot.set_motors(MotCtl::FORWARD);
     let t = Instant::now();
     for _ in 0..samples {
-        bot.wait_update(20_000_000).map_err(|e| e.to_string())?;
+        bot.wait_update_within(Timing::Hw.update_budget()).map_err(|e| e.to_string())?;
     }
     Ok(rate(bot.cycle(), t.elapsed().as_secs_f64()))
 }

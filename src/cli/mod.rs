@@ -1,6 +1,7 @@
 //! Subcommands of `botsim`. Every error is one line on stderr and exit status 1; a run stopped
 //! by Ctrl-C writes its outputs up to there and exits with 130.
 
+mod args;
 mod asm;
 mod bench;
 mod disasm;

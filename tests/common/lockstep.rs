@@ -6,7 +6,7 @@
 
 #![allow(dead_code)]
 
-use botsim::cpu::{ArchState, CpuHarness, Ports};
+use botsim::sim::rtl::{ArchState, CpuHarness, Ports};
 use kcpsm6::iss::{Bus, Config, Cpu, Pins, PortKind, Retired, ScratchPad};
 
 /// The ISS's model of the harness's input port: a register loaded at the end of every cycle

@@ -9,8 +9,8 @@
 //! registers every cycle while a flag is high, and upd_sysregs is high from the cycle after a
 //! rising toggle.
 //!
-//! [`crate::lockstep`] compares every snapshot and every port access (with its cycle) with
-//! the RTL, on the firmware and on random programs that read every port at every distance
+//! The `botsim` crate's lock-step compares every snapshot and every port access (with its
+//! cycle) with the RTL, on the firmware and on random programs that read every port at every distance
 //! after writing it. Port strobes come in the second cycle of an instruction, so two strobes
 //! are always an even number of cycles apart: a bus-to-bus latency that is one clock off is
 //! invisible to every program (the lock-step cannot fail on it, and no user can see it),
@@ -18,21 +18,22 @@
 //! clock.
 //!
 //! ```
-//! use botsim::iss_backend::IssBot;
-//! use botsim::{Firmware, MotCtl, Timing, World};
+//! use botsim_core::sim::iss::IssBot;
+//! use botsim_core::{Firmware, MotCtl, Timing, World};
 //! let fw = Firmware { timing: Timing::Fast, ..Firmware::default() };
-//! let mut bot = IssBot::new(&fw.assemble().unwrap(), World::builtin());
-//! assert_eq!(bot.wait_update(10_000).unwrap().location(), (64, 64));
+//! let mut bot = IssBot::new(&fw.assemble().unwrap(), World::builtin()).unwrap();
+//! assert_eq!(bot.wait_update_within(10_000).unwrap().location(), (64, 64));
 //! bot.set_motors(MotCtl::FORWARD);
-//! let s: Vec<_> = (0..16).map(|_| bot.wait_update(10_000).unwrap()).collect();
+//! let s: Vec<_> = (0..16).map(|_| bot.wait_update_within(10_000).unwrap()).collect();
 //! assert_eq!(s[15].location(), (65, 64));
 //! ```
 
 use kcpsm6::iss::{Bus, Config, Cpu};
 use kcpsm6::Image;
 
-use crate::backend::{PortAccess, PortEvent};
-use crate::botsim::{CpuAt, Error};
+use super::{check_program_size, Backend, CpuAt, Error, PortEvent, PortKind, BOT_ROM_WORDS};
+use crate::firmware::Timing;
+use crate::ports;
 use crate::regs::{MotCtl, Registers, Snapshot};
 use crate::world::World;
 
@@ -80,9 +81,9 @@ struct WorldIf {
 }
 
 impl WorldIf {
-    fn record(&mut self, cycle: u64, access: PortAccess, port: u8, value: u8) {
+    fn record(&mut self, cycle: u64, kind: PortKind, port: u8, value: u8) {
         if let Some(v) = self.events.as_mut() {
-            v.push(PortEvent { cycle, access, port, value });
+            v.push(PortEvent { kind, port, value, cycle });
         }
     }
 }
@@ -92,15 +93,16 @@ impl WorldIf {
     /// copy the holding registers every cycle, and the holding registers only change at the
     /// end of write strobes, which are at least two cycles apart.
     fn catch_up(&mut self) {
+        let h = |p: u8| self.holding[p as usize];
         if self.load_sys {
-            self.visible.loc_x = self.holding[1];
-            self.visible.loc_y = self.holding[2];
-            self.visible.bot_info = self.holding[3];
-            self.visible.sensors = self.holding[4];
+            self.visible.loc_x = h(ports::PWR_LOCX);
+            self.visible.loc_y = h(ports::PWR_LOCY);
+            self.visible.bot_info = h(ports::PWR_BOTINFO);
+            self.visible.sensors = h(ports::PWR_SENSORS);
         }
         if self.load_dist {
-            self.visible.lm_dist = self.holding[5];
-            self.visible.rm_dist = self.holding[6];
+            self.visible.lm_dist = h(ports::PWR_LMDIST);
+            self.visible.rm_dist = h(ports::PWR_RMDIST);
         }
     }
 }
@@ -108,17 +110,17 @@ impl WorldIf {
 impl Bus for WorldIf {
     fn input(&mut self, port: u8, cycle: u64) -> u8 {
         let v = self.read(port, cycle);
-        self.record(cycle, PortAccess::Read, port, v);
+        self.record(cycle, PortKind::Read, port, v);
         v
     }
 
     fn output(&mut self, port: u8, value: u8, cycle: u64) {
-        self.record(cycle, PortAccess::Write, port, value);
+        self.record(cycle, PortKind::Write, port, value);
         self.write(port, value, cycle);
     }
 
     fn output_k(&mut self, port: u8, value: u8, cycle: u64) {
-        self.record(cycle, PortAccess::WriteK, port, value);
+        self.record(cycle, PortKind::KWrite, port, value);
     }
 }
 
@@ -128,12 +130,12 @@ impl WorldIf {
         // The read mux registered at the end of cycle - 1.
         let t = cycle - 1;
         match port & 15 {
-            0x0 => self.motctl.value_at(t),
-            p @ 1..=6 => self.holding[p as usize],
-            0x8 => self.map_x.value_at(t),
-            0x9 => self.map_y.value_at(t),
+            ports::PRD_MOTCTL_IN => self.motctl.value_at(t),
+            p @ ports::PWR_LOCX..=ports::PWR_RMDIST => self.holding[p as usize],
+            ports::PWR_COLADR => self.map_x.value_at(t),
+            ports::PWR_ROWADR => self.map_y.value_at(t),
             // The map's address register and output register: two more cycles.
-            0xA => self.world.get(self.map_x.value_at(t - 2), self.map_y.value_at(t - 2)).bits(),
+            ports::PRD_LOCINFO => self.world.get(self.map_x.value_at(t - 2), self.map_y.value_at(t - 2)).bits(),
             _ => 0,
         }
     }
@@ -141,13 +143,13 @@ impl WorldIf {
     fn write(&mut self, port: u8, value: u8, cycle: u64) {
         self.catch_up();
         match port & 15 {
-            p @ 1..=6 => self.holding[p as usize] = value,
-            0x8 => self.map_x.write(value, cycle),
-            0x9 => self.map_y.write(value, cycle),
+            p @ ports::PWR_LOCX..=ports::PWR_RMDIST => self.holding[p as usize] = value,
+            ports::PWR_COLADR => self.map_x.write(value, cycle),
+            ports::PWR_ROWADR => self.map_y.write(value, cycle),
             // The flags are registers: a toggle takes effect from the next cycle.
-            0xC => self.load_sys = !self.load_sys,
-            0xD => self.load_dist = !self.load_dist,
-            0xE => {
+            ports::PRW_LOADREGS => self.load_sys = !self.load_sys,
+            ports::PRW_LDMOTDIST => self.load_dist = !self.load_dist,
+            ports::PRW_UPDSYSREGS => {
                 self.upd = !self.upd;
                 if self.upd {
                     self.pulse = Some(cycle + 1);
@@ -163,14 +165,17 @@ pub struct IssBot {
     cpu: Cpu,
     bus: WorldIf,
     next_sample: u64,
+    budget: u64,
 }
 
 impl IssBot {
-    /// The bot with `program` (bot_pgm's 1K) in `world`, at configuration (cycle 0).
-    pub fn new(program: &Image, world: World) -> IssBot {
+    /// The bot with `program` (bot_pgm's 1K) in `world`, at configuration (cycle 0); a program
+    /// past the 1K ROM is refused, as by the RTL backend.
+    pub fn new(program: &Image, world: World) -> Result<IssBot, Error> {
+        check_program_size(&program.words[..])?;
         let config = Config::default();
-        IssBot {
-            cpu: Cpu::new(config, &program.words[..1024]),
+        Ok(IssBot {
+            cpu: Cpu::new(config, &program.words[..BOT_ROM_WORDS]),
             bus: WorldIf {
                 world,
                 motctl: Timed::default(),
@@ -185,7 +190,8 @@ impl IssBot {
                 events: None,
             },
             next_sample: 0,
-        }
+            budget: Timing::Hw.update_budget(),
+        })
     }
 
     /// MotCtl_in from the current cycle on.
@@ -223,7 +229,7 @@ impl IssBot {
 
     /// Run to the next upd_sysregs pulse within `budget` cycles; stops at the start of the
     /// pulse's first cycle, as the RTL backend does.
-    pub fn wait_update(&mut self, budget: u64) -> Result<Snapshot, Error> {
+    pub fn wait_update_within(&mut self, budget: u64) -> Result<Snapshot, Error> {
         let end = self.cpu.cycle() + budget;
         // Whole instructions at a time (and busy-wait loops at once), stopping right after the
         // write strobe that raises upd_sysregs: that is the start of the pulse's first cycle.
@@ -235,7 +241,7 @@ impl IssBot {
             self.next_sample += 1;
             return Ok(s);
         }
-        Err(Error::Timeout { waited_for: "upd_sysregs pulse", budget, cycle: self.cpu.cycle(), cpu: self.cpu_at() })
+        Err(Error::no_update(budget, self.cpu.cycle(), self.cpu_at()))
     }
 
     /// Where the CPU is now.
@@ -245,5 +251,41 @@ impl IssBot {
         } else {
             CpuAt::Address(self.cpu.pc())
         }
+    }
+}
+
+impl Backend for IssBot {
+    fn wait_update_within(&mut self, budget: u64) -> Result<Snapshot, Error> {
+        IssBot::wait_update_within(self, budget)
+    }
+    fn update_budget(&self) -> u64 {
+        self.budget
+    }
+    fn set_update_budget(&mut self, cycles: u64) {
+        self.budget = cycles;
+    }
+    fn set_motors(&mut self, m: MotCtl) {
+        IssBot::set_motors(self, m)
+    }
+    fn cycle(&self) -> u64 {
+        IssBot::cycle(self)
+    }
+    fn cpu_at(&self) -> CpuAt {
+        IssBot::cpu_at(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_program_past_the_1k_rom_is_refused_as_by_the_rtl() {
+        let mut image = kcpsm6::Image::zeroed();
+        image.words[0x400] = 0x22400;
+        assert!(matches!(IssBot::new(&image, World::builtin()), Err(Error::ProgramTooLarge(0x400))));
+        image.words[0x400] = 0;
+        image.words[0x3FF] = 0x223FF;
+        assert!(IssBot::new(&image, World::builtin()).is_ok());
     }
 }

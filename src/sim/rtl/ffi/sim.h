@@ -11,6 +11,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <cstring>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -25,6 +26,20 @@
 // Half a clock period in the model's time precision (`timescale 1ns / 1ps`): 100 MHz.
 static const uint64_t HALF_PERIOD_PS = 5000;
 
+// Where vl_fatal keeps its message: the model that runs on this thread now (Sim::enter), so a
+// fatal error is reported by the model it stopped, not by another one on the same thread.
+inline thread_local std::string* current_fatal = nullptr;
+
+// Copy `msg` into `buf` (`len` bytes, NUL-terminated when len > 0); its full length.
+inline size_t copy_message(const std::string& msg, char* buf, size_t len) {
+    if (len > 0) {
+        const size_t n = msg.size() < len - 1 ? msg.size() : len - 1;
+        std::memcpy(buf, msg.data(), n);
+        buf[n] = 0;
+    }
+    return msg.size();
+}
+
 template <class V>
 struct Sim {
     VerilatedContext* ctx;
@@ -32,6 +47,7 @@ struct Sim {
     VerilatedVcdC* vcd = nullptr;
     uint64_t cycle = 0;
     uint64_t last_dump = ~0ull;  // time of the last VCD sample: each time stamp is dumped once
+    std::string fatal;           // the fatal runtime error that stopped this model, if any
 
     Sim() {
         ctx = new VerilatedContext;
@@ -52,7 +68,7 @@ struct Sim {
     }
 
     ~Sim() {
-        Verilated::threadContextp(ctx);
+        enter();
         close_vcd();
         top->final();
 #if VM_COVERAGE
@@ -66,9 +82,20 @@ struct Sim {
 #endif
         delete top;
         delete ctx;
+        if (current_fatal == &fatal) current_fatal = nullptr;
     }
 
-    void enter() { Verilated::threadContextp(ctx); }
+    void enter() {
+        Verilated::threadContextp(ctx);
+        current_fatal = &fatal;
+    }
+
+    // Take the fatal message (see copy_message); it is cleared.
+    size_t take_fatal(char* buf, size_t len) {
+        const size_t n = copy_message(fatal, buf, len);
+        fatal.clear();
+        return n;
+    }
 
     bool finished() const { return ctx->gotFinish(); }
 

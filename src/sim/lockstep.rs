@@ -3,7 +3,7 @@
 //! A difference stops the run with both sides of the first one.
 //!
 //! ```
-//! use botsim::lockstep::Lockstep;
+//! use botsim::sim::lockstep::Lockstep;
 //! use botsim::{Firmware, MotCtl, Timing, World};
 //! let fw = Firmware { timing: Timing::Fast, ..Firmware::default() };
 //! let mut both = Lockstep::new(&fw.assemble().unwrap(), World::builtin()).unwrap();
@@ -17,15 +17,15 @@
 
 use kcpsm6::Image;
 
-use crate::backend::{Backend, PortEvent, ISS_UPDATE_BUDGET};
-use crate::botsim::{BotSim, CpuAt, Error};
-use crate::iss_backend::IssBot;
+use super::iss::IssBot;
+use super::rtl::RtlBot;
+use super::{Backend, CpuAt, Error, PortEvent};
 use crate::regs::{MotCtl, Snapshot};
 use crate::world::World;
 
 /// Both backends, stepped together.
 pub struct Lockstep {
-    rtl: BotSim,
+    rtl: RtlBot,
     iss: IssBot,
     compared: u64,
     /// Accesses not compared yet.
@@ -49,12 +49,13 @@ pub enum Mismatch {
 impl Lockstep {
     /// Both backends with `program` in `world`, at configuration.
     pub fn new(program: &Image, world: World) -> Result<Lockstep, Error> {
-        let rtl = BotSim::builder().program(program.clone()).world(world.clone()).build()?;
-        Ok(Lockstep::pair(rtl, IssBot::new(program, world)))
+        let rtl = RtlBot::builder().program(program.clone()).world(world.clone()).build()?;
+        Ok(Lockstep::pair(rtl, IssBot::new(program, world)?))
     }
 
-    /// Two backends built separately (say, with a firmware or world of your own each).
-    pub fn pair(rtl: BotSim, mut iss: IssBot) -> Lockstep {
+    /// Two backends built separately (say, with a firmware or world of your own each); the
+    /// RTL's update budget is the pair's.
+    pub fn pair(rtl: RtlBot, mut iss: IssBot) -> Lockstep {
         iss.record_ports(true);
         Lockstep { rtl, iss, compared: 0, rtl_events: Vec::new(), iss_events: Vec::new() }
     }
@@ -72,13 +73,13 @@ impl Lockstep {
 
     /// The next snapshot of both, after comparing every port access on the way.
     pub fn wait_update(&mut self) -> Result<Snapshot, Mismatch> {
-        self.wait_update_within(ISS_UPDATE_BUDGET)
+        self.wait_update_within(self.rtl.update_budget())
     }
 
     /// As [`Lockstep::wait_update`], within `budget` cycles.
     pub fn wait_update_within(&mut self, budget: u64) -> Result<Snapshot, Mismatch> {
         let mut rtl = self.rtl.wait_update_recording_within(budget, &mut self.rtl_events);
-        let iss = self.iss.wait_update(budget);
+        let iss = self.iss.wait_update_within(budget);
         // The ISS runs whole instructions and may pass the budget by a cycle or two: when that
         // found the pulse, give the RTL the same reach.
         if let (Err(Error::Timeout { .. }), Ok(s)) = (&rtl, &iss) {
@@ -131,7 +132,11 @@ impl Backend for Lockstep {
         })
     }
     fn update_budget(&self) -> u64 {
-        ISS_UPDATE_BUDGET
+        self.rtl.update_budget()
+    }
+    fn set_update_budget(&mut self, cycles: u64) {
+        Backend::set_update_budget(&mut self.rtl, cycles);
+        Backend::set_update_budget(&mut self.iss, cycles);
     }
     fn set_motors(&mut self, m: MotCtl) {
         Lockstep::set_motors(self, m)

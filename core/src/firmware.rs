@@ -1,7 +1,7 @@
 //! The BotSim firmware (`rtl/bot_pgm.psm`) and the assembly-time choices it takes.
 //!
 //! ```
-//! use botsim::firmware::{Compat, Firmware, Timing};
+//! use botsim_core::firmware::{Compat, Firmware, Timing};
 //! let fw = Firmware { threshold: 4, timing: Timing::Fast, compat: Compat::BotSim20 };
 //! let image = fw.assemble().unwrap();
 //! assert_ne!(image, Firmware::default().assemble().unwrap());
@@ -13,7 +13,7 @@ use kcpsm6::asm::{assemble_source, Options, Program, RomSize};
 use kcpsm6::{Diagnostics, Image};
 
 /// The firmware source, built into the library.
-pub const SOURCE: &str = include_str!("../rtl/bot_pgm.psm");
+pub const SOURCE: &str = include_str!("../../rtl/bot_pgm.psm");
 /// Its path in the repository, for messages.
 pub const SOURCE_PATH: &str = "rtl/bot_pgm.psm";
 
@@ -33,6 +33,15 @@ impl Timing {
         match self {
             Timing::Hw => [50, 25, 40, 24],
             Timing::Fast => [1, 1, 16, 24],
+        }
+    }
+
+    /// How long a wait for an upd_sysregs pulse may take before it is an error: two sample
+    /// periods plus start-up. Every backend's default budget.
+    pub fn update_budget(self) -> u64 {
+        match self {
+            Timing::Hw => 2 * 5_314_000 + 10_000,
+            Timing::Fast => 2 * 3_000 + 10_000,
         }
     }
 
@@ -93,5 +102,27 @@ impl Firmware {
     pub fn program(&self, timestamp: u64) -> Result<Program, Diagnostics> {
         let opts = Options { defines: self.defines(), rom_size: Some(RomSize::K1), timestamp, ..Options::default() };
         assemble_source(Path::new(SOURCE_PATH), SOURCE, &opts)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `CONSTANT name, value` of the firmware source.
+    fn constant(name: &str) -> String {
+        let line = SOURCE.lines().find(|l| l.trim_start().starts_with(&format!("CONSTANT {name},"))).unwrap();
+        line.split(',').nth(1).unwrap().split(';').next().unwrap().trim().to_string()
+    }
+
+    #[test]
+    fn default_is_the_psm_source_as_written() {
+        // The defines of Firmware::default() change nothing: the same words as the source alone.
+        for (name, value) in Firmware::default().defines() {
+            let as_written = kcpsm6::asm::literal8(&constant(&name)).unwrap();
+            assert_eq!(kcpsm6::asm::literal8(&value).unwrap(), as_written, "{name}");
+        }
+        let plain = assemble_source(Path::new(SOURCE_PATH), SOURCE, &Options::default()).unwrap();
+        assert_eq!(Firmware::default().assemble().unwrap(), plain.image);
     }
 }

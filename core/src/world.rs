@@ -9,7 +9,7 @@
 //! | `.png` | 128 x 128, the four colours of [`Cell::colour`] | the same |
 //!
 //! ```
-//! use botsim::world::{Cell, World};
+//! use botsim_core::world::{Cell, World};
 //! let w = World::builtin();
 //! assert_eq!(w.get(64, 64), Cell::Line); // the start cell, the line runs East
 //! assert_eq!(w.get(0, 0), Cell::Obstruction);

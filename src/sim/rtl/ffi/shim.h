@@ -1,6 +1,7 @@
 /* shim.h: the C interface of the Verilated models, for bindgen. Plain C, no Verilator types.
- * Every function sets the model's context on the calling thread first; a model must be used
- * only from the thread that created it. */
+ * Every function that evaluates the model or touches the Verilator runtime sets the model's
+ * context on the calling thread first (the input setters only store a value); a model must be
+ * used only from the thread that created it. */
 #ifndef BOTSIM_SHIM_H
 #define BOTSIM_SHIM_H
 
@@ -70,6 +71,8 @@ int cpu_sim_tick(CpuSim* sim, CpuPins pins, CpuPorts* ports);
 uint64_t cpu_sim_run(CpuSim* sim, CpuPins pins, uint64_t cycles);
 void cpu_sim_state(CpuSim* sim, CpuState* state);
 uint64_t cpu_sim_cycle(const CpuSim* sim);
+/* As bot_sim_take_fatal. */
+size_t cpu_sim_take_fatal(CpuSim* sim, char* buf, size_t len);
 
 /* ---- the BotSim 2.0 top, `bot` (rtl/bot.v) ------------------------------------------------ */
 
@@ -126,9 +129,10 @@ uint64_t bot_sim_run(BotSim* sim, uint64_t cycles);
 int bot_sim_run_recording(BotSim* sim, uint64_t budget, int stop_on_update, uint64_t* cycle, BotRegs* regs,
                           BotPortEvent* events, size_t cap, size_t* count);
 uint64_t bot_sim_cycle(const BotSim* sim);
-/* The message of the fatal runtime error that stopped a model on this thread (a failed VCD
- * write, say), NUL-terminated into `buf`; its length, 0 if none. Clears it. */
-size_t botsim_take_fatal(char* buf, size_t len);
+/* The message of the fatal runtime error that stopped this model (a failed VCD write, say):
+ * at most len - 1 bytes of it, NUL-terminated, into `buf` (nothing when len is 0); returns its
+ * whole length, 0 if none. Clears it. */
+size_t bot_sim_take_fatal(BotSim* sim, char* buf, size_t len);
 /* Where the CPU is: its program counter; 1 if it is held in (internal) reset. */
 int bot_sim_cpu_in_reset(const BotSim* sim, uint16_t* pc);
 

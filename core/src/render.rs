@@ -1,14 +1,14 @@
 //! Pictures of a run: the world with the bot's path (start, end and heading, blocked moves).
 //!
 //! ```
-//! use botsim::render::{path_picture, PathStyle};
-//! use botsim::world::World;
+//! use botsim_core::render::{path_picture, PathStyle};
+//! use botsim_core::world::World;
 //! let png = path_picture(&World::builtin(), &[], 15, &PathStyle::default());
 //! assert_eq!(&png[1..4], b"PNG");
 //! ```
 
 use crate::picture::encode_rgb;
-use crate::regs::{Movement, Snapshot};
+use crate::regs::Snapshot;
 use crate::world::{World, SIZE};
 
 /// Colours and scale of a path picture.
@@ -32,18 +32,9 @@ impl Default for PathStyle {
     }
 }
 
-/// The cells from which a forward or reverse move was refused: a threshold event (a counter
-/// at `threshold`) while moving, and the same location in the next snapshot.
+/// The cells from which a forward or reverse move was refused ([`Snapshot::move_refused`]).
 pub fn blocked_moves(snapshots: &[Snapshot], threshold: u8) -> Vec<(u8, u8)> {
-    snapshots
-        .windows(2)
-        .filter(|w| {
-            let (a, b) = (&w[0], &w[1]);
-            let event = a.regs.lm_dist >= threshold || a.regs.rm_dist >= threshold;
-            event && matches!(a.movement(), Movement::Forward | Movement::Reverse) && a.location() == b.location()
-        })
-        .map(|w| w[0].location())
-        .collect()
+    snapshots.windows(2).filter(|w| w[0].move_refused(&w[1], threshold)).map(|w| w[0].location()).collect()
 }
 
 /// An RGB canvas.

@@ -2,12 +2,12 @@
 //! next main-loop iteration.
 //!
 //! ```
-//! use botsim::driver::{Driver, LineFollower};
-//! use botsim::model::Model;
-//! use botsim::world::World;
-//! use botsim::Snapshot;
+//! use botsim_core::driver::{Driver, LineFollower};
+//! use botsim_core::golden::GoldenBot;
+//! use botsim_core::world::World;
+//! use botsim_core::Snapshot;
 //! // Drive the golden model along the built-in course to its end.
-//! let mut model = Model::new(World::builtin(), 15, Default::default());
+//! let mut model = GoldenBot::new(World::builtin(), 15, Default::default());
 //! let mut follower = LineFollower::new(15);
 //! let mut regs = model.initial();
 //! for sample in 0..20_000 {
@@ -87,10 +87,13 @@ pub struct LineFollower {
     threshold: u8,
     phase: Phase,
     command: MotCtl,
-    awaiting_result: bool,
+    /// The snapshot of the last threshold event, until the next one shows its result (or
+    /// `None` at the start and while an action is under way).
+    event: Option<Snapshot>,
+    /// No action has been decided yet: the first snapshot decides.
+    started: bool,
     moves: u64,
     blocked: u64,
-    location: (u8, u8),
 }
 
 impl LineFollower {
@@ -100,10 +103,10 @@ impl LineFollower {
             threshold: threshold.max(1),
             phase: Phase::Follow,
             command: MotCtl::STOP,
-            awaiting_result: true,
+            event: None,
+            started: false,
             moves: 0,
             blocked: 0,
-            location: (0, 0),
         }
     }
 
@@ -194,18 +197,18 @@ impl LineFollower {
 
 impl Driver for LineFollower {
     fn next(&mut self, s: &Snapshot) -> MotCtl {
-        if self.awaiting_result {
-            self.awaiting_result = false;
-            let moved = matches!(self.command, MotCtl::FORWARD | MotCtl::REVERSE);
-            if moved && s.location() == self.location {
+        if let Some(event) = self.event.take() {
+            if event.move_refused(s, self.threshold) {
                 self.blocked += 1;
             }
-            self.location = s.location();
             self.command = self.decide(s);
-        } else if s.regs.lm_dist >= self.threshold || s.regs.rm_dist >= self.threshold {
+        } else if !self.started {
+            self.started = true;
+            self.command = self.decide(s);
+        } else if s.threshold_event(self.threshold) {
             // An action completes in this iteration; its result shows in the next snapshot.
             self.moves += 1;
-            self.awaiting_result = true;
+            self.event = Some(*s);
             return MotCtl::STOP;
         }
         self.command

@@ -158,6 +158,8 @@ uint64_t bot_sim_run(BotSim* b, uint64_t cycles) {
 
 uint64_t bot_sim_cycle(const BotSim* b) { return b->sim.cycle; }
 
+size_t bot_sim_take_fatal(BotSim* b, char* buf, size_t len) { return b->sim.take_fatal(buf, len); }
+
 int bot_sim_cpu_in_reset(const BotSim* b, uint16_t* pc) {
     const auto* r = b->sim.top->rootp;
     *pc = r->bot__DOT__BOTSIMCPU__DOT__pc;

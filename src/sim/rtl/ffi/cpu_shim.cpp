@@ -21,25 +21,15 @@ void vl_finish(const char* filename, int linenum, const char* hier) VL_MT_UNSAFE
 }
 
 // A fatal runtime error (a VCD write that failed on a full disk, say) stops the model instead
-// of aborting the process: the message is kept for the caller (botsim_take_fatal).
-static thread_local std::string fatal_message;
-
+// of aborting the process: the message is kept by the model it stopped (current_fatal, set by
+// Sim::enter) for its caller (bot_sim_take_fatal, cpu_sim_take_fatal).
 void vl_fatal(const char* filename, int linenum, const char* hier, const char* msg) VL_MT_UNSAFE {
     (void)filename;
     (void)linenum;
     (void)hier;
     Verilated::threadContextp()->gotError(true);
     Verilated::threadContextp()->gotFinish(true);
-    if (fatal_message.empty()) fatal_message = msg;
-}
-
-extern "C" size_t botsim_take_fatal(char* buf, size_t len) {
-    size_t n = fatal_message.size();
-    if (n >= len) n = len - 1;
-    std::memcpy(buf, fatal_message.data(), n);
-    buf[n] = 0;
-    fatal_message.clear();
-    return n;
+    if (current_fatal && current_fatal->empty()) *current_fatal = msg;
 }
 
 struct CpuSim {
@@ -52,6 +42,7 @@ struct CpuSim {
     virtual uint64_t run(CpuPins pins, uint64_t cycles) = 0;
     virtual void state(CpuState* s) = 0;
     virtual uint64_t cycle() const = 0;
+    virtual size_t take_fatal(char* buf, size_t len) = 0;
 };
 
 template <class V, unsigned SPM>
@@ -137,6 +128,7 @@ struct CpuModel final : CpuSim {
     }
 
     uint64_t cycle() const override { return sim.cycle; }
+    size_t take_fatal(char* buf, size_t len) override { return sim.take_fatal(buf, len); }
 };
 
 extern "C" {
@@ -159,4 +151,5 @@ int cpu_sim_tick(CpuSim* sim, CpuPins pins, CpuPorts* ports) { return sim->tick(
 uint64_t cpu_sim_run(CpuSim* sim, CpuPins pins, uint64_t cycles) { return sim->run(pins, cycles); }
 void cpu_sim_state(CpuSim* sim, CpuState* state) { sim->state(state); }
 uint64_t cpu_sim_cycle(const CpuSim* sim) { return sim->cycle(); }
+size_t cpu_sim_take_fatal(CpuSim* sim, char* buf, size_t len) { return sim->take_fatal(buf, len); }
 }

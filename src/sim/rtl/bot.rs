@@ -1,8 +1,8 @@
-//! The BotSim testbench API: the `bot` RTL under Verilator, driven from Rust.
+//! The `bot` RTL under Verilator, driven from Rust: the testbench API.
 //!
 //! ```
-//! use botsim::{BotSim, MotCtl, Orientation, Timing};
-//! let mut bot = BotSim::builder().timing(Timing::Fast).build().unwrap();
+//! use botsim::{MotCtl, Orientation, RtlBot, Timing};
+//! let mut bot = RtlBot::builder().timing(Timing::Fast).build().unwrap();
 //! let first = bot.wait_update().unwrap(); // sample 0: the register dump after start-up
 //! assert_eq!((first.location(), first.orientation()), ((64, 64), Orientation::East));
 //! bot.set_motors(MotCtl::FORWARD);
@@ -15,57 +15,13 @@ use std::marker::PhantomData;
 use std::path::{Path, PathBuf};
 use std::ptr::NonNull;
 
-use kcpsm6::{Diagnostics, Image};
+use kcpsm6::Image;
 
-use crate::backend::{PortAccess, PortEvent};
+use super::ffi;
 use crate::firmware::{Compat, Firmware, Timing};
 use crate::regs::{MotCtl, Registers, Snapshot};
-use crate::rtl::ffi;
+use crate::sim::{check_program_size, Backend, CpuAt, Error, PortEvent, PortKind, BOT_ROM_WORDS};
 use crate::world::{Cell, World};
-
-/// What went wrong in a simulation.
-#[derive(Debug, thiserror::Error)]
-pub enum Error {
-    /// A wait ran out of its cycle budget: a firmware stuck in a loop, held in reset, or a
-    /// budget too small for its timing.
-    #[error("no {waited_for} within {budget} cycles (stopped at cycle {cycle}, {cpu})")]
-    Timeout { waited_for: &'static str, budget: u64, cycle: u64, cpu: CpuAt },
-    #[error("the model has finished ($finish) and cannot run further")]
-    Finished,
-    /// The waveform could not be written (a full disk, say); the model stopped.
-    #[error("cannot write the waveform: {0}")]
-    Waveform(String),
-    /// The RTL and the ISS backend disagreed in a lock-step run.
-    #[error("lock-step mismatch: {0}")]
-    Mismatch(String),
-    /// Another fatal runtime error stopped the model.
-    #[error("the simulation stopped: {0}")]
-    Stopped(String),
-    #[error("{0}")]
-    Program(Diagnostics),
-    #[error("the program uses address {0:03X}; bot_pgm is a 1K ROM (000-3FF)")]
-    ProgramTooLarge(usize),
-    #[error("{0}")]
-    Io(String),
-}
-
-/// Where the CPU was when a wait gave up.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum CpuAt {
-    /// Running; the program counter.
-    Address(u16),
-    /// Held in reset (the reset pin, or the internal reset that follows it).
-    Reset,
-}
-
-impl std::fmt::Display for CpuAt {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            CpuAt::Address(a) => write!(f, "the CPU at address {a:03X}"),
-            CpuAt::Reset => f.write_str("the CPU held in reset"),
-        }
-    }
-}
 
 /// The outputs of `bot` during one cycle.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -75,7 +31,7 @@ pub struct Outputs {
     pub vid_pixel_out: u8,
 }
 
-/// How to build a [`BotSim`].
+/// How to build an [`RtlBot`].
 #[derive(Clone, Debug)]
 pub struct Builder {
     firmware: Firmware,
@@ -125,23 +81,23 @@ impl Builder {
         self.vcd = Some(path.as_ref().to_path_buf());
         self
     }
-    /// The cycle budget of [`BotSim::wait_update`] (default: two sample periods of the
-    /// firmware's timing plus start-up).
+    /// The cycle budget of [`RtlBot::wait_update`] (default: the firmware timing's
+    /// [`Timing::update_budget`]).
     pub fn update_budget(mut self, cycles: u64) -> Builder {
         self.budget = Some(cycles);
         self
     }
 
-    pub fn build(self) -> Result<BotSim, Error> {
+    pub fn build(self) -> Result<RtlBot, Error> {
         let image = match self.program {
             Some(img) => img,
             None => self.firmware.assemble().map_err(Error::Program)?,
         };
         // SAFETY: bot_sim_new returns a new, live model.
         let sim = NonNull::new(unsafe { ffi::bot_sim_new() }).expect("model allocation");
-        let mut bot = BotSim {
+        let mut bot = RtlBot {
             sim,
-            budget: self.budget.unwrap_or(default_budget(self.firmware.timing)),
+            budget: self.budget.unwrap_or(self.firmware.timing.update_budget()),
             next_sample: 0,
             _thread_bound: PhantomData,
         };
@@ -155,23 +111,16 @@ impl Builder {
     }
 }
 
-/// Two sample periods plus start-up, for the built-in firmware's timing.
-fn default_budget(t: Timing) -> u64 {
-    match t {
-        Timing::Hw => 2 * 5_314_000 + 10_000,
-        Timing::Fast => 2 * 3_000 + 10_000,
-    }
-}
-
-/// One simulated BotSim 2.0. Not `Send`: a Verilated model stays on the thread that made it.
-pub struct BotSim {
+/// The `bot` RTL as a Verilated model. Not `Send`: a Verilated model stays on the thread that
+/// made it.
+pub struct RtlBot {
     sim: NonNull<ffi::BotSim>,
     budget: u64,
     next_sample: u64,
     _thread_bound: PhantomData<*const ()>,
 }
 
-impl BotSim {
+impl RtlBot {
     /// A builder with the built-in firmware (threshold 15, `hw` timing) and world.
     pub fn builder() -> Builder {
         Builder {
@@ -186,13 +135,9 @@ impl BotSim {
 
     /// Replace the program ROM (takes effect as the CPU fetches; reset to restart it).
     pub fn load_program(&mut self, image: &Image) -> Result<(), Error> {
-        if let Some(last) = image.words.iter().rposition(|&w| w != 0) {
-            if last >= 1024 {
-                return Err(Error::ProgramTooLarge(last));
-            }
-        }
-        // SAFETY: 1024 readable words.
-        unsafe { ffi::bot_sim_load_program(self.sim.as_ptr(), image.words.as_ptr(), 1024) };
+        check_program_size(&image.words[..])?;
+        // SAFETY: BOT_ROM_WORDS readable words.
+        unsafe { ffi::bot_sim_load_program(self.sim.as_ptr(), image.words.as_ptr(), BOT_ROM_WORDS) };
         Ok(())
     }
 
@@ -218,7 +163,7 @@ impl BotSim {
     pub fn close_vcd(&mut self) -> Result<(), Error> {
         // SAFETY: live model.
         unsafe { ffi::bot_sim_close_vcd(self.sim.as_ptr()) };
-        fatal().map_or(Ok(()), |msg| Err(stopped_by(msg)))
+        self.fatal().map_or(Ok(()), |msg| Err(stopped_by(msg)))
     }
 
     /// Set MotCtl_in (from the next cycle on).
@@ -272,7 +217,7 @@ impl BotSim {
         let mut o = ffi::BotOutputs::default();
         // SAFETY: live model, writable output.
         if unsafe { ffi::bot_sim_tick(self.sim.as_ptr(), &mut o) } != 0 {
-            return Err(stopped());
+            return Err(self.stopped());
         }
         Ok(Outputs { regs: regs(&o.regs), upd_sysregs: o.upd_sysregs != 0, vid_pixel_out: o.vid_pixel_out })
     }
@@ -282,7 +227,7 @@ impl BotSim {
         // SAFETY: live model.
         let n = unsafe { ffi::bot_sim_run(self.sim.as_ptr(), cycles) };
         if n < cycles {
-            return Err(stopped());
+            return Err(self.stopped());
         }
         Ok(())
     }
@@ -303,7 +248,7 @@ impl BotSim {
         }
     }
 
-    /// Hold the reset pin high (`true`) or release it; [`BotSim::reset`] pulses it.
+    /// Hold the reset pin high (`true`) or release it; [`RtlBot::reset`] pulses it.
     pub fn hold_reset(&mut self, held: bool) {
         // SAFETY: live model.
         unsafe { ffi::bot_sim_set_reset(self.sim.as_ptr(), held as u8) };
@@ -312,7 +257,7 @@ impl BotSim {
         }
     }
 
-    /// The cycle budget of [`BotSim::wait_update`].
+    /// The cycle budget of [`RtlBot::wait_update`].
     pub fn update_budget(&self) -> u64 {
         self.budget
     }
@@ -334,19 +279,17 @@ impl BotSim {
                 self.next_sample += 1;
                 Ok(s)
             }
-            0 => {
-                Err(Error::Timeout { waited_for: "upd_sysregs pulse", budget, cycle: self.cycle(), cpu: self.cpu_at() })
-            }
-            _ => Err(stopped()),
+            0 => Err(Error::no_update(budget, self.cycle(), self.cpu_at())),
+            _ => Err(self.stopped()),
         }
     }
 
-    /// As [`BotSim::wait_update`], appending every port access of the CPU to `events`.
+    /// As [`RtlBot::wait_update`], appending every port access of the CPU to `events`.
     pub fn wait_update_recording(&mut self, events: &mut Vec<PortEvent>) -> Result<Snapshot, Error> {
         self.wait_update_recording_within(self.budget, events)
     }
 
-    /// As [`BotSim::wait_update_within`], appending every port access of the CPU to `events`.
+    /// As [`RtlBot::wait_update_within`], appending every port access of the CPU to `events`.
     pub fn wait_update_recording_within(
         &mut self,
         budget: u64,
@@ -354,9 +297,7 @@ impl BotSim {
     ) -> Result<Snapshot, Error> {
         match self.record(budget, true, events)? {
             Some(s) => Ok(s),
-            None => {
-                Err(Error::Timeout { waited_for: "upd_sysregs pulse", budget, cycle: self.cycle(), cpu: self.cpu_at() })
-            }
+            None => Err(Error::no_update(budget, self.cycle(), self.cpu_at())),
         }
     }
 
@@ -387,14 +328,14 @@ impl BotSim {
                 )
             };
             events.extend(buf[..n].iter().map(|e| PortEvent {
-                cycle: e.cycle,
-                access: match e.kind {
-                    0 => PortAccess::Read,
-                    1 => PortAccess::Write,
-                    _ => PortAccess::WriteK,
+                kind: match e.kind {
+                    0 => PortKind::Read,
+                    1 => PortKind::Write,
+                    _ => PortKind::KWrite,
                 },
                 port: e.port,
                 value: e.value,
+                cycle: e.cycle,
             }));
             match rc {
                 1 => {
@@ -405,7 +346,7 @@ impl BotSim {
                 0 => return Ok(None),
                 // The buffer filled up: carry on from where the model stopped.
                 -2 => left -= self.cycle() - start,
-                _ => return Err(stopped()),
+                _ => return Err(self.stopped()),
             }
         }
     }
@@ -439,17 +380,19 @@ impl BotSim {
     }
 }
 
-/// The fatal runtime error that stopped a model on this thread, if any (taken once).
-fn fatal() -> Option<String> {
-    let mut buf = [0u8; 512];
-    // SAFETY: a writable buffer of the given length.
-    let n = unsafe { ffi::botsim_take_fatal(buf.as_mut_ptr().cast(), buf.len()) };
-    (n > 0).then(|| String::from_utf8_lossy(&buf[..n]).into_owned())
-}
+impl RtlBot {
+    /// The fatal runtime error that stopped this model, if any (taken once).
+    fn fatal(&mut self) -> Option<String> {
+        let mut buf = [0u8; 512];
+        // SAFETY: live model, a writable buffer of the given length.
+        let n = unsafe { ffi::bot_sim_take_fatal(self.sim.as_ptr(), buf.as_mut_ptr().cast(), buf.len()) };
+        (n > 0).then(|| String::from_utf8_lossy(&buf[..n.min(buf.len() - 1)]).into_owned())
+    }
 
-/// Why a model refused to run on.
-fn stopped() -> Error {
-    fatal().map_or(Error::Finished, stopped_by)
+    /// Why the model refused to run on.
+    fn stopped(&mut self) -> Error {
+        self.fatal().map_or(Error::Finished, stopped_by)
+    }
 }
 
 fn stopped_by(msg: String) -> Error {
@@ -470,9 +413,49 @@ fn regs(r: &ffi::BotRegs) -> Registers {
     }
 }
 
-impl Drop for BotSim {
+impl Backend for RtlBot {
+    fn wait_update_within(&mut self, budget: u64) -> Result<Snapshot, Error> {
+        RtlBot::wait_update_within(self, budget)
+    }
+    fn update_budget(&self) -> u64 {
+        self.budget
+    }
+    fn set_update_budget(&mut self, cycles: u64) {
+        self.budget = cycles;
+    }
+    fn set_motors(&mut self, m: MotCtl) {
+        RtlBot::set_motors(self, m)
+    }
+    fn cycle(&self) -> u64 {
+        RtlBot::cycle(self)
+    }
+    fn cpu_at(&self) -> CpuAt {
+        RtlBot::cpu_at(self)
+    }
+}
+
+impl Drop for RtlBot {
     fn drop(&mut self) {
         // SAFETY: created by bot_sim_new, freed once, on its thread (the type is !Send).
         unsafe { ffi::bot_sim_free(self.sim.as_ptr()) }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn taking_a_fatal_message_into_no_buffer_writes_nothing() {
+        // A zero-length buffer used to underflow the copy's length.
+        let mut bot = RtlBot::builder().timing(Timing::Fast).build().unwrap();
+        // SAFETY: live model; a zero-length buffer may be null.
+        let n = unsafe { ffi::bot_sim_take_fatal(bot.sim.as_ptr(), std::ptr::null_mut(), 0) };
+        assert_eq!(n, 0);
+        assert!(bot.fatal().is_none());
+        let mut one = [0x55u8; 1];
+        // SAFETY: live model, a one-byte buffer.
+        let n = unsafe { ffi::bot_sim_take_fatal(bot.sim.as_ptr(), one.as_mut_ptr().cast(), 1) };
+        assert_eq!((n, one[0]), (0, 0), "the terminating NUL only");
     }
 }

@@ -7,7 +7,7 @@
 //! driven from Rust each cycle.
 //!
 //! ```
-//! use botsim::cpu::CpuHarness;
+//! use botsim::sim::rtl::CpuHarness;
 //! use kcpsm6::iss::{Pins, ScratchPad};
 //! let p = kcpsm6::asm::assemble_str("LOAD s0, 2A\nOUTPUT s0, 07\n").unwrap();
 //! let mut dut = CpuHarness::new(ScratchPad::B64);
@@ -29,7 +29,7 @@ use std::ptr::NonNull;
 
 use kcpsm6::iss::{Config, Phase, Pins, ScratchPad};
 
-use crate::rtl::{ffi, CPU_VARIANTS};
+use super::{ffi, CPU_VARIANTS};
 
 /// The core's ports during one cycle.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

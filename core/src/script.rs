@@ -7,8 +7,8 @@
 //! from reset.
 //!
 //! ```
-//! use botsim::script::MotorScript;
-//! use botsim::MotCtl;
+//! use botsim_core::script::MotorScript;
+//! use botsim_core::MotCtl;
 //! let s = MotorScript::parse("m.txt", "forward 2  # go\n0x30 1\n").unwrap();
 //! assert_eq!(s.total(), 3);
 //! assert_eq!(s.value_for(1), MotCtl::FORWARD);

@@ -2,10 +2,10 @@
 //! CPU and no firmware. The scoreboard tests compare every RTL snapshot with it.
 //!
 //! ```
-//! use botsim::model::Model;
-//! use botsim::regs::MotCtl;
-//! use botsim::world::World;
-//! let mut m = Model::new(World::builtin(), 15, Default::default());
+//! use botsim_core::golden::GoldenBot;
+//! use botsim_core::regs::MotCtl;
+//! use botsim_core::world::World;
+//! let mut m = GoldenBot::new(World::builtin(), 15, Default::default());
 //! assert_eq!(m.initial().bot_info, 0x02);
 //! for n in 1..=15 {
 //!     let r = m.step(MotCtl::FORWARD);
@@ -35,7 +35,7 @@ const SW_RIGHT_BOTSIM20: (i8, i8) = (-1, 0);
 
 /// The bot's state between samples.
 #[derive(Clone, Debug)]
-pub struct Model {
+pub struct GoldenBot {
     world: World,
     threshold: u8,
     compat: Compat,
@@ -46,10 +46,10 @@ pub struct Model {
     rm_dist: u8,
 }
 
-impl Model {
+impl GoldenBot {
     /// The state after reset: (0x40, 0x40) facing East, counters 0.
-    pub fn new(world: World, threshold: u8, compat: Compat) -> Model {
-        Model { world, threshold, compat, x: 0x40, y: 0x40, orient: Orientation::East, lm_dist: 0, rm_dist: 0 }
+    pub fn new(world: World, threshold: u8, compat: Compat) -> GoldenBot {
+        GoldenBot { world, threshold, compat, x: 0x40, y: 0x40, orient: Orientation::East, lm_dist: 0, rm_dist: 0 }
     }
 
     pub fn world(&self) -> &World {

@@ -10,7 +10,7 @@ use std::path::Path;
 /// ```
 /// let dir = tempfile::tempdir().unwrap();
 /// let p = dir.path().join("out.txt");
-/// botsim::files::write_atomic(&p, b"hello").unwrap();
+/// botsim_core::files::write_atomic(&p, b"hello").unwrap();
 /// assert_eq!(std::fs::read(&p).unwrap(), b"hello");
 /// ```
 pub fn write_atomic(path: &Path, data: &[u8]) -> Result<(), String> {

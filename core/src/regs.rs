@@ -2,7 +2,7 @@
 //! movement, sensors, and the snapshot published at each upd_sysregs pulse.
 //!
 //! ```
-//! use botsim::regs::{MotCtl, Movement, Orientation};
+//! use botsim_core::regs::{MotCtl, Movement, Orientation};
 //! assert_eq!(MotCtl::FORWARD.movement(), Movement::Forward);
 //! assert_eq!(MotCtl(0x44).movement(), Movement::Stopped); // speed bits 7,6,3,2 are ignored
 //! assert_eq!(Orientation::East.turned(Movement::SlowRight), Orientation::SouthEast);
@@ -284,6 +284,29 @@ impl Snapshot {
     /// (LMDist, RMDist).
     pub fn distances(&self) -> (u8, u8) {
         (self.regs.lm_dist, self.regs.rm_dist)
+    }
+
+    /// A counter reached `threshold` in this iteration: a threshold event (spec §5.3 step 7),
+    /// whose turn or move shows in the next snapshot.
+    pub fn threshold_event(&self, threshold: u8) -> bool {
+        self.regs.lm_dist >= threshold || self.regs.rm_dist >= threshold
+    }
+
+    /// This snapshot's threshold event was a forward or reverse move that the world refused:
+    /// `next` (the following snapshot) shows the same location (the destination cell is an
+    /// obstruction, spec §5.3). The one definition of a blocked move.
+    ///
+    /// ```
+    /// use botsim_core::{Registers, Snapshot};
+    /// let at = |sample, loc_x, lm_dist| Snapshot { sample, cycle: 0, regs: Registers { loc_x, loc_y: 64, bot_info: 0x42, lm_dist, rm_dist: lm_dist, ..Registers::default() } };
+    /// assert!(at(15, 64, 15).move_refused(&at(16, 64, 1), 15)); // forward, event, still at 64
+    /// assert!(!at(15, 64, 15).move_refused(&at(16, 65, 1), 15)); // it moved
+    /// assert!(!at(14, 64, 14).move_refused(&at(15, 64, 15), 15)); // no event yet
+    /// ```
+    pub fn move_refused(&self, next: &Snapshot, threshold: u8) -> bool {
+        self.threshold_event(threshold)
+            && matches!(self.movement(), Movement::Forward | Movement::Reverse)
+            && self.location() == next.location()
     }
 }
 

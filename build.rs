@@ -28,20 +28,14 @@ struct Design {
 /// The CPU harness variants: scratch-pad size, hwbuild, interrupt_vector.
 const CPU_VARIANTS: [(u32, u8, u16); 3] = [(64, 0x00, 0x3FF), (128, 0x5A, 0x1C0), (256, 0xFF, 0x7F0)];
 
-const CPU_SOURCES: &[&str] =
-    &["rtl/kcpsm6.vlt", "rtl/kcpsm6.v", "rtl/sim/kcpsm6_harness.v", "rtl/sim/kcpsm6_harness.vlt"];
-
-/// The BotSim top; bot_pgm.v is generated from rtl/bot_pgm.psm into OUT_DIR.
-const BOT_SOURCES: &[&str] = &[
-    "rtl/kcpsm6.vlt",
-    "rtl/bot.vlt",
-    "rtl/kcpsm6.v",
-    "rtl/world_if.v",
-    "rtl/map.v",
-    "rtl/world_map.v",
-    "rtl/bot.v",
-    "rtl/sim/bot.vlt",
-];
+/// A design's file list (rtl/bot.f, rtl/sim/cpu.f: one path per line relative to the
+/// repository, `#` comments), the one list the gate and the scripts read too.
+fn file_list(root: &Path, list: &str) -> Vec<PathBuf> {
+    let path = root.join(list);
+    println!("cargo:rerun-if-changed={}", path.display());
+    let text = fs::read_to_string(&path).unwrap_or_else(|e| fail(&format!("cannot read {list}: {e}")));
+    text.lines().map(str::trim).filter(|l| !l.is_empty() && !l.starts_with('#')).map(|l| root.join(l)).collect()
+}
 
 fn fail(msg: &str) -> ! {
     eprintln!("error: {msg}");
@@ -56,7 +50,7 @@ fn main() {
     println!("cargo:rerun-if-env-changed=VERILATOR");
     println!("cargo:rerun-if-env-changed=VERILATOR_ROOT");
     println!("cargo:rerun-if-env-changed=BOTSIM_COVERAGE");
-    // A coverage build (scripts/coverage.sh): line and toggle coverage points in every model.
+    // A coverage build (scripts/ci/coverage.sh): line and toggle coverage points in every model.
     let coverage = env::var_os("BOTSIM_COVERAGE").is_some();
 
     let verilator = env::var("VERILATOR").unwrap_or_else(|_| "verilator".into());
@@ -71,7 +65,7 @@ fn main() {
                 _ => "Vcpu256",
             },
             top: "kcpsm6_harness",
-            sources: CPU_SOURCES.iter().map(|s| root.join(s)).collect(),
+            sources: file_list(&root, "rtl/sim/cpu.f"),
             params: vec![
                 format!("-GSPM_SIZE={spm}"),
                 format!("-GHWBUILD=8'h{hw:02X}"),
@@ -80,7 +74,9 @@ fn main() {
         })
         .collect();
     let bot_pgm = assemble_firmware(&root, &out);
-    let mut bot_sources: Vec<PathBuf> = BOT_SOURCES.iter().map(|s| root.join(s)).collect();
+    // The design, the simulator's own waivers (public signals the shim reads), the firmware.
+    let mut bot_sources = file_list(&root, "rtl/bot.f");
+    bot_sources.push(root.join("rtl/sim/bot.vlt"));
     bot_sources.push(bot_pgm);
     designs.push(Design { prefix: "Vbot", top: "bot", sources: bot_sources, params: vec![] });
     designs.sort_by_key(|d| d.prefix);

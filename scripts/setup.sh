@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what botsim needs on a fresh Debian machine (bookworm): Verilator 5.006 to build the
-# RTL model, libclang for bindgen, and Icarus Verilog + Yosys for the CI gate.
+# RTL model, libclang for bindgen, Icarus Verilog + Yosys for the CI gate, python3 for its
+# coverage report.
 # Safe to run twice: it only installs what is missing.
 set -euo pipefail
 
@@ -12,6 +13,7 @@ dpkg -s libclang-dev >/dev/null 2>&1 || need+=(libclang-dev)
 command -v g++       >/dev/null 2>&1 || need+=(g++)
 command -v make      >/dev/null 2>&1 || need+=(make)
 command -v bc        >/dev/null 2>&1 || need+=(bc)
+command -v python3   >/dev/null 2>&1 || need+=(python3)
 
 if [ ${#need[@]} -gt 0 ]; then
   echo "setup: installing ${need[*]}"

@@ -1,6 +1,6 @@
 //! Files kept in the repository for FPGA users must equal what the toolchain generates now:
 //! rtl/bot_pgm.v (from rtl/bot_pgm.psm) and rtl/default_world.mem (the built-in world).
-//! Run `scripts/regen.sh` (BOTSIM_BLESS=1) after changing either source.
+//! Run `scripts/dev/regen.sh` (BOTSIM_BLESS=1) after changing either source.
 
 use std::path::Path;
 
@@ -15,7 +15,7 @@ fn check(rel: &str, want: &str) {
         return;
     }
     let have = std::fs::read_to_string(&path).unwrap_or_default();
-    assert!(have == want, "{rel} is out of date: run scripts/regen.sh and commit it");
+    assert!(have == want, "{rel} is out of date: run scripts/dev/regen.sh and commit it");
 }
 
 #[test]

@@ -457,7 +457,7 @@ impl Cpu {
         // The second cycle of the instruction decoded in the previous cycle (never a D).
         let mut retired = self.pending.take().map(|p| self.second_cycle(p, bus, cycle));
         match phase {
-            Phase::Decode => self.decode(cycle),
+            Phase::Decode => self.pending = Some(self.decode(cycle)),
             Phase::Fetch => self.instr = self.rom[self.pc as usize],
             Phase::Idle => {}
         }
@@ -503,7 +503,8 @@ impl Cpu {
     /// The D cycle (§2.2, §2.5, §2.6, §2.8): the stack RAM write, the next PC, depth, IE and
     /// bank, and the second-cycle flops with the ALU result computed from this cycle's
     /// operands. The internal reset, if active, clears PC, depth, IE and bank afterwards.
-    fn decode(&mut self, cycle: u64) {
+    #[inline(always)]
+    fn decode(&mut self, cycle: u64) -> Pending {
         let w = self.instr;
         let op = Opcode::of(w);
         let entry = self.active_interrupt;
@@ -527,7 +528,7 @@ impl Cpu {
         };
 
         let (result, carry, zero) = self.alu(op, top);
-        self.pending = Some(Pending {
+        let pending = Pending {
             kind: if entry { RetireKind::Interrupt } else { RetireKind::Executed },
             cycle,
             pc: self.pc,
@@ -536,7 +537,7 @@ impl Cpu {
             result,
             carry,
             zero,
-        });
+        };
 
         self.pc = next_pc;
         self.depth = (self.depth + push as u8).wrapping_sub(pop as u8) & 31;
@@ -551,11 +552,12 @@ impl Cpu {
             Opcode::ReturnI => self.bank = top.bank,
             _ => {}
         }
+        pending
     }
 
     /// The ALU in D: the value the second cycle writes, its carry and zero (§1.2-§1.4; RETURNI:
     /// the flags of the stack's top entry).
-    #[inline]
+    #[inline(always)]
     fn alu(&self, op: Opcode, top: StackEntry) -> (u8, bool, bool) {
         let sx = self.sx();
         let k = self.operand();
@@ -592,6 +594,7 @@ impl Cpu {
 
     /// The second cycle: register, flag and scratch-pad writes and the strobe of the
     /// instruction decoded in the cycle before (through the live ports of this cycle).
+    #[inline(always)]
     fn second_cycle<B: Bus>(&mut self, p: Pending, bus: &mut B, cycle: u64) -> Retired {
         let mut r = Retired {
             kind: p.kind,
@@ -728,8 +731,7 @@ impl Cpu {
             // in the steady state, without the sequencer's bookkeeping.
             let d = self.cycle;
             self.xb = self.bank ^ (Opcode::of(self.instr) == Opcode::Star);
-            self.decode(d);
-            let p = self.pending.take().expect("decode loads the second cycle");
+            let p = self.decode(d);
             self.second_cycle(p, bus, d + 1);
             self.instr = self.rom[self.pc as usize];
             self.xb = self.bank;

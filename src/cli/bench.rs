@@ -56,39 +56,25 @@ fn iss(samples: u64) -> Result<f64, String> {
     Ok(rate(bot.cycle(), t.elapsed().as_secs_f64()))
 }
 
-/// Icarus on rtl/sim/bot_tb.v (fast firmware): None when Icarus or the RTL sources are absent.
-fn icarus(samples: u32, dir: &Path) -> Option<f64> {
-    let rtl = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("rtl");
-    if !rtl.join("sim/bot_tb.v").exists() || Command::new("iverilog").arg("-V").output().is_err() {
+/// Icarus through the repository's one runner (scripts/lib/icarus-bot.sh, fast firmware):
+/// None outside a checkout or without Icarus.
+fn icarus(samples: u32) -> Option<f64> {
+    let runner = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("scripts/lib/icarus-bot.sh");
+    if !runner.exists() || Command::new("iverilog").arg("-V").output().is_err() {
         return None;
     }
-    let fw = Firmware { timing: Timing::Fast, ..Firmware::default() };
-    let program = fw.assemble().ok()?;
-    let v =
-        botsim::kcpsm6::output::verilog_rom(&program, "bot_pgm", "bot_pgm.psm", botsim::kcpsm6::asm::RomSize::K1, None);
-    std::fs::write(dir.join("bot_pgm.v"), v).ok()?;
-    let vvp = dir.join("tb.vvp");
-    let ok = Command::new("iverilog")
-        .args(["-g2005", "-o"])
-        .arg(&vvp)
-        .args(["-s", "bot_tb"])
-        .arg(format!("-Pbot_tb.WORLD=\"{}\"", rtl.join("default_world.mem").display()))
-        .arg(format!("-Pbot_tb.SAMPLES={samples}"))
-        .args(["kcpsm6.v", "world_if.v", "map.v", "world_map.v", "bot.v"].map(|f| rtl.join(f)))
-        .arg(dir.join("bot_pgm.v"))
-        .arg(rtl.join("sim/bot_tb.v"))
-        .status()
-        .ok()?
-        .success();
-    if !ok {
-        return None;
-    }
-    let t = Instant::now();
-    let out = Command::new("vvp").arg("-N").arg(&vvp).output().ok()?;
-    let secs = t.elapsed().as_secs_f64();
-    let text = String::from_utf8_lossy(&out.stdout);
-    let last_cycle: u64 = text.lines().last()?.split(',').nth(1)?.parse().ok()?;
-    Some(rate(last_cycle, secs))
+    let out = Command::new("bash")
+        .arg(&runner)
+        .arg(samples.to_string())
+        .env("BOTSIM", std::env::current_exe().ok()?)
+        .output()
+        .ok()?;
+    // stderr: "icarus: CYCLES cycles in SECONDS s"
+    let report = String::from_utf8_lossy(&out.stderr);
+    let mut words = report.lines().last()?.split_whitespace().skip(1);
+    let cycles: u64 = words.next()?.parse().ok()?;
+    let seconds: f64 = words.nth(2)?.parse().ok()?;
+    out.status.success().then(|| rate(cycles, seconds))
 }
 
 pub fn run(args: Args) -> Result<(), String> {
@@ -99,7 +85,7 @@ pub fn run(args: Args) -> Result<(), String> {
         let rtl = rtl(4_000_000 * scale)?;
         let vcd = rtl_vcd(60_000 * scale, &dir)?;
         let iss = iss(20 * scale)?;
-        let icarus = icarus(5 * scale as u32, &dir);
+        let icarus = icarus(5 * scale as u32);
         Ok::<_, String>((rtl, vcd, iss, icarus))
     })();
     let _ = std::fs::remove_dir_all(&dir);

@@ -12,14 +12,17 @@
 # Prints each stage's time. Needs scripts/setup.sh; builds what it needs.
 # GATE_STAGES="lint yosys" runs only the named stages (in the order above).
 set -uo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 root=$PWD
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 botsim=target/release/botsim
 
-RTL="rtl/kcpsm6.v rtl/world_if.v rtl/map.v rtl/world_map.v rtl/bot.v"
-WAIVERS="rtl/kcpsm6.vlt rtl/bot.vlt"
+. scripts/lib/rtl.sh
+# The design's files, from its list (rtl/bot.f): all of them for Verilator, the Verilog alone
+# for Yosys.
+BOT=$(rtl_files rtl/bot.f | tr '\n' ' ')
+RTL=$(rtl_files rtl/bot.f v | tr '\n' ' ')
 
 fail() {
   echo "gate: FAILED in stage '$stage': $*" >&2
@@ -54,21 +57,14 @@ lint() {
     lint_one rtl/world_map.v &&
     lint_one --top-module map rtl/map.v rtl/world_map.v &&
     lint_one rtl/bot_pgm.v &&
-    lint_one --top-module kcpsm6_harness rtl/kcpsm6.vlt rtl/kcpsm6.v rtl/sim/kcpsm6_harness.v rtl/sim/kcpsm6_harness.vlt &&
-    lint_one --top-module bot $WAIVERS $RTL rtl/bot_pgm.v &&
-    lint_one --top-module bot +define+BOTSIM_LOC_Y_REG $WAIVERS $RTL rtl/bot_pgm.v
+    lint_one --top-module kcpsm6_harness $(rtl_files rtl/sim/cpu.f) &&
+    lint_one --top-module bot $BOT rtl/bot_pgm.v &&
+    lint_one --top-module bot +define+BOTSIM_LOC_Y_REG $BOT rtl/bot_pgm.v
 }
 
 icarus() {
   local samples=12
-  "$botsim" firmware --timing fast -o "$work/bot_pgm.v" || return 1
-  iverilog -g2005 -Wall -o "$work/tb.vvp" -s bot_tb -Pbot_tb.WORLD="\"$root/rtl/default_world.mem\"" \
-    -Pbot_tb.SAMPLES=$samples $RTL "$work/bot_pgm.v" rtl/sim/bot_tb.v || return 1
-  vvp -N "$work/tb.vvp" > "$work/icarus.txt" || return 1
-  if grep -q ERROR "$work/icarus.txt"; then
-    cat "$work/icarus.txt" >&2
-    return 1
-  fi
+  BOTSIM=$botsim bash scripts/lib/icarus-bot.sh $samples > "$work/icarus.txt" || return 1
   printf 'forward %d\n' $samples > "$work/motors.txt"
   "$botsim" run --timing fast --motors "$work/motors.txt" --trace-csv "$work/verilator.csv" --quiet || return 1
   tail -n +2 "$work/verilator.csv" > "$work/verilator.txt"
@@ -122,7 +118,7 @@ xinit() {
 }
 
 coverage() {
-  bash scripts/coverage.sh --check
+  bash scripts/ci/coverage.sh --check
 }
 
 fuzz() {
@@ -130,7 +126,7 @@ fuzz() {
     echo "gate: cargo-fuzz not installed; skipping the fuzz smoke run"
     return 0
   fi
-  bash scripts/fuzz.sh "${FUZZ_SECONDS:-20}"
+  bash scripts/dev/fuzz.sh "${FUZZ_SECONDS:-20}"
 }
 
 rust() {

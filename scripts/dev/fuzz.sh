@@ -4,14 +4,14 @@
 #   image   program images: .hex, .mem, Xilinx-template and behavioural .v
 #   world   world maps: .txt, .coe, .mem, .png (+ round trip through the same format)
 #   script  motor scripts
-# Usage: scripts/fuzz.sh [SECONDS-PER-TARGET] [TARGET...]   (default 60 s, all targets)
+# Usage: scripts/dev/fuzz.sh [SECONDS-PER-TARGET] [TARGET...]   (default 60 s, all targets)
 # The corpus grows in fuzz/corpus/TARGET (seeded from fuzz/seeds/TARGET); a finding is written
 # to fuzz/artifacts/TARGET and makes the script fail. Keep reproducers in fuzz/regressions/
-# TARGET: tests/fuzz_corpus.rs replays them and the corpora in every `cargo test`. The
+# TARGET: core/tests/fuzz_corpus.rs replays them and the corpora in every `cargo test`. The
 # committed corpora are minimised (`cargo fuzz cmin`) and keep the inputs of up to 4 KB.
 # Needs cargo-fuzz (`cargo install cargo-fuzz`); stable Rust runs it with RUSTC_BOOTSTRAP=1.
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 secs=${1:-60}
 shift || true
 targets=("$@")

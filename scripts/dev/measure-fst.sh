@@ -2,9 +2,9 @@
 # Measure FST against VCD for the whole `bot` design: the same RTL, firmware (fast timing)
 # and stimulus (forward), the same number of cycles, one build per format (Verilator 5.006
 # builds one trace format at a time). Prints size and speed of each. Needs zlib1g-dev.
-# Usage: scripts/measure-fst.sh [CYCLES]   (default 2,000,000)
+# Usage: scripts/dev/measure-fst.sh [CYCLES]   (default 2,000,000)
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 cycles=${1:-2000000}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -34,7 +34,8 @@ int main(int argc, char** argv) {
     printf("%.2f Mcycles/s\n", n / s / 1e6);
 }
 CPP
-rtl="rtl/kcpsm6.vlt rtl/bot.vlt rtl/kcpsm6.v rtl/world_if.v rtl/map.v rtl/world_map.v rtl/bot.v $work/bot_pgm.v"
+. scripts/lib/rtl.sh
+rtl="$(rtl_files rtl/bot.f | tr '\n' ' ') $work/bot_pgm.v"
 for fmt in vcd fst; do
   if [ $fmt = vcd ]; then flag=--trace; h='"verilated_vcd_c.h"'; t=VerilatedVcdC; rt=verilated_vcd_c.cpp; lib=
   else flag=--trace-fst; h='"verilated_fst_c.h"'; t=VerilatedFstC; rt=verilated_fst_c.cpp; lib=-lz; fi

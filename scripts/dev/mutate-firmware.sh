@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Mutation check of the BotSim testbench: apply one deliberate bug at a time to
 # rtl/bot_pgm.psm, run the system tests, and report which test caught it. Restores the file.
-# Usage: scripts/mutate-firmware.sh [NAME-PATTERN]   (all mutations by default; several minutes)
+# Usage: scripts/dev/mutate-firmware.sh [NAME-PATTERN]   (all mutations by default; several minutes)
 set -uo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 src=rtl/bot_pgm.psm
 
 # name | sed expression (applied to rtl/bot_pgm.psm)
@@ -23,5 +23,5 @@ mutations=(
   "diagonal L/R use the 90-degree step|s/^        LOAD s0, 01                   ; ... or 45 degrees on a diagonal$/        LOAD s0, 02/"
 )
 
-. scripts/mutate-lib.sh
+. scripts/dev/mutate-lib.sh
 mutate "$src" "${1:-}" --test bot_spec --test scoreboard --test cli_run -- "${mutations[@]}"

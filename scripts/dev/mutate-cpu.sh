@@ -2,9 +2,9 @@
 # Mutation check of the CPU testbench: apply one deliberate bug at a time to rtl/kcpsm6.v,
 # run the CPU tests, and report which test caught it. Restores the file afterwards.
 # The "old:" entries put back what the core did before the spec's §2.2/§2.4-§2.8 corrections.
-# Usage: scripts/mutate-cpu.sh [NAME-PATTERN]   (all mutations by default; several minutes)
+# Usage: scripts/dev/mutate-cpu.sh [NAME-PATTERN]   (all mutations by default; several minutes)
 set -uo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 src=rtl/kcpsm6.v
 
 # name | sed expression (applied to rtl/kcpsm6.v)
@@ -38,5 +38,5 @@ mutations=(
   "old: the ALU result is taken in the second cycle (2.8)|s/registers\[{xb, sx_addr}\] <= op_input ? in_port : result_q;/registers[{xb, sx_addr}] <= op_input ? in_port : alu_result;/"
 )
 
-. scripts/mutate-lib.sh
+. scripts/dev/mutate-lib.sh
 mutate "$src" "${1:-}" --test cpu_lockstep --test cpu_timing -- "${mutations[@]}"

@@ -2,15 +2,15 @@
 # RTL coverage of the testbench: builds the models with Verilator line and toggle coverage (a
 # separate target dir), runs the RTL tests, merges the per-model files and prints line and
 # toggle coverage per RTL module. With --check, fails when a module is under its floor
-# (scripts/coverage_floors.txt).
-# Usage: scripts/coverage.sh [--check]
+# (scripts/ci/coverage_floors.txt).
+# Usage: scripts/ci/coverage.sh [--check]
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 out=target/coverage/dat
 rm -rf "$out"
 mkdir -p "$out"
 export BOTSIM_COVERAGE=1 CARGO_TARGET_DIR=target/coverage BOTSIM_COVERAGE_DIR=$PWD/$out
-cargo test --release -q --test cpu_lockstep --test cpu_timing --test bot_spec --test scoreboard --test line_follow \
+cargo test --workspace --release -q --test cpu_lockstep --test cpu_timing --test bot_spec --test scoreboard --test line_follow \
   > "$out/tests.log" 2>&1 || { tail -30 "$out/tests.log"; exit 1; }
 verilator_coverage --write "$out/merged.dat" "$out"/cov-*.dat
-python3 scripts/coverage_report.py "$out/merged.dat" scripts/coverage_floors.txt "$@"
+python3 scripts/ci/coverage_report.py "$out/merged.dat" scripts/ci/coverage_floors.txt "$@"

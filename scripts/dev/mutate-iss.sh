@@ -3,9 +3,9 @@
 # time to kcpsm6/src/iss.rs, run the CPU spec and lock-step tests (they run every spec rule on
 # the ISS as well as on the RTL) and the ISS's own tests, and report which test caught it.
 # The "old:" entries put back what the ISS did before the spec's §2.4-§2.8 corrections.
-# Usage: scripts/mutate-iss.sh [NAME-PATTERN]
+# Usage: scripts/dev/mutate-iss.sh [NAME-PATTERN]
 set -uo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../.."
 src=kcpsm6/src/iss.rs
 
 # name | sed expression (applied to kcpsm6/src/iss.rs)
@@ -22,5 +22,5 @@ mutations=(
   "RETURN resumes at the CALL|s/Opcode::Return | Opcode::LoadReturn if taken => (top.pc + 1) \& 0xFFF,/Opcode::Return | Opcode::LoadReturn if taken => top.pc,/"
 )
 
-. scripts/mutate-lib.sh
-mutate "$src" "${1:-}" --workspace --test cpu_lockstep --test cpu_timing --test iss -- "${mutations[@]}"
+. scripts/dev/mutate-lib.sh
+mutate "$src" "${1:-}" --test cpu_lockstep --test cpu_timing --test iss -- "${mutations[@]}"

@@ -3,6 +3,6 @@
 #   rtl/bot_pgm.v          from rtl/bot_pgm.psm (the firmware with its default constants)
 #   rtl/default_world.mem  from the built-in world (src/world.rs)
 set -euo pipefail
-cd "$(dirname "$0")/.."
-BOTSIM_BLESS=1 cargo test --release --test generated -q
+cd "$(dirname "$0")/../.."
+BOTSIM_BLESS=1 cargo test --workspace --release --test generated -q
 git status --short rtl/bot_pgm.v rtl/default_world.mem

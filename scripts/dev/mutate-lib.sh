@@ -1,6 +1,6 @@
 # mutate-lib.sh: the loop shared by the mutation scripts (sourced, not run).
 #   mutate FILE FILTER TEST-ARGS... -- "name|sed expression"...
-# applies each mutation to FILE alone, runs `cargo test --release --no-fail-fast TEST-ARGS`,
+# applies each mutation to FILE alone, runs `cargo test --workspace --release --no-fail-fast TEST-ARGS`,
 # reports CAUGHT (with the failing tests), MISSED, BUILD FAILS or NOT APPLIED, and restores FILE.
 mutate() {
   local file=$1 filter=$2
@@ -23,7 +23,7 @@ mutate() {
       echo "NOT APPLIED  $name"
       continue
     fi
-    out=$(cargo test --release --no-fail-fast "${tests[@]}" 2>&1)
+    out=$(cargo test --workspace --release --no-fail-fast "${tests[@]}" 2>&1)
     failed=$(echo "$out" | grep -E '^test .* FAILED$' | sed -E 's/^test (.*) \.\.\. FAILED/\1/' | tr '\n' ' ')
     if echo "$out" | grep -q "does not assemble\|could not compile\|failed to run custom build"; then
       echo "BUILD FAILS  $name"

@@ -748,7 +748,11 @@ impl Cpu {
         let w = self.instr;
         let pc = self.pc as usize;
         let next = self.rom[(pc + 1) & 0xFFF];
-        if w & 0xFF0FF != 0x19001 || next != (0x36000 | pc as u32) {
+        // SUB sX, 01 (the constant form: bit 12), then JUMP NZ back to it.
+        let countdown = Opcode::of(w) == Opcode::Sub && w & 1 << 12 != 0 && w & 0xFF == 1;
+        let loops_back =
+            Opcode::of(next) == Opcode::Jump && Cond::of(next) == Some(Cond::NZ) && next & 0xFFF == pc as u32;
+        if !(countdown && loops_back) {
             return false;
         }
         let i = reg_index(self.bank, w >> 8);

@@ -640,9 +640,15 @@ mod fast_path {
         let prog = [0x01318, 0x19301, 0x36001, 0x2D301];
         let mut fast = Cpu::new(Config::default(), &prog);
         let mut bus = Recorder::default();
-        fast.run_fast(&mut bus, 1_000, |b| !b.events.is_empty());
+        let mut steps = 0;
+        fast.run_fast(&mut bus, 1_000, |b| {
+            steps += 1;
+            !b.events.is_empty()
+        });
         // LOAD D at 5; the loop 7..103; OUTPUT D at 103, strobe in 104.
         assert_eq!((bus.events[0].cycle, bus.events[0].value), (104, 0));
         assert_eq!(fast.cycle(), 105);
+        // Four reset cycles, LOAD, OUTPUT: the 48 instructions of the loop took one step.
+        assert!(steps < 10, "the countdown was not fast-forwarded: {steps} steps");
     }
 }

@@ -16,6 +16,14 @@ module world_map #(
     initial begin
         if (WORLD_FILE != "") $readmemh(WORLD_FILE, cells);
     end
+`ifdef BOTSIM_WORLD_PLUSARG
+    // Board simulation (botsim board): the world comes from the run's +botsim_world=FILE, so
+    // one build of a design runs on any map.
+    reg [8*4096-1:0] world_path;
+    initial begin
+        if (WORLD_FILE == "" && $value$plusargs("botsim_world=%s", world_path)) $readmemh(world_path, cells);
+    end
+`endif
 
     always @(posedge clka) douta <= cells[addra];
     always @(posedge clkb) doutb <= cells[addrb];

@@ -21,6 +21,7 @@ pub use botsim_core::{
     Cell, Compat, Firmware, MotCtl, Movement, Orientation, Registers, Sensors, Snapshot, Timing, World,
 };
 
+pub mod board;
 pub mod sim;
 
 pub use sim::iss::IssBot;

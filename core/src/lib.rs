@@ -10,6 +10,7 @@
 //! | [`script`] | motor scripts |
 //! | [`firmware`] | the BotSim firmware (`rtl/bot_pgm.psm`) and its assembly-time constants |
 //! | [`golden`] | the golden behavioural model of the spec (no CPU, no firmware) |
+//! | [`board`] | a student's board design: scanning, the substitution plan, pins, the display |
 //! | [`driver`] | closed-loop drivers: the motor script, the line follower |
 //! | [`render`] | pictures: the path on the world, the course's 640 x 480 display |
 //! | [`files`] | output files that are never half-written |
@@ -24,6 +25,7 @@
 //! assert_eq!((after[15].loc_x, after[15].loc_y), (65, 64));
 //! ```
 
+pub mod board;
 pub mod driver;
 pub mod files;
 pub mod firmware;

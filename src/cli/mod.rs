@@ -4,6 +4,7 @@
 mod args;
 mod asm;
 mod bench;
+mod board;
 mod disasm;
 mod firmware;
 mod frame;
@@ -37,6 +38,7 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     Run(run::Args),
+    Board(board::Args),
     Frame(frame::Args),
     Map(map::Args),
     Firmware(firmware::Args),
@@ -57,6 +59,7 @@ pub fn main() -> i32 {
     };
     let result = match cli.command {
         Command::Run(a) => run::run(a),
+        Command::Board(a) => board::run(a),
         Command::Frame(a) => frame::run(a),
         Command::Map(a) => map::run(a),
         Command::Firmware(a) => firmware::run(a),

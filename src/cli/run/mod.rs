@@ -2,6 +2,7 @@
 //! arguments (here), the resolved [`plan`], the [`sample_loop`], the [`outputs`].
 
 mod outputs;
+pub(crate) use outputs::{csv_row, json_row, CSV_HEADER};
 mod plan;
 mod sample_loop;
 

@@ -1,0 +1,141 @@
+//! The board's pins: which port of a user's top module is the clock, the reset button, the
+//! buttons, switches, LEDs, the seven-segment display and VGA (spec board.md 1), by the names
+//! the course's constraint files use (Nexys4 2014 and 2016, Nexys3, Nexys4 DDR / A7).
+
+use super::scan::{Dir, Module};
+
+/// What a top-level port is wired to in the simulated board.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Role {
+    /// The 100 MHz oscillator.
+    Clock,
+    /// The CPU reset button; `active_low` as on the Nexys4.
+    Reset {
+        active_low: bool,
+    },
+    /// Push button 0..4 = C, U, D, L, R.
+    Button(u8),
+    Switches,
+    Leds,
+    /// `seg[6:0]` = g..a, or `seg[7:0]` with the decimal point in bit 7 (Nexys3).
+    Segments,
+    /// One segment line (Nexys4 DDR: CA..CG = 0..6).
+    Segment(u8),
+    DecimalPoint,
+    Anodes,
+    VgaRed,
+    VgaGreen,
+    VgaBlue,
+    Hsync,
+    Vsync,
+}
+
+/// The role of a port named `name`, if it is one of the board's pins.
+pub fn role(name: &str) -> Option<Role> {
+    Some(match name {
+        "clk" | "clk100" | "CLK100MHZ" | "clk_100mhz" | "sysclk" => Role::Clock,
+        "btnCpuReset" | "CPU_RESETN" | "cpu_resetn" | "btnCpuReset_n" => Role::Reset { active_low: true },
+        "btns" | "btnCpuReset_p" => Role::Reset { active_low: false },
+        "btnC" | "btnc" | "BTNC" => Role::Button(0),
+        "btnU" | "btnu" | "BTNU" => Role::Button(1),
+        "btnD" | "btnd" | "BTND" => Role::Button(2),
+        "btnL" | "btnl" | "BTNL" => Role::Button(3),
+        "btnR" | "btnr" | "BTNR" => Role::Button(4),
+        "sw" | "SW" | "switches" => Role::Switches,
+        "led" | "LED" | "leds" => Role::Leds,
+        "seg" | "SEG" => Role::Segments,
+        "CA" => Role::Segment(0),
+        "CB" => Role::Segment(1),
+        "CC" => Role::Segment(2),
+        "CD" => Role::Segment(3),
+        "CE" => Role::Segment(4),
+        "CF" => Role::Segment(5),
+        "CG" => Role::Segment(6),
+        "dp" | "DP" => Role::DecimalPoint,
+        "an" | "AN" => Role::Anodes,
+        "vgaRed" | "vga_red" | "VGA_R" => Role::VgaRed,
+        "vgaGreen" | "vga_green" | "VGA_G" => Role::VgaGreen,
+        "vgaBlue" | "vga_blue" | "VGA_B" => Role::VgaBlue,
+        "Hsync" | "vga_hsync" | "VGA_HS" | "hsync" => Role::Hsync,
+        "Vsync" | "vga_vsync" | "VGA_VS" | "vsync" => Role::Vsync,
+        _ => return None,
+    })
+}
+
+/// A pin mapping problem: the port, and why.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PinError {
+    pub port: String,
+    pub reason: String,
+}
+
+/// The direction each role needs.
+fn expected_dir(r: Role) -> Dir {
+    match r {
+        Role::Clock | Role::Reset { .. } | Role::Button(_) | Role::Switches => Dir::Input,
+        _ => Dir::Output,
+    }
+}
+
+/// The roles of a top's ports, and the ports with none.
+pub type PinMap = (Vec<(String, Role)>, Vec<String>);
+
+/// Map every port of `top` to a role; ports with no role are reported in `unknown` (inputs
+/// are tied low, outputs left open). A known name with the wrong direction, or a top with no
+/// clock, is an error.
+pub fn map(top: &Module) -> Result<PinMap, PinError> {
+    let mut roles = Vec::new();
+    let mut unknown = Vec::new();
+    for p in &top.ports {
+        match role(&p.name) {
+            Some(r) => {
+                if p.dir != expected_dir(r) {
+                    return Err(PinError {
+                        port: p.name.clone(),
+                        reason: format!(
+                            "is the board's {} pin, an {}, but `{}` declares it an {}",
+                            describe(r),
+                            dir_word(expected_dir(r)),
+                            top.name,
+                            dir_word(p.dir)
+                        ),
+                    });
+                }
+                roles.push((p.name.clone(), r));
+            }
+            None => unknown.push(p.name.clone()),
+        }
+    }
+    if !roles.iter().any(|(_, r)| *r == Role::Clock) {
+        return Err(PinError {
+            port: top.name.clone(),
+            reason: "has no clock input (expected one of clk, clk100, CLK100MHZ)".into(),
+        });
+    }
+    Ok((roles, unknown))
+}
+
+fn dir_word(d: Dir) -> &'static str {
+    match d {
+        Dir::Input => "input",
+        Dir::Output => "output",
+        Dir::Inout => "inout",
+    }
+}
+
+fn describe(r: Role) -> &'static str {
+    match r {
+        Role::Clock => "clock",
+        Role::Reset { .. } => "reset button",
+        Role::Button(_) => "push button",
+        Role::Switches => "switch",
+        Role::Leds => "LED",
+        Role::Segments | Role::Segment(_) => "seven-segment",
+        Role::DecimalPoint => "decimal point",
+        Role::Anodes => "anode",
+        Role::VgaRed | Role::VgaGreen | Role::VgaBlue | Role::Hsync | Role::Vsync => "VGA",
+    }
+}
+
+/// The button names accepted by `--press`, in the order of [`Role::Button`].
+pub const BUTTONS: [&str; 5] = ["btnC", "btnU", "btnD", "btnL", "btnR"];

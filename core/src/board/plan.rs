@@ -1,0 +1,563 @@
+//! From a user's sources to what is built: the top, what botsim substitutes and why, the
+//! program of every ROM, the primitives' models, the pins, and the path to the `bot`.
+//!
+//! Substitution is by module name (botsim's `kcpsm6`, `bot`, `world_if`, `map`,
+//! `world_map` and the Xilinx primitives replace the user's copies or netlists) and by
+//! interface (every module with a KCPSM6 program-ROM interface, `address`, `instruction`,
+//! `enable`, `clk`, becomes a behavioural ROM holding its own program).
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+use kcpsm6::image::Image;
+
+use super::pins::{self, Role};
+use super::scan::{self, Dir, Instance, Module};
+use super::BoardError;
+
+/// botsim's own modules that replace the user's, with the file each comes from.
+pub const OWN_MODULES: [(&str, &str); 5] = [
+    ("kcpsm6", "kcpsm6.v"),
+    ("bot", "bot.v"),
+    ("world_if", "world_if.v"),
+    ("map", "map.v"),
+    ("world_map", "world_map.v"),
+];
+
+/// The Xilinx primitives rtl/board/xilinx.v models, with the output ports of each in the
+/// bit order of its `BOTSIM_USED_<NAME>` mask (empty: not a clock manager).
+pub const PRIMITIVES: [(&str, &[&str]); 10] = [
+    ("BUFG", &[]),
+    ("BUFH", &[]),
+    ("IBUF", &[]),
+    ("IBUFG", &[]),
+    ("BUFGCE", &[]),
+    ("MMCME2_ADV", &["CLKOUT0", "CLKOUT1", "CLKOUT2", "CLKOUT3", "CLKOUT4", "CLKOUT5", "CLKOUT6", "CLKFBOUT"]),
+    ("MMCME2_BASE", &["CLKOUT0", "CLKOUT1", "CLKOUT2", "CLKOUT3", "CLKOUT4", "CLKOUT5", "CLKOUT6", "CLKFBOUT"]),
+    ("PLLE2_ADV", &["CLKOUT0", "CLKOUT1", "CLKOUT2", "CLKOUT3", "CLKOUT4", "CLKOUT5", "CLKOUT6", "CLKFBOUT"]),
+    ("PLLE2_BASE", &["CLKOUT0", "CLKOUT1", "CLKOUT2", "CLKOUT3", "CLKOUT4", "CLKOUT5", "CLKOUT6", "CLKFBOUT"]),
+    ("DCM_SP", &["CLK0", "CLK90", "CLK180", "CLK270", "CLK2X", "CLK2X180", "CLKDV", "CLKFX"]),
+];
+
+/// A source file of the user's, scanned.
+#[derive(Clone, Debug)]
+pub struct Source {
+    pub path: PathBuf,
+    pub text: String,
+    pub modules: Vec<Module>,
+}
+
+impl Source {
+    pub fn read(path: &Path) -> Result<Source, BoardError> {
+        let bytes = std::fs::read(path).map_err(|e| BoardError::at(path, 0, 0, format!("cannot read: {e}")))?;
+        let text = String::from_utf8_lossy(&bytes).into_owned();
+        let modules = scan::scan(&text);
+        Ok(Source { path: path.to_path_buf(), text, modules })
+    }
+}
+
+/// The sources named on the command line: files as given, folders searched recursively
+/// for `.v` and `.sv` (`.vh`/`.svh` files are include files: their folders go on the
+/// include path).
+pub fn collect(inputs: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<PathBuf>), BoardError> {
+    let mut files = Vec::new();
+    let mut include_dirs = BTreeSet::new();
+    for input in inputs {
+        let meta = std::fs::metadata(input).map_err(|e| BoardError::at(input, 0, 0, format!("cannot read: {e}")))?;
+        if meta.is_dir() {
+            let mut found: Vec<PathBuf> = walk(input)?;
+            found.sort();
+            for f in found {
+                match f.extension().and_then(|e| e.to_str()) {
+                    Some("v" | "sv") => files.push(f),
+                    Some("vh" | "svh") => {
+                        include_dirs.insert(f.parent().unwrap_or(Path::new(".")).to_path_buf());
+                    }
+                    _ => {}
+                }
+            }
+        } else {
+            files.push(input.clone());
+        }
+    }
+    for f in &files {
+        include_dirs.insert(f.parent().unwrap_or(Path::new(".")).to_path_buf());
+    }
+    if files.is_empty() {
+        return Err(BoardError::plain("no Verilog sources found (.v or .sv files, or folders holding them)"));
+    }
+    Ok((files, include_dirs.into_iter().collect()))
+}
+
+fn walk(dir: &Path) -> Result<Vec<PathBuf>, BoardError> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        let entries =
+            std::fs::read_dir(&d).map_err(|e| BoardError::at(&d, 0, 0, format!("cannot read folder: {e}")))?;
+        for e in entries.flatten() {
+            let p = e.path();
+            let name = e.file_name();
+            if name.to_string_lossy().starts_with('.') {
+                continue;
+            }
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                out.push(p);
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// What the user asked for on the command line that the plan needs.
+#[derive(Clone, Debug)]
+pub struct Request {
+    pub top: Option<String>,
+    /// Programs named with `--program`, assembled or loaded: (file, image).
+    pub programs: Vec<(PathBuf, Image)>,
+    /// botsim's firmware for the bot, when asked for (by `--timing`, `--threshold`,
+    /// `--compat`), or when the sources have no `bot_pgm`.
+    pub bot_firmware: Image,
+    /// True when the request selects botsim's firmware even if the user has a `bot_pgm`.
+    pub force_own_firmware: bool,
+    pub stubs: Vec<String>,
+}
+
+/// One line of the substitution report.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Replacement {
+    pub module: String,
+    /// Where the user's copy is (empty when they have none).
+    pub from: String,
+    pub with: String,
+}
+
+/// A ROM to generate: the module name, its program, and where the program came from.
+#[derive(Clone, Debug)]
+pub struct Rom {
+    pub module: String,
+    pub image: Image,
+    pub origin: String,
+}
+
+/// Everything the build needs.
+#[derive(Clone, Debug)]
+pub struct Plan {
+    pub top: String,
+    /// The user's files to compile, as they are (unchanged) or with replaced modules blanked.
+    pub files: Vec<UserFile>,
+    pub include_dirs: Vec<PathBuf>,
+    /// botsim's own modules to add (names from [`OWN_MODULES`]).
+    pub own: Vec<&'static str>,
+    pub roms: Vec<Rom>,
+    pub stubs: Vec<(String, Vec<String>)>,
+    /// `BOTSIM_USED_<PRIMITIVE>` masks.
+    pub used_outputs: BTreeMap<String, u8>,
+    pub replaced: Vec<Replacement>,
+    pub warnings: Vec<String>,
+    pub pins: Vec<(String, Role)>,
+    pub unknown_pins: Vec<String>,
+    /// The top's port widths.
+    pub widths: BTreeMap<String, u32>,
+    /// The top's input ports.
+    pub inputs: BTreeSet<String>,
+    /// The hierarchical path from the top to the `bot` instance.
+    pub bot_path: String,
+    /// The user instantiates the bot with `Loc_Y_reg` (later copies of the course files).
+    pub loc_y_reg: bool,
+}
+
+/// A user file in the build: its path, and its text when modules were blanked out of it.
+#[derive(Clone, Debug)]
+pub struct UserFile {
+    pub path: PathBuf,
+    pub filtered: Option<String>,
+}
+
+/// The ROM interface of a kcpsm6 program ROM (spec kcpsm6.md 3).
+pub fn is_program_rom(m: &Module) -> bool {
+    ["address", "instruction", "enable", "clk"].iter().all(|p| m.port(p).is_some())
+        && m.port("instruction").is_some_and(|p| p.dir == Dir::Output && (p.width == 18 || p.width == 0))
+}
+
+impl Plan {
+    /// Plan the build of `sources` for `req`.
+    pub fn new(sources: &[Source], include_dirs: Vec<PathBuf>, req: &Request) -> Result<Plan, BoardError> {
+        let mut defined: BTreeMap<&str, (&Source, &Module)> = BTreeMap::new();
+        for s in sources {
+            for m in &s.modules {
+                if let Some((other, om)) = defined.get(m.name.as_str()) {
+                    if !is_replaced_name(&m.name) && !is_program_rom(m) {
+                        return Err(BoardError::at(
+                            &s.path,
+                            m.line,
+                            m.col,
+                            format!(
+                                "module `{}` is defined twice (also at {}:{}); keep one of the files",
+                                m.name,
+                                other.path.display(),
+                                om.line
+                            ),
+                        ));
+                    }
+                }
+                defined.insert(&m.name, (s, m));
+            }
+        }
+        let own_name = |n: &str| OWN_MODULES.iter().any(|(m, _)| *m == n);
+        let primitive = |n: &str| PRIMITIVES.iter().any(|(m, _)| *m == n);
+
+        // The top: --top, else the one module nobody instantiates that has a clock pin.
+        let instantiated: BTreeSet<&str> =
+            sources.iter().flat_map(|s| &s.modules).flat_map(|m| &m.instances).map(|i| i.module.as_str()).collect();
+        let top = match &req.top {
+            Some(t) => {
+                if !defined.contains_key(t.as_str()) {
+                    return Err(BoardError::plain(format!("--top {t}: no module of that name in the sources")));
+                }
+                t.clone()
+            }
+            None => {
+                let candidates: Vec<&str> = defined
+                    .iter()
+                    .filter(|(n, (_, m))| {
+                        !instantiated.contains(*n)
+                            && !own_name(n)
+                            && !primitive(n)
+                            && !is_program_rom(m)
+                            && m.ports.iter().any(|p| pins::role(&p.name) == Some(Role::Clock))
+                    })
+                    .map(|(n, _)| *n)
+                    .collect();
+                match candidates.as_slice() {
+                    [one] => one.to_string(),
+                    [] => {
+                        return Err(BoardError::plain(
+                            "cannot find the top module: no module that nothing instantiates has a clk/clk100/CLK100MHZ port (name it with --top)",
+                        ))
+                    }
+                    many => {
+                        return Err(BoardError::plain(format!(
+                            "several modules could be the top ({}); name one with --top",
+                            many.join(", ")
+                        )))
+                    }
+                }
+            }
+        };
+
+        // Walk the hierarchy from the top: every module used, missing ones, the bot's path.
+        let mut used = BTreeSet::new();
+        let mut bot_paths = Vec::new();
+        let mut loc_y_reg = false;
+        let mut used_outputs: BTreeMap<String, u8> = BTreeMap::new();
+        let mut missing: Option<BoardError> = None;
+        let stubs: BTreeSet<&str> = req.stubs.iter().map(String::as_str).collect();
+        let mut stub_ports: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+        let mut stack: Vec<(String, String)> = vec![(top.clone(), String::new())];
+        let mut depth_guard = 0;
+        while let Some((name, path)) = stack.pop() {
+            depth_guard += 1;
+            if depth_guard > 100_000 {
+                return Err(BoardError::plain("the module hierarchy does not end (a module instantiates itself?)"));
+            }
+            used.insert(name.clone());
+            if name == "bot" {
+                bot_paths.push(path.clone());
+                continue;
+            }
+            if own_name(&name) {
+                continue;
+            }
+            let Some((src, m)) = defined.get(name.as_str()) else { continue };
+            if is_program_rom(m) {
+                continue;
+            }
+            for inst in &m.instances {
+                let child_path = if path.is_empty() { inst.name.clone() } else { format!("{path}.{}", inst.name) };
+                if inst.module == "bot" && inst.connections.iter().any(|(p, _)| p == "Loc_Y_reg") {
+                    loc_y_reg = true;
+                }
+                if let Some((_, outs)) = PRIMITIVES.iter().find(|(p, _)| *p == inst.module) {
+                    used.insert(inst.module.clone());
+                    let mask = used_outputs.entry(inst.module.clone()).or_insert(0);
+                    *mask |= connected_mask(inst, outs);
+                    continue;
+                }
+                if stubs.contains(inst.module.as_str()) {
+                    let set = stub_ports.entry(inst.module.clone()).or_default();
+                    set.extend(inst.connections.iter().map(|(p, _)| p.clone()));
+                    continue;
+                }
+                if !defined.contains_key(inst.module.as_str()) && !own_name(&inst.module) {
+                    missing.get_or_insert_with(|| {
+                        BoardError::at(
+                            &src.path,
+                            inst.line,
+                            inst.col,
+                            format!(
+                                "module `{}` (instance `{}` in `{}`) is not defined in the sources and botsim has no model of it; add its file or tie it off with --stub {}",
+                                inst.module, inst.name, m.name, inst.module
+                            ),
+                        )
+                    });
+                    continue;
+                }
+                stack.push((inst.module.clone(), child_path));
+            }
+        }
+        if let Some(e) = missing {
+            return Err(e);
+        }
+        let bot_path = match bot_paths.as_slice() {
+            [one] => one.clone(),
+            [] => return Err(BoardError::plain(format!("the design under `{top}` has no `bot` instance"))),
+            many => {
+                return Err(BoardError::plain(format!(
+                    "the design has {} `bot` instances ({}); botsim simulates one",
+                    many.len(),
+                    many.join(", ")
+                )))
+            }
+        };
+
+        // Substitutions.
+        let mut replaced = Vec::new();
+        let mut warnings = Vec::new();
+        let mut own = Vec::new();
+        for (name, _) in OWN_MODULES {
+            // map and world_map come with bot; kcpsm6 also for the team's CPU.
+            let needed = used.contains(name) || matches!(name, "world_if" | "map" | "world_map") || name == "kcpsm6";
+            if !needed {
+                continue;
+            }
+            own.push(name);
+            let from = defined.get(name).map(|(s, m)| format!("{}:{}", s.path.display(), m.line)).unwrap_or_default();
+            if !from.is_empty() {
+                replaced.push(Replacement { module: name.to_string(), from, with: format!("botsim's {name}") });
+            }
+        }
+        for (name, _) in PRIMITIVES {
+            if used.contains(name) {
+                let from =
+                    defined.get(name).map(|(s, m)| format!("{}:{}", s.path.display(), m.line)).unwrap_or_default();
+                replaced.push(Replacement {
+                    module: name.to_string(),
+                    from,
+                    with: format!("botsim's behavioural {name}"),
+                });
+            }
+        }
+
+        // Program ROMs.
+        let mut roms = Vec::new();
+        let mut programs: Vec<(PathBuf, Image, bool)> =
+            req.programs.iter().map(|(p, i)| (p.clone(), i.clone(), false)).collect();
+        let rom_modules: Vec<(&Source, &Module)> = defined
+            .values()
+            .filter(|(_, m)| is_program_rom(m) && used.contains(&m.name) || m.name == "bot_pgm")
+            .copied()
+            .collect();
+        let team_roms = rom_modules.iter().filter(|(_, m)| m.name != "bot_pgm").count();
+        for (src, m) in &rom_modules {
+            let at = format!("{}:{}", src.path.display(), m.line);
+            if m.name == "bot_pgm" && req.force_own_firmware {
+                continue;
+            }
+            // The program named for this ROM: by file stem, or the only one for the only ROM.
+            let named = programs.iter().position(|(p, _, _)| p.file_stem().is_some_and(|s| s == m.name.as_str()));
+            let named = named.or_else(|| (m.name != "bot_pgm" && team_roms == 1 && programs.len() == 1).then_some(0));
+            let own_text = &src.text[m.span.clone()];
+            let padded = format!("{}{own_text}", "\n".repeat(m.line.saturating_sub(1) as usize));
+            let from_init = Image::parse_verilog(&src.path, &padded);
+            let (image, origin) = match (named, from_init) {
+                (Some(k), Ok(init)) => {
+                    programs[k].2 = true;
+                    if let Some(a) = first_difference(&programs[k].1, &init) {
+                        warnings.push(format!(
+                            "{} differs from the INIT strings of `{}` ({at}) from address {a:03X}: running {}",
+                            programs[k].0.display(),
+                            m.name,
+                            programs[k].0.display()
+                        ));
+                    }
+                    (programs[k].1.clone(), programs[k].0.display().to_string())
+                }
+                (Some(k), Err(_)) => {
+                    programs[k].2 = true;
+                    (programs[k].1.clone(), programs[k].0.display().to_string())
+                }
+                (None, Ok(init)) => (init, format!("its own contents ({at})")),
+                (None, Err(e)) => {
+                    return Err(BoardError::plain(format!(
+                        "{at}: the program ROM `{}` holds no program ({}); name its .psm with --program",
+                        m.name, e.message
+                    )))
+                }
+            };
+            replaced.push(Replacement {
+                module: m.name.clone(),
+                from: at,
+                with: format!("a behavioural ROM holding the program from {origin}"),
+            });
+            roms.push(Rom { module: m.name.clone(), image, origin });
+        }
+        if !roms.iter().any(|r| r.module == "bot_pgm") {
+            let why = if req.force_own_firmware {
+                "botsim's firmware with the constants asked for"
+            } else {
+                "botsim's firmware (the sources have no bot_pgm)"
+            };
+            replaced.push(Replacement { module: "bot_pgm".into(), from: String::new(), with: why.into() });
+            roms.push(Rom { module: "bot_pgm".into(), image: req.bot_firmware.clone(), origin: why.into() });
+        }
+        if let Some((p, _, _)) = programs.iter().find(|(_, _, used)| !used) {
+            return Err(BoardError::plain(format!(
+                "--program {}: no program ROM module named `{}` in the design (ROMs: {})",
+                p.display(),
+                p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
+                rom_modules.iter().map(|(_, m)| m.name.as_str()).collect::<Vec<_>>().join(", ")
+            )));
+        }
+
+        // The user's files, with replaced modules blanked (lines kept, so messages still
+        // point at the user's lines).
+        let replaced_names: BTreeSet<String> = own
+            .iter()
+            .map(|s| s.to_string())
+            .chain(PRIMITIVES.iter().map(|(p, _)| p.to_string()))
+            .chain(roms.iter().map(|r| r.module.clone()))
+            .chain(stub_ports.keys().cloned())
+            .collect();
+        let mut files = Vec::new();
+        for s in sources {
+            let drop: Vec<&Module> = s.modules.iter().filter(|m| replaced_names.contains(&m.name)).collect();
+            if drop.is_empty() {
+                files.push(UserFile { path: s.path.clone(), filtered: None });
+                continue;
+            }
+            if drop.len() == s.modules.len() && !s.text.contains("`define") {
+                continue; // nothing of the user's is left in it
+            }
+            let mut text = s.text.clone().into_bytes();
+            for m in drop {
+                for b in &mut text[m.span.clone()] {
+                    if *b != b'\n' {
+                        *b = b' ';
+                    }
+                }
+            }
+            files.push(UserFile { path: s.path.clone(), filtered: Some(String::from_utf8_lossy(&text).into_owned()) });
+        }
+
+        let top_module = defined[top.as_str()].1;
+        let (pins, unknown_pins) = pins::map(top_module).map_err(|e| {
+            let (s, m) = defined[top.as_str()];
+            BoardError::at(&s.path, m.line, m.col, format!("port `{}` {}", e.port, e.reason))
+        })?;
+        let widths = top_module.ports.iter().map(|p| (p.name.clone(), p.width)).collect();
+        let inputs = top_module.ports.iter().filter(|p| p.dir == Dir::Input).map(|p| p.name.clone()).collect();
+        let stubs = stub_ports.into_iter().map(|(m, ports)| (m, ports.into_iter().collect())).collect();
+        Ok(Plan {
+            top,
+            files,
+            include_dirs,
+            own,
+            roms,
+            stubs,
+            used_outputs,
+            replaced,
+            warnings,
+            pins,
+            unknown_pins,
+            widths,
+            inputs,
+            bot_path,
+            loc_y_reg,
+        })
+    }
+}
+
+fn is_replaced_name(n: &str) -> bool {
+    OWN_MODULES.iter().any(|(m, _)| *m == n) || PRIMITIVES.iter().any(|(m, _)| *m == n) || n == "bot_pgm"
+}
+
+/// Bits of `outs` that the instance connects to a net (not left open, not a `*unused*` net).
+fn connected_mask(inst: &Instance, outs: &[&str]) -> u8 {
+    let mut mask = 0u8;
+    for (k, out) in outs.iter().enumerate() {
+        let wired = |port: &str| {
+            inst.connections
+                .iter()
+                .any(|(p, e)| p == port && !e.trim().is_empty() && !e.to_lowercase().contains("unused"))
+        };
+        let inverted = match *out {
+            "CLKFX" => "CLKFX180".to_string(),
+            o if o.starts_with("CLKOUT") || o == "CLKFBOUT" => format!("{o}B"),
+            o => o.to_string(),
+        };
+        if wired(out) || wired(&inverted) {
+            mask |= 1 << k;
+        }
+    }
+    mask
+}
+
+fn first_difference(a: &Image, b: &Image) -> Option<usize> {
+    a.words.iter().zip(b.words.iter()).position(|(x, y)| x != y)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn src(name: &str, text: &str) -> Source {
+        Source { path: PathBuf::from(name), text: text.into(), modules: scan::scan(text) }
+    }
+
+    fn request() -> Request {
+        Request { top: None, programs: vec![], bot_firmware: Image::zeroed(), force_own_firmware: false, stubs: vec![] }
+    }
+
+    #[test]
+    fn the_top_the_bot_path_and_the_used_clock_outputs() {
+        let top = src(
+            "top.v",
+            "module nexys4fpga(input clk, input btnCpuReset, output [15:0] led, output [6:0] seg, output dp, output [7:0] an, output [7:0] JA);\n\
+             sys s (.clk(clk));\nendmodule\n\
+             module sys(input clk);\n wire a, b, fb;\n MMCME2_ADV #(.CLKOUT0_DIVIDE_F(40.0)) m (.CLKOUT0(a), .CLKOUT1(clkout1_unused), .CLKOUT1B(), .CLKFBOUT(fb), .CLKFBIN(fb));\n\
+             bot robot (.clk(a), .Loc_Y_reg());\nendmodule\n",
+        );
+        let p = Plan::new(&[top], vec![], &request()).unwrap();
+        assert_eq!(p.top, "nexys4fpga");
+        assert_eq!(p.bot_path, "s.robot");
+        assert!(p.loc_y_reg);
+        assert_eq!(p.used_outputs["MMCME2_ADV"], 0b1000_0001);
+        assert_eq!(p.unknown_pins, ["JA"]);
+        assert!(p.roms.iter().any(|r| r.module == "bot_pgm"));
+    }
+
+    #[test]
+    fn a_missing_module_names_the_instance_and_its_line() {
+        let top = src(
+            "top.v",
+            "module t(input clk);\n\n  bot b(.clk(clk));\n  debounce #(.SIMULATE(1)) db (.clk(clk));\nendmodule\n",
+        );
+        let e = Plan::new(&[top], vec![], &request()).unwrap_err();
+        assert_eq!(e.to_string().split(": ").next().unwrap(), "top.v:4:3");
+        assert!(e.to_string().contains("`debounce` (instance `db` in `t`)"), "{e}");
+        let top =
+            src("top.v", "module t(input clk);\n  bot b(.clk(clk));\n  debounce db (.clk(clk), .q());\nendmodule\n");
+        let p = Plan::new(&[top], vec![], &Request { stubs: vec!["debounce".into()], ..request() }).unwrap();
+        assert_eq!(p.stubs, [("debounce".to_string(), vec!["clk".to_string(), "q".to_string()])]);
+    }
+
+    #[test]
+    fn a_wrong_pin_direction_is_an_error_at_the_top() {
+        let top = src("top.v", "module t(input clk, input [15:0] led);\n bot b(.clk(clk));\nendmodule\n");
+        let e = Plan::new(&[top], vec![], &request()).unwrap_err().to_string();
+        assert!(e.starts_with("top.v:1:8: port `led` is the board's LED pin, an output"), "{e}");
+    }
+}

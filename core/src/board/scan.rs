@@ -1,0 +1,713 @@
+//! A structural scanner for Verilog: the modules of a file, their ports, parameters and the
+//! instances they contain, with the line and column of each. It reads what board
+//! simulation needs to plan a build (which modules exist, which is the top, what to replace,
+//! how the top's pins are named); Verilator reads the design itself.
+//!
+//! It skips comments, strings and compiler directives, and tolerates what it does not
+//! understand: a construct it cannot read is simply not reported.
+//!
+//! ```
+//! use botsim_core::board::scan::scan;
+//! let src = "module top(input wire clk, output wire [7:0] led);\n  blink #(.N(3)) u1 (.clk(clk), .q(led));\nendmodule\n";
+//! let modules = scan(src);
+//! assert_eq!(modules[0].name, "top");
+//! assert_eq!(modules[0].ports[1].name, "led");
+//! assert_eq!(modules[0].ports[1].width, 8);
+//! assert_eq!(modules[0].instances[0].module, "blink");
+//! assert_eq!(modules[0].instances[0].connections[1], ("q".to_string(), "led".to_string()));
+//! ```
+
+use std::ops::Range;
+
+/// A port direction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Dir {
+    Input,
+    Output,
+    Inout,
+}
+
+/// A port of a module.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Port {
+    pub name: String,
+    pub dir: Dir,
+    /// Width in bits when the range is two integer constants, else 1 (or 0 when unknown).
+    pub width: u32,
+    /// The declared range, `msb:lsb`, when it was two integer constants.
+    pub range: Option<(i64, i64)>,
+}
+
+/// An instance of a module (or primitive) inside another module.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Instance {
+    pub module: String,
+    pub name: String,
+    /// 1-based line and column of the module name.
+    pub line: u32,
+    pub col: u32,
+    /// Named connections `(port, expression)`; positional ones are named `#0`, `#1`...
+    pub connections: Vec<(String, String)>,
+    /// Parameter overrides `(name, value)`; positional ones are named `#0`...
+    pub params: Vec<(String, String)>,
+}
+
+/// One module of a source file.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Module {
+    pub name: String,
+    /// 1-based line and column of the name.
+    pub line: u32,
+    pub col: u32,
+    /// Bytes of the source from `module` to the end of `endmodule`.
+    pub span: Range<usize>,
+    pub params: Vec<String>,
+    pub ports: Vec<Port>,
+    pub instances: Vec<Instance>,
+}
+
+impl Module {
+    /// The port named `name`, if any.
+    pub fn port(&self, name: &str) -> Option<&Port> {
+        self.ports.iter().find(|p| p.name == name)
+    }
+}
+
+#[derive(Clone, Debug, PartialEq)]
+enum Tok {
+    Ident(String),
+    Num(String),
+    Str,
+    Punct(char),
+}
+
+#[derive(Clone, Debug)]
+struct Token {
+    tok: Tok,
+    at: usize,
+    line: u32,
+    col: u32,
+}
+
+/// Words that start something other than an instance.
+const KEYWORDS: &[&str] = &[
+    "always",
+    "always_comb",
+    "always_ff",
+    "always_latch",
+    "and",
+    "assign",
+    "automatic",
+    "begin",
+    "buf",
+    "case",
+    "casex",
+    "casez",
+    "cmos",
+    "deassign",
+    "default",
+    "defparam",
+    "disable",
+    "else",
+    "end",
+    "endcase",
+    "endfunction",
+    "endgenerate",
+    "endmodule",
+    "endtask",
+    "event",
+    "for",
+    "force",
+    "forever",
+    "fork",
+    "function",
+    "generate",
+    "genvar",
+    "if",
+    "initial",
+    "inout",
+    "input",
+    "integer",
+    "join",
+    "localparam",
+    "logic",
+    "nand",
+    "nor",
+    "not",
+    "or",
+    "output",
+    "parameter",
+    "real",
+    "realtime",
+    "reg",
+    "release",
+    "repeat",
+    "signed",
+    "specify",
+    "supply0",
+    "supply1",
+    "task",
+    "time",
+    "tri",
+    "tri0",
+    "tri1",
+    "triand",
+    "trior",
+    "wait",
+    "wand",
+    "while",
+    "wire",
+    "wor",
+    "xnor",
+    "xor",
+    "bit",
+    "byte",
+    "int",
+    "shortint",
+    "longint",
+    "typedef",
+    "enum",
+    "struct",
+    "unsigned",
+    "var",
+    "return",
+    "import",
+    "export",
+    "unique",
+    "priority",
+    "bufif0",
+    "bufif1",
+    "notif0",
+    "notif1",
+    "pullup",
+    "pulldown",
+    "nmos",
+    "pmos",
+    "rnmos",
+    "rpmos",
+    "tran",
+    "rtran",
+];
+
+fn tokenize(src: &str) -> Vec<Token> {
+    let b = src.as_bytes();
+    let (mut i, mut line, mut line_start) = (0usize, 1u32, 0usize);
+    let mut out = Vec::new();
+    let mut at_line_start = true;
+    while i < b.len() {
+        let c = b[i];
+        if c == b'\n' {
+            i += 1;
+            line += 1;
+            line_start = i;
+            at_line_start = true;
+            continue;
+        }
+        if c.is_ascii_whitespace() {
+            i += 1;
+            continue;
+        }
+        let col = (i - line_start + 1) as u32;
+        let start = i;
+        if c == b'/' && b.get(i + 1) == Some(&b'/') {
+            while i < b.len() && b[i] != b'\n' {
+                i += 1;
+            }
+            continue;
+        }
+        if c == b'/' && b.get(i + 1) == Some(&b'*') {
+            i += 2;
+            while i < b.len() && !(b[i] == b'*' && b.get(i + 1) == Some(&b'/')) {
+                if b[i] == b'\n' {
+                    line += 1;
+                    line_start = i + 1;
+                }
+                i += 1;
+            }
+            i = (i + 2).min(b.len());
+            continue;
+        }
+        let was_line_start = at_line_start;
+        at_line_start = false;
+        if c == b'`' {
+            // A directive: `define takes the rest of the line (with continuations); others
+            // (`timescale, `include, `ifdef...) the line; a macro use is one token.
+            let mut j = i + 1;
+            while j < b.len() && (b[j].is_ascii_alphanumeric() || b[j] == b'_') {
+                j += 1;
+            }
+            let word = &src[i + 1..j];
+            let directive = matches!(
+                word,
+                "define"
+                    | "undef"
+                    | "timescale"
+                    | "include"
+                    | "ifdef"
+                    | "ifndef"
+                    | "else"
+                    | "elsif"
+                    | "endif"
+                    | "default_nettype"
+                    | "resetall"
+                    | "celldefine"
+                    | "endcelldefine"
+                    | "line"
+            );
+            if directive && (was_line_start || word != "else") {
+                let takes_line = !matches!(word, "else" | "endif" | "celldefine" | "endcelldefine" | "resetall");
+                i = j;
+                if takes_line {
+                    while i < b.len() && b[i] != b'\n' {
+                        if b[i] == b'\\' && b.get(i + 1) == Some(&b'\n') {
+                            i += 1;
+                            line += 1;
+                            line_start = i + 1;
+                        }
+                        i += 1;
+                    }
+                }
+            } else {
+                i = j;
+                out.push(Token { tok: Tok::Ident(src[start..j].to_string()), at: start, line, col });
+            }
+            continue;
+        }
+        if c == b'"' {
+            i += 1;
+            while i < b.len() && b[i] != b'"' && b[i] != b'\n' {
+                i += if b[i] == b'\\' { 2 } else { 1 };
+            }
+            i = (i + 1).min(b.len());
+            out.push(Token { tok: Tok::Str, at: start, line, col });
+            continue;
+        }
+        if c == b'\\' {
+            while i < b.len() && !b[i].is_ascii_whitespace() {
+                i += 1;
+            }
+            out.push(Token { tok: Tok::Ident(src[start + 1..i].to_string()), at: start, line, col });
+            continue;
+        }
+        if c.is_ascii_alphabetic() || c == b'_' || c == b'$' {
+            while i < b.len() && (b[i].is_ascii_alphanumeric() || b[i] == b'_' || b[i] == b'$') {
+                i += 1;
+            }
+            out.push(Token { tok: Tok::Ident(src[start..i].to_string()), at: start, line, col });
+            continue;
+        }
+        if c.is_ascii_digit() || c == b'\'' {
+            while i < b.len() && (b[i].is_ascii_alphanumeric() || b[i] == b'_' || b[i] == b'\'' || b[i] == b'.') {
+                i += 1;
+            }
+            out.push(Token { tok: Tok::Num(src[start..i].to_string()), at: start, line, col });
+            continue;
+        }
+        // Multi-byte UTF-8 outside comments and strings: skip the whole character.
+        let len = src[i..].chars().next().map_or(1, char::len_utf8);
+        out.push(Token { tok: Tok::Punct(c as char), at: start, line, col });
+        i += len;
+    }
+    out
+}
+
+struct Parser<'a> {
+    src: &'a str,
+    t: Vec<Token>,
+    i: usize,
+}
+
+impl Parser<'_> {
+    fn peek(&self, k: usize) -> Option<&Tok> {
+        self.t.get(self.i + k).map(|t| &t.tok)
+    }
+    fn ident(&self, k: usize) -> Option<&str> {
+        match self.peek(k) {
+            Some(Tok::Ident(s)) => Some(s),
+            _ => None,
+        }
+    }
+    fn is(&self, k: usize, c: char) -> bool {
+        self.peek(k) == Some(&Tok::Punct(c))
+    }
+    /// With the cursor on an opening bracket, the index just past its match.
+    fn skip_group(&self, from: usize) -> usize {
+        let mut depth = 0i32;
+        let mut j = from;
+        while j < self.t.len() {
+            match self.t[j].tok {
+                Tok::Punct('(') | Tok::Punct('[') | Tok::Punct('{') => depth += 1,
+                Tok::Punct(')') | Tok::Punct(']') | Tok::Punct('}') => {
+                    depth -= 1;
+                    if depth == 0 {
+                        return j + 1;
+                    }
+                }
+                _ => {}
+            }
+            j += 1;
+        }
+        j
+    }
+    /// The source text of tokens `[from, to)`.
+    fn text(&self, from: usize, to: usize) -> String {
+        if from >= to || to > self.t.len() {
+            return String::new();
+        }
+        let end = self.t.get(to).map_or(self.src.len(), |t| t.at);
+        let s = &self.src[self.t[from].at..end];
+        s.split_whitespace().collect::<Vec<_>>().join(" ")
+    }
+}
+
+/// Scan one source text.
+pub fn scan(src: &str) -> Vec<Module> {
+    let t = tokenize(src);
+    let mut p = Parser { src, t, i: 0 };
+    let mut modules = Vec::new();
+    while p.i < p.t.len() {
+        if matches!(p.ident(0), Some("module" | "macromodule")) {
+            if let Some(m) = module(&mut p) {
+                modules.push(m);
+                continue;
+            }
+        }
+        p.i += 1;
+    }
+    modules
+}
+
+fn module(p: &mut Parser) -> Option<Module> {
+    let start = p.t[p.i].at;
+    p.i += 1;
+    let name_tok = p.t.get(p.i)?.clone();
+    let name = p.ident(0)?.to_string();
+    p.i += 1;
+    let mut params = Vec::new();
+    let mut ports = Vec::new();
+    let mut port_order: Vec<String> = Vec::new();
+    if p.is(0, '#') && p.is(1, '(') {
+        let end = p.skip_group(p.i + 1);
+        params.extend(param_names(p, p.i + 2, end - 1));
+        p.i = end;
+    }
+    if p.is(0, '(') {
+        let end = p.skip_group(p.i);
+        ansi_ports(p, p.i + 1, end - 1, &mut ports, &mut port_order);
+        p.i = end;
+    }
+    // Body: up to endmodule.
+    let mut instances = Vec::new();
+    let body_start = p.i;
+    let mut j = body_start;
+    while j < p.t.len() && p.t[j].tok != Tok::Ident("endmodule".into()) {
+        j += 1;
+    }
+    let body_end = j;
+    let end = p.t.get(body_end).map_or(p.src.len(), |t| t.at + "endmodule".len());
+    p.i = body_start;
+    let mut stmt_start = true;
+    while p.i < body_end {
+        match p.peek(0) {
+            Some(Tok::Punct(';')) => {
+                p.i += 1;
+                stmt_start = true;
+                continue;
+            }
+            Some(Tok::Ident(w)) if matches!(w.as_str(), "input" | "output" | "inout") && stmt_start => {
+                let dir = direction(w);
+                let semi = (p.i..body_end).find(|&k| p.t[k].tok == Tok::Punct(';')).unwrap_or(body_end);
+                non_ansi_ports(p, dir, p.i + 1, semi, &mut ports);
+                p.i = semi;
+                continue;
+            }
+            Some(Tok::Ident(w)) if matches!(w.as_str(), "parameter" | "localparam") && stmt_start => {
+                let semi = (p.i..body_end).find(|&k| p.t[k].tok == Tok::Punct(';')).unwrap_or(body_end);
+                if w == "parameter" {
+                    params.extend(param_names(p, p.i, semi));
+                }
+                p.i = semi;
+                continue;
+            }
+            Some(Tok::Ident(w))
+                if stmt_start
+                    && !KEYWORDS.contains(&w.as_str())
+                    && !w.starts_with('$')
+                    && !w.starts_with('`')
+                    && (p.is(1, '#') || (p.ident(1).is_some() && (p.is(2, '(') || p.is(2, '[')))) =>
+            {
+                let semi = instance_statement(p, body_end, &mut instances);
+                p.i = semi;
+                continue;
+            }
+            Some(Tok::Ident(w)) if matches!(w.as_str(), "begin" | "else" | "generate" | "end") => {
+                // `begin : label` — skip the label.
+                p.i += 1;
+                if p.is(0, ':') && p.ident(1).is_some() {
+                    p.i += 2;
+                }
+                stmt_start = true;
+                continue;
+            }
+            Some(Tok::Ident(w)) if matches!(w.as_str(), "if" | "for" | "case") => {
+                // generate if/for headers: skip the condition.
+                p.i += 1;
+                if p.is(0, '(') {
+                    p.i = p.skip_group(p.i);
+                }
+                stmt_start = true;
+                continue;
+            }
+            Some(Tok::Punct('(')) | Some(Tok::Punct('[')) | Some(Tok::Punct('{')) => {
+                p.i = p.skip_group(p.i);
+                stmt_start = false;
+                continue;
+            }
+            _ => {}
+        }
+        stmt_start = false;
+        p.i += 1;
+    }
+    p.i = body_end + 1;
+    // Keep the declared order of a non-ANSI port list.
+    if !port_order.is_empty() {
+        ports.sort_by_key(|pt: &Port| port_order.iter().position(|n| *n == pt.name).unwrap_or(usize::MAX));
+        ports.retain(|pt| port_order.contains(&pt.name));
+    }
+    Some(Module { name, line: name_tok.line, col: name_tok.col, span: start..end, params, ports, instances })
+}
+
+fn direction(w: &str) -> Dir {
+    match w {
+        "input" => Dir::Input,
+        "output" => Dir::Output,
+        _ => Dir::Inout,
+    }
+}
+
+fn param_names(p: &Parser, from: usize, to: usize) -> Vec<String> {
+    // Names are the identifiers right before a top-level `=`.
+    let mut names = Vec::new();
+    let mut depth = 0;
+    for k in from..to {
+        match &p.t[k].tok {
+            Tok::Punct('(') | Tok::Punct('[') | Tok::Punct('{') => depth += 1,
+            Tok::Punct(')') | Tok::Punct(']') | Tok::Punct('}') => depth -= 1,
+            Tok::Punct('=') if depth == 0 && k > from => {
+                if let Tok::Ident(n) = &p.t[k - 1].tok {
+                    names.push(n.clone());
+                }
+            }
+            _ => {}
+        }
+    }
+    names
+}
+
+/// A range `[msb:lsb]` starting at token `k`, when both are integers: (msb, lsb, index past).
+fn range(p: &Parser, k: usize) -> (Option<(i64, i64)>, usize) {
+    if p.t.get(k).map(|t| &t.tok) != Some(&Tok::Punct('[')) {
+        return (None, k);
+    }
+    let end = p.skip_group(k);
+    let num = |t: &Tok| match t {
+        Tok::Num(s) => s.replace('_', "").parse::<i64>().ok(),
+        _ => None,
+    };
+    let r = if end == k + 5 && p.t[k + 2].tok == Tok::Punct(':') {
+        num(&p.t[k + 1].tok).zip(num(&p.t[k + 3].tok))
+    } else {
+        None
+    };
+    (r, end)
+}
+
+fn width_of(r: Option<(i64, i64)>) -> u32 {
+    r.map_or(1, |(m, l)| ((m - l).unsigned_abs() + 1) as u32)
+}
+
+const NET_WORDS: &[&str] = &["wire", "reg", "logic", "signed", "unsigned", "tri", "var", "integer", "wand", "wor"];
+
+fn ansi_ports(p: &Parser, from: usize, to: usize, ports: &mut Vec<Port>, order: &mut Vec<String>) {
+    let mut dir: Option<Dir> = None;
+    let mut rng = None;
+    let mut k = from;
+    while k < to {
+        match &p.t[k].tok {
+            Tok::Ident(w) if matches!(w.as_str(), "input" | "output" | "inout") => {
+                dir = Some(direction(w));
+                rng = None;
+                k += 1;
+            }
+            Tok::Ident(w) if NET_WORDS.contains(&w.as_str()) => k += 1,
+            Tok::Punct('[') => {
+                let (r, e) = range(p, k);
+                rng = r.or(Some((0, 0))).filter(|_| r.is_some());
+                if r.is_none() {
+                    rng = Some((-1, -1)); // unknown width
+                }
+                k = e;
+            }
+            Tok::Ident(name) => {
+                match dir {
+                    Some(d) => {
+                        let (range, width) = match rng {
+                            Some((-1, -1)) => (None, 0),
+                            r => (r, width_of(r)),
+                        };
+                        ports.push(Port { name: name.clone(), dir: d, width, range })
+                    }
+                    None => order.push(name.clone()),
+                }
+                // Skip to the next comma at this level.
+                k += 1;
+                while k < to && p.t[k].tok != Tok::Punct(',') {
+                    k = if matches!(p.t[k].tok, Tok::Punct('(') | Tok::Punct('[') | Tok::Punct('{')) {
+                        p.skip_group(k)
+                    } else {
+                        k + 1
+                    };
+                }
+            }
+            _ => k += 1,
+        }
+    }
+}
+
+fn non_ansi_ports(p: &Parser, dir: Dir, from: usize, to: usize, ports: &mut Vec<Port>) {
+    let mut rng = None;
+    let mut unknown = false;
+    let mut k = from;
+    while k < to {
+        match &p.t[k].tok {
+            Tok::Ident(w) if NET_WORDS.contains(&w.as_str()) => k += 1,
+            Tok::Punct('[') => {
+                let (r, e) = range(p, k);
+                rng = r;
+                unknown = r.is_none();
+                k = e;
+            }
+            Tok::Ident(name) => {
+                let width = if unknown { 0 } else { width_of(rng) };
+                ports.retain(|pt| pt.name != *name);
+                ports.push(Port { name: name.clone(), dir, width, range: rng });
+                k += 1;
+            }
+            _ => k += 1,
+        }
+    }
+}
+
+/// `module_name [#(params)] inst [range] (conns) [, inst2 (conns)] ;` — returns the index of the `;`.
+fn instance_statement(p: &mut Parser, body_end: usize, out: &mut Vec<Instance>) -> usize {
+    let mtok = p.t[p.i].clone();
+    let module = p.ident(0).unwrap_or_default().to_string();
+    let mut k = p.i + 1;
+    let mut params = Vec::new();
+    if p.t.get(k).map(|t| &t.tok) == Some(&Tok::Punct('#')) {
+        if p.t.get(k + 1).map(|t| &t.tok) == Some(&Tok::Punct('(')) {
+            let end = p.skip_group(k + 1);
+            params = connections(p, k + 2, end - 1);
+            k = end;
+        } else {
+            k += 2; // #5 delay or #N
+        }
+    }
+    while let Some(Tok::Ident(name)) = p.t.get(k).map(|t| t.tok.clone()) {
+        k += 1;
+        if p.t.get(k).map(|t| &t.tok) == Some(&Tok::Punct('[')) {
+            k = p.skip_group(k);
+        }
+        if p.t.get(k).map(|t| &t.tok) != Some(&Tok::Punct('(')) {
+            break;
+        }
+        let end = p.skip_group(k);
+        let conns = connections(p, k + 1, end - 1);
+        out.push(Instance {
+            module: module.clone(),
+            name,
+            line: mtok.line,
+            col: mtok.col,
+            connections: conns,
+            params: params.clone(),
+        });
+        k = end;
+        if p.t.get(k).map(|t| &t.tok) == Some(&Tok::Punct(',')) {
+            k += 1;
+            continue;
+        }
+        break;
+    }
+    (k..body_end).find(|&j| p.t[j].tok == Tok::Punct(';')).unwrap_or(body_end)
+}
+
+/// `.name(expr), ...` or `expr, expr, ...` between tokens `[from, to)`.
+fn connections(p: &Parser, from: usize, to: usize) -> Vec<(String, String)> {
+    let mut out = Vec::new();
+    let mut k = from;
+    let mut n = 0;
+    while k < to {
+        if p.t[k].tok == Tok::Punct(',') {
+            k += 1;
+            continue;
+        }
+        if p.t[k].tok == Tok::Punct('.') {
+            if let Some(Tok::Ident(name)) = p.t.get(k + 1).map(|t| t.tok.clone()) {
+                if p.t.get(k + 2).map(|t| &t.tok) == Some(&Tok::Punct('(')) {
+                    let end = p.skip_group(k + 2);
+                    out.push((name, p.text(k + 3, end - 1)));
+                    k = end;
+                } else {
+                    // `.name` (implicit) connection
+                    out.push((name.clone(), name));
+                    k += 2;
+                }
+                continue;
+            }
+        }
+        let s = k;
+        while k < to && p.t[k].tok != Tok::Punct(',') {
+            k = if matches!(p.t[k].tok, Tok::Punct('(') | Tok::Punct('[') | Tok::Punct('{')) {
+                p.skip_group(k)
+            } else {
+                k + 1
+            };
+        }
+        out.push((format!("#{n}"), p.text(s, k)));
+        n += 1;
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn non_ansi_ports_keep_their_order_and_widths() {
+        let m = &scan("module t(a, b, c);\ninput [3:0] a;\noutput reg b;\ninout c;\nendmodule")[0];
+        let got: Vec<_> = m.ports.iter().map(|p| (p.name.as_str(), p.dir, p.width)).collect();
+        assert_eq!(got, [("a", Dir::Input, 4), ("b", Dir::Output, 1), ("c", Dir::Inout, 1)]);
+    }
+
+    #[test]
+    fn instances_inside_generate_and_after_comments_and_directives() {
+        let src = "`timescale 1ns/1ps\nmodule t(input clk);\n// foo bar (x);\n/* a b(c); */\n\
+                   `ifdef X\n wire w;\n`endif\n generate if (1) begin : g\n  BUFG b0 (.I(clk), .O());\n end endgenerate\n\
+                   always @(posedge clk) x <= y;\n kcpsm6 #(.hwbuild(8'h00)) cpu (.clk(clk)), cpu2 (.clk(clk));\nendmodule\n";
+        let m = &scan(src)[0];
+        let names: Vec<_> = m.instances.iter().map(|i| (i.module.as_str(), i.name.as_str(), i.line)).collect();
+        assert_eq!(names, [("BUFG", "b0", 9), ("kcpsm6", "cpu", 12), ("kcpsm6", "cpu2", 12)]);
+        assert_eq!(m.instances[0].connections[1], ("O".into(), "".into()));
+        assert_eq!(m.instances[1].params[0], ("hwbuild".into(), "8'h00".into()));
+    }
+
+    #[test]
+    fn parameters_and_spans() {
+        let src =
+            "module a #(parameter N = 3, parameter [1:0] M = 2) (); parameter K = 1; endmodule\nmodule b; endmodule";
+        let ms = scan(src);
+        assert_eq!(ms[0].params, ["N", "M", "K"]);
+        assert_eq!(&src[ms[1].span.clone()], "module b; endmodule");
+    }
+}

@@ -1,0 +1,269 @@
+//! Building a board design: the plan's files written out, Verilator, the C++ compiler, one
+//! shared library per design, cached by a hash of everything it is built from
+//! (`$BOTSIM_CACHE`, else `$XDG_CACHE_HOME/botsim`, else `~/.cache/botsim`).
+
+use std::collections::hash_map::DefaultHasher;
+use std::collections::BTreeMap;
+use std::hash::{Hash, Hasher};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::Instant;
+
+use botsim_core::board::plan::{Plan, OWN_MODULES};
+use botsim_core::board::wrapper;
+use botsim_core::board::BoardError;
+
+const HARNESS: &str = include_str!("harness.cpp");
+const ABI: &str = include_str!("board_abi.h");
+const XILINX: &str = include_str!("../../rtl/board/xilinx.v");
+const CLKGEN: &str = include_str!("../../rtl/board/botsim_clkgen.v");
+
+/// botsim's own RTL, by file name.
+fn own_rtl(file: &str) -> &'static str {
+    match file {
+        "kcpsm6.v" => include_str!("../../rtl/kcpsm6.v"),
+        "bot.v" => include_str!("../../rtl/bot.v"),
+        "world_if.v" => include_str!("../../rtl/world_if.v"),
+        "map.v" => include_str!("../../rtl/map.v"),
+        "world_map.v" => include_str!("../../rtl/world_map.v"),
+        _ => unreachable!("not one of botsim's files: {file}"),
+    }
+}
+
+/// A built design.
+#[derive(Clone, Debug)]
+pub struct Built {
+    pub library: PathBuf,
+    /// Verilator's warnings about the user's files, grouped: (code, count, first message).
+    pub warnings: Vec<(String, usize, String)>,
+    /// The build's duration in seconds; `None` when the cache had it.
+    pub seconds: Option<f64>,
+}
+
+/// The cache folder.
+pub fn cache_dir() -> PathBuf {
+    if let Some(d) = std::env::var_os("BOTSIM_CACHE") {
+        return PathBuf::from(d);
+    }
+    if let Some(d) = std::env::var_os("XDG_CACHE_HOME") {
+        return PathBuf::from(d).join("botsim");
+    }
+    let home = std::env::var_os("HOME").map(PathBuf::from).unwrap_or_else(std::env::temp_dir);
+    home.join(".cache").join("botsim")
+}
+
+/// The files of the build: (name in the build folder, text), user files with their origin.
+struct Files {
+    generated: Vec<(String, String)>,
+    /// (path to pass to Verilator, the user's path) — filtered copies live in the build folder.
+    user: Vec<(String, Option<String>, PathBuf)>,
+    defines: Vec<String>,
+}
+
+fn files(plan: &Plan, params: &[(String, String)]) -> Files {
+    let mut generated = vec![
+        ("botsim_board.v".to_string(), wrapper::board_top(plan, params)),
+        ("xilinx.v".to_string(), XILINX.to_string()),
+        ("botsim_clkgen.v".to_string(), CLKGEN.to_string()),
+    ];
+    for name in &plan.own {
+        let file = OWN_MODULES.iter().find(|(m, _)| m == name).map(|(_, f)| *f).unwrap_or("kcpsm6.v");
+        generated.push((format!("botsim_{file}"), own_rtl(file).to_string()));
+    }
+    for (module, text) in wrapper::roms(plan) {
+        generated.push((format!("rom_{module}.v"), text));
+    }
+    for (module, ports) in &plan.stubs {
+        generated.push((format!("stub_{module}.v"), wrapper::stub(module, ports)));
+    }
+    let mut user = Vec::new();
+    for (k, f) in plan.files.iter().enumerate() {
+        match &f.filtered {
+            Some(text) => {
+                let base = f.path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+                user.push((format!("user{k}_{base}"), Some(text.clone()), f.path.clone()));
+            }
+            None => user.push((f.path.display().to_string(), None, f.path.clone())),
+        }
+    }
+    let mut defines = vec!["BOTSIM_WORLD_PLUSARG".to_string()];
+    if plan.loc_y_reg {
+        defines.push("BOTSIM_LOC_Y_REG".into());
+    }
+    for (prim, mask) in &plan.used_outputs {
+        defines.push(format!("BOTSIM_USED_{prim}=8'h{mask:02X}"));
+    }
+    Files { generated, user, defines }
+}
+
+/// Build (or find in the cache) the library for `plan`.
+pub fn build(plan: &Plan, params: &[(String, String)], quiet: bool) -> Result<Built, BoardError> {
+    let f = files(plan, params);
+    let mut h = DefaultHasher::new();
+    env!("CARGO_PKG_VERSION").hash(&mut h);
+    HARNESS.hash(&mut h);
+    ABI.hash(&mut h);
+    f.generated.hash(&mut h);
+    f.defines.hash(&mut h);
+    for (name, text, path) in &f.user {
+        name.hash(&mut h);
+        match text {
+            Some(t) => t.hash(&mut h),
+            None => {
+                std::fs::read(path).map_err(|e| BoardError::at(path, 0, 0, format!("cannot read: {e}")))?.hash(&mut h)
+            }
+        }
+    }
+    plan.include_dirs.hash(&mut h);
+    // Included files (.vh) are part of the input too.
+    for d in &plan.include_dirs {
+        if let Ok(rd) = std::fs::read_dir(d) {
+            let mut incs: Vec<PathBuf> = rd
+                .flatten()
+                .map(|e| e.path())
+                .filter(|p| p.extension().is_some_and(|e| e == "vh" || e == "svh"))
+                .collect();
+            incs.sort();
+            for p in incs {
+                std::fs::read(&p).unwrap_or_default().hash(&mut h);
+            }
+        }
+    }
+    let key = format!("{:016x}", h.finish());
+    let dir = cache_dir().join("boards").join(format!("{}-{key}", plan.top));
+    let library = dir.join("libboard.so");
+    if library.exists() {
+        let warnings =
+            std::fs::read_to_string(dir.join("warnings.txt")).map(|t| parse_warnings(&t, &f)).unwrap_or_default();
+        return Ok(Built { library, warnings, seconds: None });
+    }
+    let t0 = Instant::now();
+    let tmp = dir.with_extension(format!("tmp{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&tmp);
+    std::fs::create_dir_all(&tmp)
+        .map_err(|e| BoardError::at(&tmp, 0, 0, format!("cannot create the build folder: {e}")))?;
+    let write = |name: &str, text: &str| {
+        std::fs::write(tmp.join(name), text)
+            .map_err(|e| BoardError::at(&tmp.join(name), 0, 0, format!("cannot write: {e}")))
+    };
+    for (name, text) in &f.generated {
+        write(name, text)?;
+    }
+    write("harness.cpp", HARNESS)?;
+    write("board_abi.h", ABI)?;
+    for (name, text, _) in &f.user {
+        if let Some(t) = text {
+            write(name, t)?;
+        }
+    }
+    if !quiet {
+        eprintln!(
+            "botsim board: building `{}` (Verilator, then C++; the next run with these sources reuses it)",
+            plan.top
+        );
+    }
+    let jobs = std::thread::available_parallelism().map_or(2, |n| n.get());
+    let mut cmd = Command::new(std::env::var_os("VERILATOR").unwrap_or_else(|| "verilator".into()));
+    cmd.current_dir(&tmp)
+        .args(["--cc", "--exe", "--build", "-j"])
+        .arg(jobs.to_string())
+        .args(["--prefix", "Vboard", "--top-module", wrapper::TOP, "--Mdir", "obj", "-o", "libboard.so"])
+        .args([
+            "--trace",
+            "--timescale",
+            "1ns/1ps",
+            "-O3",
+            "--x-assign",
+            "fast",
+            "-Wno-fatal",
+            "-Wno-lint",
+            "-Wno-style",
+        ])
+        .args(["-Wno-MULTITOP", "-Wno-TIMESCALEMOD"])
+        .args(["-CFLAGS", "-fPIC -O2 -DVL_USER_FINISH -DVL_USER_FATAL -I.."])
+        .args(["-LDFLAGS", "-shared"]);
+    for d in &f.defines {
+        cmd.arg(format!("+define+{d}"));
+    }
+    for d in &plan.include_dirs {
+        cmd.arg(format!("+incdir+{}", absolute(d).display()));
+    }
+    for (name, _) in &f.generated {
+        cmd.arg(name);
+    }
+    for (name, text, path) in &f.user {
+        if text.is_some() {
+            cmd.arg(name);
+        } else {
+            cmd.arg(absolute(path));
+        }
+    }
+    cmd.arg("harness.cpp");
+    let out = cmd
+        .output()
+        .map_err(|e| BoardError::plain(format!("cannot run verilator: {e} (install it: scripts/setup.sh)")))?;
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    if !out.status.success() || !tmp.join("obj/libboard.so").exists() {
+        let _ = std::fs::remove_dir_all(&tmp);
+        return Err(first_error(&stderr, &stdout, &f));
+    }
+    std::fs::rename(tmp.join("obj/libboard.so"), tmp.join("libboard.so"))
+        .and_then(|_| std::fs::write(tmp.join("warnings.txt"), &stderr))
+        .map_err(|e| BoardError::at(&tmp, 0, 0, format!("cannot keep the build: {e}")))?;
+    let _ = std::fs::remove_dir_all(tmp.join("obj"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::rename(&tmp, &dir).map_err(|e| BoardError::at(&dir, 0, 0, format!("cannot keep the build: {e}")))?;
+    Ok(Built { library, warnings: parse_warnings(&stderr, &f), seconds: Some(t0.elapsed().as_secs_f64()) })
+}
+
+fn absolute(p: &Path) -> PathBuf {
+    std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf())
+}
+
+/// Replace the build folder's copies of the user's files by the user's paths.
+fn user_paths(msg: &str, f: &Files) -> String {
+    let mut m = msg.to_string();
+    for (name, text, path) in &f.user {
+        if text.is_some() {
+            m = m.replace(name.as_str(), &path.display().to_string());
+        }
+    }
+    m
+}
+
+/// Verilator's `%Warning-CODE: file:line:col: message` lines about the user's files, grouped.
+fn parse_warnings(stderr: &str, f: &Files) -> Vec<(String, usize, String)> {
+    let mut groups: BTreeMap<String, (usize, String)> = BTreeMap::new();
+    for line in stderr.lines() {
+        let Some(rest) = line.strip_prefix("%Warning-") else { continue };
+        let Some((code, msg)) = rest.split_once(": ") else { continue };
+        let own = f.generated.iter().any(|(n, _)| msg.starts_with(n.as_str()));
+        if own || msg.contains("/usr/share/verilator") {
+            continue;
+        }
+        let e = groups.entry(code.to_string()).or_insert((0, user_paths(msg, f)));
+        e.0 += 1;
+    }
+    groups.into_iter().map(|(c, (n, m))| (c, n, m)).collect()
+}
+
+/// The first error of a failed build, with the user's file:line:col.
+fn first_error(stderr: &str, stdout: &str, f: &Files) -> BoardError {
+    for line in stderr.lines() {
+        if let Some(rest) = line.strip_prefix("%Error: ").or_else(|| line.strip_prefix("%Error-")) {
+            let rest = rest
+                .split_once(": ")
+                .filter(|(code, _)| code.chars().all(|c| c.is_ascii_uppercase()))
+                .map_or(rest, |(_, r)| r);
+            return BoardError::plain(user_paths(rest, f));
+        }
+    }
+    for line in stderr.lines().chain(stdout.lines()) {
+        if line.contains("error:") {
+            return BoardError::plain(format!("the C++ build failed: {}", user_paths(line.trim(), f)));
+        }
+    }
+    let tail: Vec<&str> = stderr.lines().rev().take(3).collect();
+    BoardError::plain(format!("the Verilator build failed: {}", tail.into_iter().rev().collect::<Vec<_>>().join(" / ")))
+}

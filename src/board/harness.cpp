@@ -1,0 +1,269 @@
+// harness.cpp: the C++ side of botsim's board simulation, compiled with each design's
+// Verilated `botsim_board` into one shared library that botsim loads at run time.
+//
+// The scheduler: the board oscillator (100 MHz, the wrapper's `clk`) and every
+// botsim_clkgen instance (found by its public variables) are clocks with exact rational
+// periods; the harness advances time to the next edge of any running clock, sets every clock
+// that changes then, evaluates once, dumps the waveform if one is open, and records what the
+// board shows (display and LED changes, every upd_sysregs of the bot) into the caller's buffer.
+#include "Vboard.h"
+#include "verilated.h"
+#include "verilated_syms.h"
+#include "verilated_vcd_c.h"
+
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+extern "C" {
+#include "board_abi.h"
+}
+
+namespace {
+
+struct Clock {
+    CData* q;                 // the level the harness drives
+    const CData* run;         // null: always runs
+    unsigned __int128 num;    // period = num / den ps
+    uint64_t den;
+    uint64_t phase_num;       // offset of rising edge 0 = phase_num / den ps
+    uint64_t duty_permille;
+    uint64_t n = 0;           // index of the next period
+    bool next_high = true;
+    uint64_t next_t = 0;
+    bool stopped = false;
+
+    uint64_t edge_time(uint64_t k, bool rising) const {
+        unsigned __int128 t = phase_num + num * k;
+        if (!rising) t += num * duty_permille / 1000;
+        return (uint64_t)((t + den / 2) / den);
+    }
+    void schedule_from(uint64_t now) {
+        // The first rising edge at or after `now` (called when a clock starts).
+        unsigned __int128 k = 0;
+        unsigned __int128 scaled = (unsigned __int128)now * den;
+        if (scaled > phase_num) k = (scaled - phase_num + num - 1) / num;
+        n = (uint64_t)k;
+        next_high = true;
+        next_t = edge_time(n, true);
+    }
+    void advance() {
+        if (next_high) {
+            next_high = false;
+            next_t = edge_time(n, false);
+        } else {
+            n++;
+            next_high = true;
+            next_t = edge_time(n, true);
+        }
+    }
+};
+
+}  // namespace
+
+struct Board {
+    VerilatedContext ctx;
+    Vboard* top = nullptr;
+    VerilatedVcdC* vcd = nullptr;
+    std::vector<Clock> clocks;
+    uint64_t now = 0;
+    uint64_t evals = 0;
+    uint8_t last_an = 0xFF, last_seg = 0x7F, last_dp = 1;
+    uint16_t last_led = 0;
+    uint8_t last_vga = 0xFF;
+    bool last_upd = false;
+    uint64_t samples = 0;
+    std::string fatal;
+};
+
+static thread_local Board* current = nullptr;
+
+extern "C" {
+
+Board* board_new(int argc, const char** argv) {
+    Board* b = new Board;
+    b->ctx.commandArgs(argc, argv);
+    b->ctx.traceEverOn(true);
+    b->ctx.fatalOnError(false);
+    b->top = new Vboard(&b->ctx, "TOP");
+    b->top->clk = 0;
+    b->top->reset_pressed = 0;
+    b->top->btn = 0;
+    b->top->sw = 0;
+    current = b;
+    b->top->eval();
+    // The oscillator, then every generated clock.
+    Clock osc{&b->top->clk, nullptr, 10000, 1, 0, 500};
+    osc.schedule_from(1);
+    b->clocks.push_back(osc);
+    for (auto& kv : *b->ctx.scopeNameMap()) {
+        const VerilatedScope* s = kv.second;
+        const VerilatedVar* q = s->varFind("q");
+        const VerilatedVar* num = s->varFind("botsim_period_num");
+        if (!q || !num) continue;
+        Clock c{};
+        c.q = (CData*)q->datap();
+        c.run = (const CData*)s->varFind("running")->datap();
+        c.num = (uint32_t) * (IData*)num->datap();
+        c.den = (uint32_t) * (IData*)s->varFind("botsim_period_den")->datap();
+        int32_t mdeg = *(IData*)s->varFind("botsim_phase_mdeg")->datap();
+        int64_t m = ((int64_t)mdeg % 360000 + 360000) % 360000;
+        c.phase_num = (uint64_t)(c.num * (uint64_t)m / 360000);
+        c.duty_permille = *(IData*)s->varFind("botsim_duty_permille")->datap();
+        if (c.den == 0 || c.num == 0) continue;
+        c.stopped = true;
+        b->clocks.push_back(c);
+    }
+    return b;
+}
+
+void board_free(Board* b) {
+    if (!b) return;
+    current = b;
+    if (b->vcd) {
+        b->vcd->close();
+        delete b->vcd;
+    }
+    b->top->final();
+    delete b->top;
+    delete b;
+}
+
+int board_open_vcd(Board* b, const char* path) {
+    current = b;
+    if (b->vcd) return 0;
+    b->vcd = new VerilatedVcdC;
+    b->top->trace(b->vcd, 99);
+    b->vcd->open(path);
+    if (!b->vcd->isOpen()) {
+        delete b->vcd;
+        b->vcd = nullptr;
+        return 0;
+    }
+    b->vcd->dump(b->now);
+    return 1;
+}
+
+void board_close_vcd(Board* b) {
+    if (b->vcd) {
+        b->vcd->close();
+        delete b->vcd;
+        b->vcd = nullptr;
+    }
+}
+
+size_t board_clock_count(Board* b) { return b->clocks.size(); }
+
+void board_clock(Board* b, size_t i, uint64_t* num, uint64_t* den) {
+    *num = (uint64_t)b->clocks[i].num;
+    *den = b->clocks[i].den;
+}
+
+void board_set_inputs(Board* b, uint32_t reset_pressed, uint32_t buttons, uint32_t switches) {
+    current = b;
+    b->top->reset_pressed = reset_pressed & 1;
+    b->top->btn = buttons & 0x1F;
+    b->top->sw = switches & 0xFFFF;
+    b->top->eval();
+    b->evals++;
+}
+
+uint64_t board_time_ps(Board* b) { return b->now; }
+uint64_t board_evals(Board* b) { return b->evals; }
+uint64_t board_bot_cycles(Board* b) { return b->top->bot_cycles; }
+
+static inline void record(BoardEvent* buf, uint32_t* n, uint64_t t, uint32_t kind, uint32_t a, uint64_t bb, uint64_t c) {
+    BoardEvent& e = buf[(*n)++];
+    e.time_ps = t;
+    e.kind = kind;
+    e.a = a;
+    e.b = bb;
+    e.c = c;
+}
+
+uint32_t board_run(Board* b, uint64_t until_ps, uint64_t stop_after_samples, BoardEvent* buf, uint32_t cap,
+                   uint32_t* n) {
+    current = b;
+    *n = 0;
+    Vboard* top = b->top;
+    const size_t nc = b->clocks.size();
+    Clock* clocks = b->clocks.data();
+    // Room for one eval's events (at most 3) must remain.
+    while (*n + 3 <= cap) {
+        uint64_t t = UINT64_MAX;
+        for (size_t i = 0; i < nc; i++)
+            if (!clocks[i].stopped && clocks[i].next_t < t) t = clocks[i].next_t;
+        if (t > until_ps || t == UINT64_MAX) {
+            b->now = until_ps;
+            return BOARD_UNTIL;
+        }
+        b->ctx.time(t);
+        b->now = t;
+        for (size_t i = 0; i < nc; i++) {
+            Clock& c = clocks[i];
+            if (c.stopped || c.next_t != t) continue;
+            *c.q = c.next_high ? 1 : 0;
+            c.advance();
+        }
+        top->eval();
+        b->evals++;
+        if (b->vcd) b->vcd->dump(t);
+        if (!b->fatal.empty() || b->ctx.gotFinish()) return BOARD_FINISHED;
+        // Clocks that start or stop with this evaluation.
+        for (size_t i = 1; i < nc; i++) {
+            Clock& c = clocks[i];
+            bool runs = *c.run != 0;
+            if (c.stopped && runs) {
+                c.stopped = false;
+                c.schedule_from(t + 1);
+            } else if (!c.stopped && !runs && *c.q == 0) {
+                c.stopped = true;
+            }
+        }
+        uint8_t an = top->an, seg = top->seg, dp = top->dp;
+        if (an != b->last_an || seg != b->last_seg || dp != b->last_dp) {
+            b->last_an = an;
+            b->last_seg = seg;
+            b->last_dp = dp;
+            record(buf, n, t, BOARD_EVENT_DISPLAY, an | (uint32_t)seg << 8 | (uint32_t)dp << 15, 0, 0);
+        }
+        if (top->led != b->last_led) {
+            b->last_led = top->led;
+            record(buf, n, t, BOARD_EVENT_LEDS, top->led, 0, 0);
+        }
+        bool upd = top->bot_upd;
+        if (upd && !b->last_upd) {
+            uint64_t regs = (uint64_t)top->bot_locx | (uint64_t)top->bot_locy << 8 | (uint64_t)top->bot_info << 16 |
+                            (uint64_t)top->bot_sensors << 24 | (uint64_t)top->bot_lmdist << 32 |
+                            (uint64_t)top->bot_rmdist << 40 | (uint64_t)top->bot_motctl << 48;
+            record(buf, n, t, BOARD_EVENT_SAMPLE, (uint32_t)b->samples, regs, top->bot_cycles);
+            b->samples++;
+            b->last_upd = true;
+            if (b->samples >= stop_after_samples) return BOARD_SAMPLES;
+        } else if (!upd) {
+            b->last_upd = false;
+        }
+    }
+    return BOARD_BUFFER_FULL;
+}
+
+const char* board_fatal(Board* b) { return b->fatal.c_str(); }
+
+}  // extern "C"
+
+// $finish ends the run (the runtime is built with VL_USER_FINISH); a fatal runtime error
+// ($fatal, a failed VCD write) too, keeping its message for the board that raised it.
+void vl_finish(const char* filename, int linenum, const char* hier) VL_MT_UNSAFE {
+    (void)filename;
+    (void)linenum;
+    (void)hier;
+    Verilated::threadContextp()->gotFinish(true);
+}
+
+void vl_fatal(const char* filename, int linenum, const char* hier, const char* msg) VL_MT_UNSAFE {
+    (void)hier;
+    Verilated::threadContextp()->gotFinish(true);
+    if (current && current->fatal.empty())
+        current->fatal = std::string(filename ? filename : "") + ":" + std::to_string(linenum) + ": " + (msg ? msg : "");
+}

@@ -1,0 +1,8 @@
+//! Board simulation, the half that needs Verilator at run time: [`build`] turns a plan
+//! (`botsim_core::board::plan`) into a shared library of the Verilated design with the C++
+//! harness (cached), [`model`] loads it and runs it.
+
+pub mod build;
+pub mod model;
+
+pub use botsim_core::board::*;

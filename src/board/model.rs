@@ -1,0 +1,186 @@
+//! A built board design, loaded at run time (libloading): the C interface of
+//! `board_abi.h` behind a safe type that frees the model on drop.
+
+use std::ffi::{c_char, c_int, CStr, CString};
+use std::path::Path;
+
+use botsim_core::board::BoardError;
+
+/// One thing the board showed (see `board_abi.h`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default)]
+pub struct RawEvent {
+    pub time_ps: u64,
+    pub kind: u32,
+    pub a: u32,
+    pub b: u64,
+    pub c: u64,
+}
+
+pub const EVENT_DISPLAY: u32 = 1;
+pub const EVENT_LEDS: u32 = 2;
+pub const EVENT_SAMPLE: u32 = 3;
+
+/// Why a run stopped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stop {
+    /// The time asked for was reached.
+    Until,
+    /// The event buffer is full; call again.
+    BufferFull,
+    /// The number of samples asked for was reached.
+    Samples,
+    /// `$finish` or a fatal error in the design.
+    Finished,
+}
+
+type Opaque = std::ffi::c_void;
+
+struct Api {
+    new: unsafe extern "C" fn(c_int, *const *const c_char) -> *mut Opaque,
+    free: unsafe extern "C" fn(*mut Opaque),
+    open_vcd: unsafe extern "C" fn(*mut Opaque, *const c_char) -> c_int,
+    close_vcd: unsafe extern "C" fn(*mut Opaque),
+    set_inputs: unsafe extern "C" fn(*mut Opaque, u32, u32, u32),
+    run: unsafe extern "C" fn(*mut Opaque, u64, u64, *mut RawEvent, u32, *mut u32) -> u32,
+    time_ps: unsafe extern "C" fn(*mut Opaque) -> u64,
+    evals: unsafe extern "C" fn(*mut Opaque) -> u64,
+    clock_count: unsafe extern "C" fn(*mut Opaque) -> usize,
+    clock: unsafe extern "C" fn(*mut Opaque, usize, *mut u64, *mut u64),
+    fatal: unsafe extern "C" fn(*mut Opaque) -> *const c_char,
+}
+
+/// A running board simulation.
+pub struct BoardModel {
+    api: Api,
+    ptr: *mut Opaque,
+    // Dropped last: the functions above live in it.
+    _lib: libloading::Library,
+}
+
+impl BoardModel {
+    /// Load the library at `path` and create the model with the plusargs `args`
+    /// (`+botsim_world=FILE`).
+    pub fn load(path: &Path, args: &[String]) -> Result<BoardModel, BoardError> {
+        let fail = |e: libloading::Error| BoardError::at(path, 0, 0, format!("cannot load the built design: {e}"));
+        // RTLD_DEEPBIND (Linux): the library uses its own Verilator runtime, never botsim's.
+        #[cfg(target_os = "linux")]
+        let flags = libloading::os::unix::RTLD_NOW | libloading::os::unix::RTLD_LOCAL | 0x8;
+        #[cfg(not(target_os = "linux"))]
+        let flags = libloading::os::unix::RTLD_NOW | libloading::os::unix::RTLD_LOCAL;
+        // SAFETY: the library is one botsim built from harness.cpp, with the ABI declared here.
+        let lib: libloading::Library =
+            unsafe { libloading::os::unix::Library::open(Some(path), flags) }.map_err(fail)?.into();
+        macro_rules! sym {
+            ($name:literal) => {
+                // SAFETY: the symbol's type is the one board_abi.h and harness.cpp give it.
+                *unsafe { lib.get($name) }.map_err(fail)?
+            };
+        }
+        let api = Api {
+            new: sym!(b"board_new"),
+            free: sym!(b"board_free"),
+            open_vcd: sym!(b"board_open_vcd"),
+            close_vcd: sym!(b"board_close_vcd"),
+            set_inputs: sym!(b"board_set_inputs"),
+            run: sym!(b"board_run"),
+            time_ps: sym!(b"board_time_ps"),
+            evals: sym!(b"board_evals"),
+            clock_count: sym!(b"board_clock_count"),
+            clock: sym!(b"board_clock"),
+            fatal: sym!(b"board_fatal"),
+        };
+        let cargs: Vec<CString> = std::iter::once("botsim".to_string())
+            .chain(args.iter().cloned())
+            .map(|a| CString::new(a).unwrap_or_default())
+            .collect();
+        let ptrs: Vec<*const c_char> = cargs.iter().map(|c| c.as_ptr()).collect();
+        // SAFETY: argv outlives the call (the context copies the arguments).
+        let ptr = unsafe { (api.new)(ptrs.len() as c_int, ptrs.as_ptr()) };
+        if ptr.is_null() {
+            return Err(BoardError::at(path, 0, 0, "the built design could not be created"));
+        }
+        Ok(BoardModel { api, ptr, _lib: lib })
+    }
+
+    /// Set the board's inputs (they act from the current time on).
+    pub fn set_inputs(&mut self, reset_pressed: bool, buttons: u8, switches: u16) {
+        // SAFETY: ptr is live until drop.
+        unsafe { (self.api.set_inputs)(self.ptr, reset_pressed as u32, buttons as u32, switches as u32) }
+    }
+
+    /// Run until `until_ps`, until `stop_after_samples` bot samples in all, or until `buf`
+    /// is full; `buf` is filled from the start and truncated to what was recorded.
+    pub fn run(&mut self, until_ps: u64, stop_after_samples: u64, buf: &mut Vec<RawEvent>) -> Stop {
+        let cap = buf.capacity().max(64);
+        buf.clear();
+        buf.resize(cap, RawEvent::default());
+        let mut n = 0u32;
+        // SAFETY: buf holds `cap` events; the harness writes at most that many.
+        let r = unsafe { (self.api.run)(self.ptr, until_ps, stop_after_samples, buf.as_mut_ptr(), cap as u32, &mut n) };
+        buf.truncate(n as usize);
+        match r {
+            0 => Stop::Until,
+            1 => Stop::BufferFull,
+            2 => Stop::Samples,
+            _ => Stop::Finished,
+        }
+    }
+
+    /// Simulated time in picoseconds.
+    pub fn time_ps(&self) -> u64 {
+        // SAFETY: ptr is live.
+        unsafe { (self.api.time_ps)(self.ptr) }
+    }
+
+    /// Evaluations of the model so far (one per distinct edge time, plus input changes).
+    pub fn evals(&self) -> u64 {
+        // SAFETY: ptr is live.
+        unsafe { (self.api.evals)(self.ptr) }
+    }
+
+    /// The clocks: the oscillator, then each generated clock, as periods `num / den` ps.
+    pub fn clocks(&self) -> Vec<(u64, u64)> {
+        // SAFETY: ptr is live; indices below the count.
+        unsafe {
+            (0..(self.api.clock_count)(self.ptr))
+                .map(|i| {
+                    let (mut n, mut d) = (0, 0);
+                    (self.api.clock)(self.ptr, i, &mut n, &mut d);
+                    (n, d)
+                })
+                .collect()
+        }
+    }
+
+    /// The fatal error that stopped the design, if any.
+    pub fn fatal(&self) -> Option<String> {
+        // SAFETY: the harness returns a NUL-terminated string owned by the model.
+        let s = unsafe { CStr::from_ptr((self.api.fatal)(self.ptr)) }.to_string_lossy().into_owned();
+        (!s.is_empty()).then_some(s)
+    }
+
+    /// Start a waveform of the whole design.
+    pub fn open_vcd(&mut self, path: &Path) -> Result<(), BoardError> {
+        let c = CString::new(path.as_os_str().as_encoded_bytes())
+            .map_err(|_| BoardError::at(path, 0, 0, "bad file name"))?;
+        // SAFETY: ptr is live; the path is copied.
+        if unsafe { (self.api.open_vcd)(self.ptr, c.as_ptr()) } == 0 {
+            return Err(BoardError::at(path, 0, 0, "cannot open the waveform file"));
+        }
+        Ok(())
+    }
+
+    /// Stop the waveform (flushes and closes the file).
+    pub fn close_vcd(&mut self) {
+        // SAFETY: ptr is live.
+        unsafe { (self.api.close_vcd)(self.ptr) }
+    }
+}
+
+impl Drop for BoardModel {
+    fn drop(&mut self) {
+        // SAFETY: created by board_new, freed once.
+        unsafe { (self.api.free)(self.ptr) }
+    }
+}

@@ -1,0 +1,362 @@
+//! `botsim board`: simulate a student's whole board design with the world in the loop.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use botsim::board::build::build;
+use botsim::board::model::{BoardModel, RawEvent, Stop, EVENT_DISPLAY, EVENT_LEDS, EVENT_SAMPLE};
+use botsim::files::write_atomic;
+use botsim::kcpsm6::loader;
+use botsim::render::{path_picture, PathStyle};
+use botsim::{Registers, Snapshot, World};
+use botsim_core::board::display::Display;
+use botsim_core::board::pins::BUTTONS;
+use botsim_core::board::plan::{collect, Plan, Request, Source};
+
+use crate::cli::args::FirmwareArgs;
+use crate::cli::run::{csv_row, json_row, CSV_HEADER};
+
+/// Simulate your Nexys4 design: your top, your PicoBlaze and firmware, your display and LEDs,
+/// with botsim's bot, world and Xilinx models in place of the course's netlists.
+///
+/// SOURCE is a file or a folder (searched recursively for .v/.sv; .vh folders are include
+/// paths). botsim's kcpsm6, bot, world_if, map and world_map replace yours; every program ROM
+/// (a module with address/instruction/enable/clk) becomes a behavioural ROM holding the
+/// program in its INIT strings, or the one you name with --program. The run prints what it
+/// replaced. The design is built once (Verilator, C++) and reused while the sources are
+/// unchanged.
+#[derive(clap::Args)]
+#[command(after_help = "Examples:
+  botsim board my_project/ --map world_map_lr.coe --seconds 5 --display display.txt
+  botsim board src/ --program src/proj2demo.psm --param SIMULATE=1 --samples 200 --trace-csv trace.csv
+  botsim board src/ --press btnC@100+50 --switches 00FF --json")]
+pub struct Args {
+    /// Verilog files or folders
+    #[arg(required = true, value_name = "SOURCE")]
+    sources: Vec<PathBuf>,
+    /// The top module (default: the one module nothing instantiates with a clock pin)
+    #[arg(long, value_name = "NAME")]
+    top: Option<String>,
+    /// A program (.psm, .hex, .mem, .v) for the ROM module of the same name
+    #[arg(long, value_name = "FILE")]
+    program: Vec<PathBuf>,
+    /// The world (.txt, .coe, .mem, .png) [default: the built-in course]
+    #[arg(long, value_name = "FILE")]
+    map: Option<PathBuf>,
+    #[command(flatten)]
+    firmware: FirmwareArgs,
+    /// Stop after the bot's N-th upd_sysregs pulse after reset
+    #[arg(long, value_name = "N")]
+    samples: Option<u64>,
+    /// Stop after S seconds of simulated time [default: 1, or unlimited with --samples]
+    #[arg(long, value_name = "S")]
+    seconds: Option<f64>,
+    /// Press a button: NAME@MS[+MS] (btnC, btnU, btnD, btnL, btnR; btnCpuReset too)
+    #[arg(long, value_name = "BTN@MS[+MS]")]
+    press: Vec<String>,
+    /// The switches, in hexadecimal
+    #[arg(long, value_name = "HEX")]
+    switches: Option<String>,
+    /// A parameter of the top: NAME=VALUE (e.g. SIMULATE=1)
+    #[arg(long, value_name = "NAME=VALUE")]
+    param: Vec<String>,
+    /// An include folder
+    #[arg(long, value_name = "DIR")]
+    include: Vec<PathBuf>,
+    /// Tie off a module botsim has no model of
+    #[arg(long, value_name = "MODULE")]
+    stub: Vec<String>,
+    /// The bot's registers at every upd_sysregs (the columns of `botsim run`)
+    #[arg(long, value_name = "FILE")]
+    trace_csv: Option<PathBuf>,
+    /// The same as JSON lines
+    #[arg(long, value_name = "FILE")]
+    trace_json: Option<PathBuf>,
+    /// The bot's path on the world as a PNG
+    #[arg(long, value_name = "FILE")]
+    png: Option<PathBuf>,
+    /// Every change of the seven-segment display (and LEDs), one line each
+    #[arg(long, value_name = "FILE")]
+    display: Option<PathBuf>,
+    /// A waveform of the whole design
+    #[arg(long, value_name = "FILE")]
+    vcd: Option<PathBuf>,
+    /// Print the summary as JSON
+    #[arg(long)]
+    json: bool,
+    /// Print nothing but errors
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+/// One `--press`: buttons bit, from, to (ps).
+struct Press {
+    bit: Option<u8>,
+    from: u64,
+    to: u64,
+}
+
+const PS_PER_MS: u64 = 1_000_000_000;
+
+fn parse_press(s: &str) -> Result<Press, String> {
+    let bad = || format!("--press {s}: expected NAME@MS or NAME@MS+MS, e.g. btnC@100+50");
+    let (name, when) = s.split_once('@').ok_or_else(bad)?;
+    let (at, len) = when.split_once('+').unwrap_or((when, "100"));
+    let at: f64 = at.parse().map_err(|_| bad())?;
+    let len: f64 = len.parse().map_err(|_| bad())?;
+    if at.is_nan() || len.is_nan() || at < 0.0 || len <= 0.0 {
+        return Err(bad());
+    }
+    let bit = if name.eq_ignore_ascii_case("btnCpuReset") {
+        None
+    } else {
+        Some(BUTTONS.iter().position(|b| b.eq_ignore_ascii_case(name)).ok_or_else(|| {
+            format!("--press {s}: unknown button `{name}` (btnC, btnU, btnD, btnL, btnR, btnCpuReset)")
+        })? as u8)
+    };
+    let from = (at * PS_PER_MS as f64) as u64;
+    Ok(Press { bit, from, to: from + (len * PS_PER_MS as f64) as u64 })
+}
+
+/// The reset button is pressed at power-up and released after this long (1 ms).
+const POWER_ON_RESET_PS: u64 = PS_PER_MS;
+
+pub fn run(a: Args) -> Result<(), String> {
+    // Arguments first: every bad one is one line before anything is built.
+    let presses = a.press.iter().map(|p| parse_press(p)).collect::<Result<Vec<_>, _>>()?;
+    let switches = match &a.switches {
+        Some(h) => u16::from_str_radix(h.trim_start_matches("0x"), 16)
+            .map_err(|_| format!("--switches {h}: expected up to four hexadecimal digits"))?,
+        None => 0,
+    };
+    let params = a
+        .param
+        .iter()
+        .map(|p| {
+            p.split_once('=')
+                .filter(|(n, v)| !n.is_empty() && !v.is_empty())
+                .map(|(n, v)| (n.to_string(), v.to_string()))
+                .ok_or_else(|| format!("--param {p}: expected NAME=VALUE"))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    if let Some(s) = a.seconds {
+        if s.is_nan() || s <= 0.0 {
+            return Err(format!("--seconds {s}: expected a positive number"));
+        }
+    }
+    let world = match &a.map {
+        Some(p) => World::load(p).map_err(|d| d.to_string())?,
+        None => World::builtin(),
+    };
+    let fw = a.firmware.firmware();
+    let bot_firmware = fw.assemble().map_err(|d| d.to_string())?;
+    let mut programs = Vec::new();
+    for p in &a.program {
+        let img = loader::load(p, &botsim::kcpsm6::asm::Options::default()).map_err(|d| d.to_string())?;
+        programs.push((p.clone(), img));
+    }
+    for p in [&a.trace_csv, &a.trace_json, &a.png, &a.display, &a.vcd].into_iter().flatten() {
+        check_writable(p)?;
+    }
+
+    // Plan and build.
+    let (files, mut include_dirs) = collect(&a.sources).map_err(|e| e.to_string())?;
+    include_dirs.extend(a.include.iter().cloned());
+    let sources = files.iter().map(|f| Source::read(f)).collect::<Result<Vec<_>, _>>().map_err(|e| e.to_string())?;
+    let req = Request {
+        top: a.top.clone(),
+        programs,
+        bot_firmware,
+        force_own_firmware: a.firmware.any(),
+        stubs: a.stub.clone(),
+    };
+    let plan = Plan::new(&sources, include_dirs, &req).map_err(|e| e.to_string())?;
+    let say = |s: String| {
+        if !a.quiet && !a.json {
+            eprintln!("{s}");
+        }
+    };
+    say(format!("botsim board: top `{}`, bot at `{}.{}`", plan.top, plan.top, plan.bot_path));
+    for r in &plan.replaced {
+        let from = if r.from.is_empty() { String::new() } else { format!(" ({})", r.from) };
+        say(format!("  replaced {}{from} with {}", r.module, r.with));
+    }
+    for w in &plan.warnings {
+        say(format!("warning: {w}"));
+    }
+    if !plan.unknown_pins.is_empty() {
+        say(format!("  ports with no board pin (inputs held low, outputs open): {}", plan.unknown_pins.join(", ")));
+    }
+    let built = build(&plan, &params, a.quiet || a.json).map_err(|e| e.to_string())?;
+    match built.seconds {
+        Some(s) => say(format!("  built in {s:.1} s ({})", built.library.display())),
+        None => say(format!("  reused the build in {}", built.library.parent().unwrap_or(&built.library).display())),
+    }
+    for (code, n, first) in &built.warnings {
+        say(format!("  verilator warning {code} ({n}x), first: {first}"));
+    }
+
+    // Run.
+    // The world file is read when the model is created, then removed.
+    let world_file = std::env::temp_dir().join(format!("botsim-world-{}.mem", std::process::id()));
+    std::fs::write(&world_file, world.to_mem()).map_err(|e| format!("{}: {e}", world_file.display()))?;
+    let model = BoardModel::load(&built.library, &[format!("+botsim_world={}", world_file.display())]);
+    let _ = std::fs::remove_file(&world_file);
+    let mut model = model.map_err(|e| e.to_string())?;
+    if let Some(v) = &a.vcd {
+        model.open_vcd(v).map_err(|e| e.to_string())?;
+    }
+    let end_ps = match (a.seconds, a.samples) {
+        (Some(s), _) => (s * 1e12) as u64,
+        (None, Some(_)) => u64::MAX,
+        (None, None) => 1_000_000_000_000,
+    };
+    let stop_after = a.samples.unwrap_or(u64::MAX);
+    // Input changes: power-on reset release, each press and release.
+    let mut changes: Vec<u64> = vec![POWER_ON_RESET_PS];
+    for p in &presses {
+        changes.extend([p.from, p.to]);
+    }
+    changes.sort_unstable();
+    changes.dedup();
+    let inputs_at = |t: u64| {
+        let mut reset = t < POWER_ON_RESET_PS;
+        let mut buttons = 0u8;
+        for p in &presses {
+            if (p.from..p.to).contains(&t) {
+                match p.bit {
+                    Some(b) => buttons |= 1 << b,
+                    None => reset = true,
+                }
+            }
+        }
+        (reset, buttons)
+    };
+    let (r, b) = inputs_at(0);
+    model.set_inputs(r, b, switches);
+
+    let t0 = Instant::now();
+    let mut display = Display::default();
+    let mut display_log = String::new();
+    let mut snapshots: Vec<Snapshot> = Vec::new();
+    let mut json = String::new();
+    let mut buf: Vec<RawEvent> = Vec::with_capacity(4096);
+    let mut next_change = changes.iter().copied().filter(|&c| c > 0).peekable();
+    let mut last_led = 0u16;
+    let finished = loop {
+        if crate::cli::interrupted() {
+            break None;
+        }
+        let until = next_change.peek().copied().unwrap_or(end_ps).min(end_ps);
+        let stop = model.run(until, stop_after, &mut buf);
+        for e in &buf {
+            match e.kind {
+                EVENT_DISPLAY => {
+                    let before = display.lines().len();
+                    display.pins(e.time_ps, e.a as u8, (e.a >> 8) as u8 & 0x7F, e.a >> 15 & 1 == 1);
+                    for l in &display.lines()[before..] {
+                        display_log.push_str(&format!("{:>12.3} ms  display {}\n", l.time_ps as f64 / 1e9, l.text));
+                    }
+                }
+                EVENT_LEDS => {
+                    last_led = e.a as u16;
+                    display_log.push_str(&format!("{:>12.3} ms  leds    {:016b}\n", e.time_ps as f64 / 1e9, last_led));
+                }
+                EVENT_SAMPLE => {
+                    let v = e.b;
+                    let regs = Registers {
+                        loc_x: v as u8,
+                        loc_y: (v >> 8) as u8,
+                        bot_info: (v >> 16) as u8,
+                        sensors: (v >> 24) as u8,
+                        lm_dist: (v >> 32) as u8,
+                        rm_dist: (v >> 40) as u8,
+                    };
+                    let s = Snapshot { sample: e.a as u64, cycle: e.c, regs };
+                    json.push_str(&json_row(&s, botsim::MotCtl((v >> 48) as u8)));
+                    snapshots.push(s);
+                }
+                _ => {}
+            }
+        }
+        match stop {
+            Stop::BufferFull => continue,
+            Stop::Samples => break Some("samples"),
+            Stop::Finished => break Some("finish"),
+            Stop::Until => {
+                let t = model.time_ps();
+                if t >= end_ps {
+                    break Some("time");
+                }
+                if next_change.peek().is_some_and(|&c| c <= t) {
+                    next_change.next();
+                    let (r, b) = inputs_at(t);
+                    model.set_inputs(r, b, switches);
+                }
+            }
+        }
+    };
+    let wall = t0.elapsed().as_secs_f64();
+    let sim_ps = model.time_ps();
+    display.settle(sim_ps);
+    if let Some(f) = model.fatal() {
+        return Err(format!("the design stopped: {f}"));
+    }
+    model.close_vcd();
+
+    // Outputs.
+    if let Some(p) = &a.trace_csv {
+        let mut csv = format!("{CSV_HEADER}\n");
+        for s in &snapshots {
+            csv.push_str(&csv_row(s));
+        }
+        write_atomic(p, csv.as_bytes())?;
+    }
+    if let Some(p) = &a.trace_json {
+        write_atomic(p, json.as_bytes())?;
+    }
+    if let Some(p) = &a.display {
+        write_atomic(p, display_log.as_bytes())?;
+    }
+    if let Some(p) = &a.png {
+        let picture = path_picture(&world, &snapshots, fw.threshold, &PathStyle::default());
+        write_atomic(p, &picture)?;
+    }
+    let last_display = display.lines().last().map(|l| l.text.clone()).unwrap_or_default();
+    let end = snapshots.last().map(|s| (s.regs.loc_x, s.regs.loc_y));
+    let evals = model.evals();
+    if a.json {
+        let v = serde_json::json!({
+            "top": plan.top,
+            "simulated_seconds": sim_ps as f64 / 1e12,
+            "stopped_by": finished.unwrap_or("interrupt"),
+            "samples": snapshots.len(),
+            "end": end.map(|(x, y)| serde_json::json!({"loc_x": x, "loc_y": y})),
+            "display": last_display,
+            "leds": last_led,
+            "evaluations": evals,
+            "wall_seconds": wall,
+            "build_seconds": built.seconds,
+        });
+        println!("{v}");
+    } else if !a.quiet {
+        let end = end.map_or("no sample yet".to_string(), |(x, y)| format!("({x}, {y})"));
+        println!(
+            "simulated {:.3} s in {wall:.1} s: {} samples, the bot ended at {end}, the display showed \"{last_display}\", LEDs {last_led:016b}",
+            sim_ps as f64 / 1e12,
+            snapshots.len()
+        );
+    }
+    Ok(())
+}
+
+fn check_writable(p: &std::path::Path) -> Result<(), String> {
+    if p.is_dir() {
+        return Err(format!("{}: is a folder, expected a file name", p.display()));
+    }
+    let dir = p.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
+    if !dir.is_dir() {
+        return Err(format!("{}: the folder {} does not exist", p.display(), dir.display()));
+    }
+    Ok(())
+}

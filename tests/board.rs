@@ -1,0 +1,143 @@
+//! `botsim board` on real board designs: the example Nexys4 Project 2 design in
+//! examples/nexys4_proj2 (its own KCPSM6 and firmware, debounce, seven-segment driver,
+//! interface), and small broken designs for the errors. Each design is verilated and
+//! compiled once per cache folder (target/botsim-board-cache).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn board(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_botsim"))
+        .arg("board")
+        .args(args)
+        .current_dir(root())
+        .env("BOTSIM_CACHE", root().join("target/botsim-board-cache"))
+        .output()
+        .unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// The spec's hexadecimal glyphs as the display decoder names them (board.md 1).
+fn hex(v: u8) -> char {
+    "0123456789AbCdEF".as_bytes()[v as usize & 15] as char
+}
+
+#[test]
+fn the_example_design_shows_the_bots_registers_on_its_display() {
+    let dir = tempfile::tempdir().unwrap();
+    let (csv, disp) = (dir.path().join("t.csv"), dir.path().join("d.txt"));
+    let o = board(&[
+        "examples/nexys4_proj2",
+        "--param",
+        "SIMULATE=1",
+        "--seconds",
+        "0.045",
+        "--trace-csv",
+        csv.to_str().unwrap(),
+        "--display",
+        disp.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(summary["top"], "nexys4fpga");
+    // hw timing: sample 0 after reset (released at 1 ms), sample 1 right after, the next
+    // ~50 ms later.
+    let rows: Vec<Vec<u64>> = std::fs::read_to_string(&csv)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 2, "{rows:?}");
+    let last = &rows[1];
+    let (x, y, info, sensors) = (last[2] as u8, last[3] as u8, last[4] as u8, last[5] as u8);
+    // The firmware writes LocX to digits 7-6, LocY to 5-4, the heading to digit 0, the
+    // sensors to LED[7:0]: what the display decoder reads must be those registers.
+    let want = format!("{}{}{}{}   {}", hex(x >> 4), hex(x), hex(y >> 4), hex(y), hex(info & 7));
+    let log = std::fs::read_to_string(&disp).unwrap();
+    let shown: Vec<&str> = log.lines().filter(|l| l.contains("display")).collect();
+    assert_eq!(shown.last().unwrap().split("display ").nth(1).unwrap(), want, "{log}");
+    assert_eq!(summary["display"], want);
+    assert_eq!(summary["leds"].as_u64().unwrap(), sensors as u64);
+    // The reset is held by the debounce until 1 ms: the first sample is just after it.
+    let first_cycle = rows[0][1];
+    assert!((100_000..101_000).contains(&first_cycle), "{first_cycle}");
+}
+
+#[test]
+fn the_trace_follows_the_samples_asked_for_and_reruns_reuse_the_build() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("t.csv");
+    let args = ["examples/nexys4_proj2", "--param", "SIMULATE=1", "--timing", "fast", "--samples", "40", "--trace-csv"];
+    let mut a: Vec<&str> = args.to_vec();
+    a.push(csv.to_str().unwrap());
+    let first = board(&a);
+    assert!(first.status.success(), "{}", stderr(&first));
+    let again = board(&a);
+    assert!(again.status.success());
+    assert!(stderr(&again).contains("reused the build"), "{}", stderr(&again));
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next().unwrap(), "sample,cycle,loc_x,loc_y,bot_info,sensors,lm_dist,rm_dist");
+    let rows: Vec<&str> = lines.collect();
+    assert_eq!(rows.len(), 40);
+    assert!(rows[39].starts_with("39,"));
+    // Driving forward (switches off) from (64, 64) facing east: LocX grows.
+    let x = |r: &str| r.split(',').nth(2).unwrap().parse::<u32>().unwrap();
+    assert!(x(rows[39]) > x(rows[0]), "{rows:?}");
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p.to_str().unwrap().to_string()
+}
+
+fn one_line_error(o: &Output) -> String {
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(o));
+    let e = stderr(o);
+    let errors: Vec<&str> = e.lines().filter(|l| !l.starts_with("botsim board:") && !l.starts_with("  ")).collect();
+    assert_eq!(errors.len(), 1, "{e}");
+    errors[0].to_string()
+}
+
+#[test]
+fn a_missing_module_is_one_error_at_its_instance() {
+    let dir = tempfile::tempdir().unwrap();
+    let top = write(
+        dir.path(),
+        "top.v",
+        "module top(input clk, output [15:0] led);\n  bot b (.clk(clk), .reset(1'b0));\n  blinker u (.clk(clk), .q(led));\nendmodule\n",
+    );
+    let e = one_line_error(&board(&[&top]));
+    assert!(e.starts_with(&format!("{top}:3:3: module `blinker` (instance `u` in `top`)")), "{e}");
+    assert!(e.contains("--stub blinker"), "{e}");
+}
+
+#[test]
+fn a_pin_with_the_wrong_direction_is_one_error_at_the_top() {
+    let dir = tempfile::tempdir().unwrap();
+    let top = write(dir.path(), "top.v", "module top(input clk, input [6:0] seg);\n  bot b (.clk(clk));\nendmodule\n");
+    let e = one_line_error(&board(&[&top]));
+    assert!(e.starts_with(&format!("{top}:1:8: port `seg` is the board's seven-segment pin, an output")), "{e}");
+}
+
+#[test]
+fn a_verilog_syntax_error_is_one_error_at_the_users_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let top = write(
+        dir.path(),
+        "top.v",
+        "module top(input clk, output [15:0] led);\n  bot b (.clk(clk), .reset(1'b0));\n  assign led = 16'h00 +;\nendmodule\n",
+    );
+    let e = one_line_error(&board(&[&top]));
+    assert!(e.starts_with(&format!("{top}:3:")), "{e}");
+}

@@ -1,12 +1,14 @@
 //! Files kept in the repository for FPGA users must equal what the toolchain generates now:
-//! rtl/bot_pgm.v (from rtl/bot_pgm.psm) and rtl/default_world.mem (the built-in world).
+//! rtl/bot_pgm.v (from rtl/bot_pgm.psm), rtl/default_world.mem (the built-in world) and the
+//! example board design's program ROM (examples/nexys4_proj2/proj2demo.v, as `botsim asm`
+//! writes it from proj2demo.psm).
 //! Run `scripts/dev/regen.sh` (BOTSIM_BLESS=1) after changing either source.
 
 use std::path::Path;
 
 use botsim::world::World;
 use kcpsm6::asm::{assemble_file, Options, RomSize};
-use kcpsm6::output::verilog_rom;
+use kcpsm6::output::{render, verilog_rom, OutputFormat};
 
 fn check(rel: &str, want: &str) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(rel);
@@ -28,4 +30,12 @@ fn rom_module_matches_the_firmware_source() {
 #[test]
 fn default_world_file_matches_the_builtin_world() {
     check("rtl/default_world.mem", &World::builtin().to_mem());
+}
+
+#[test]
+fn example_rom_matches_its_program() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/nexys4_proj2");
+    let (psm, v) = (dir.join("proj2demo.psm"), dir.join("proj2demo.v"));
+    let p = assemble_file(&psm, &Options::default()).unwrap();
+    check("examples/nexys4_proj2/proj2demo.v", &render(&p, OutputFormat::Verilog, &v, &psm, None));
 }

@@ -31,3 +31,27 @@ pub fn write_atomic(path: &Path, data: &[u8]) -> Result<(), String> {
         format!("{}: error: cannot write file: {}", path.display(), kcpsm6::diag::io_reason(&e))
     })
 }
+
+/// Check, before a long run, that `path` can be written later: it is not a folder and its
+/// folder takes a new file (a probe file, removed at once). An existing file is untouched:
+/// outputs are written beside their name and renamed over it ([`write_atomic`]), so what
+/// must be writable is the folder.
+///
+/// ```
+/// let dir = tempfile::tempdir().unwrap();
+/// assert!(botsim_core::files::check_writable(&dir.path().join("out.csv")).is_ok());
+/// assert!(botsim_core::files::check_writable(dir.path()).is_err());
+/// ```
+pub fn check_writable(path: &Path) -> Result<(), String> {
+    if path.is_dir() {
+        return Err(format!("{}: error: cannot write file: is a directory", path.display()));
+    }
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d,
+        _ => Path::new("."),
+    };
+    let probe = dir.join(format!(".botsim-write-check-{}", std::process::id()));
+    std::fs::write(&probe, b"")
+        .and_then(|()| std::fs::remove_file(&probe))
+        .map_err(|e| format!("{}: error: cannot write file: {}", path.display(), kcpsm6::diag::io_reason(&e)))
+}

@@ -19,6 +19,8 @@ mutations=(
   "xb ignores STAR (2.8)|s/let xb_next = if in_fetch { self.bank } else { self.bank ^ (Opcode::of(self.instr) == Opcode::Star) };/let xb_next = self.bank;/"
   "old: the ALU result is taken in the second cycle (2.8)|s/let v = if p.op == Opcode::Input { input } else { p.result };/let v = if p.op == Opcode::Input { input } else { self.alu(p.op, StackEntry::default()).0 };/"
   "interrupt does not cancel the write|s/if p.kind == RetireKind::Interrupt {/if false {/"
+  "fast path: STAR's D not seen by xb|s/^            self.xb = self.bank ^ (Opcode::of(self.instr) == Opcode::Star);/            self.xb = self.bank;/"
+  "fast path: no countdown fast-forward end state|s/^        self.z = true;$/        self.z = false;/"
   "RETURN resumes at the CALL|s/Opcode::Return | Opcode::LoadReturn if taken => (top.pc + 1) \& 0xFFF,/Opcode::Return | Opcode::LoadReturn if taken => top.pc,/"
 )
 

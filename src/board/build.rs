@@ -66,8 +66,7 @@ fn files(plan: &Plan, params: &[(String, String)]) -> Files {
         ("xilinx.v".to_string(), XILINX.to_string()),
         ("botsim_clkgen.v".to_string(), CLKGEN.to_string()),
     ];
-    for name in &plan.own {
-        let file = OWN_MODULES.iter().find(|(m, _)| m == name).map(|(_, f)| *f).unwrap_or("kcpsm6.v");
+    for (_, file) in OWN_MODULES {
         generated.push((format!("botsim_{file}"), own_rtl(file).to_string()));
     }
     for (module, text) in wrapper::roms(plan) {

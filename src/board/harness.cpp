@@ -71,7 +71,6 @@ struct Board {
     uint64_t evals = 0;
     uint8_t last_an = 0xFF, last_seg = 0x7F, last_dp = 1;
     uint16_t last_led = 0;
-    uint8_t last_vga = 0xFF;
     bool last_upd = false;
     uint64_t samples = 0;
     std::string fatal;

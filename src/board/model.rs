@@ -5,21 +5,64 @@ use std::ffi::{c_char, c_int, CStr, CString};
 use std::path::Path;
 
 use botsim_core::board::BoardError;
+use botsim_core::{MotCtl, Registers, Snapshot};
 
-/// One thing the board showed (see `board_abi.h`).
+/// One record of the harness's buffer, as `board_abi.h` lays it out; [`Event::of`] reads it.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
 pub struct RawEvent {
-    pub time_ps: u64,
-    pub kind: u32,
-    pub a: u32,
-    pub b: u64,
-    pub c: u64,
+    time_ps: u64,
+    kind: u32,
+    a: u32,
+    b: u64,
+    c: u64,
 }
 
-pub const EVENT_DISPLAY: u32 = 1;
-pub const EVENT_LEDS: u32 = 2;
-pub const EVENT_SAMPLE: u32 = 3;
+/// One thing the board showed, at `time_ps`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Event {
+    /// The seven-segment pins changed (all active low; `seg` = g..a).
+    Display { time_ps: u64, an: u8, seg: u8, dp: bool },
+    /// The LEDs changed.
+    Leds { time_ps: u64, leds: u16 },
+    /// upd_sysregs rose: the bot's registers (the cycle counted in the bot's clock from
+    /// power-up) and the MotCtl it was given.
+    Sample { time_ps: u64, snapshot: Snapshot, motctl: MotCtl },
+}
+
+impl Event {
+    /// Decode a record (the packing is harness.cpp's `record` calls).
+    pub fn of(e: &RawEvent) -> Option<Event> {
+        let t = e.time_ps;
+        Some(match e.kind {
+            1 => Event::Display { time_ps: t, an: e.a as u8, seg: (e.a >> 8) as u8 & 0x7F, dp: e.a >> 15 & 1 == 1 },
+            2 => Event::Leds { time_ps: t, leds: e.a as u16 },
+            3 => {
+                let byte = |k: u32| (e.b >> (8 * k)) as u8;
+                let regs = Registers {
+                    loc_x: byte(0),
+                    loc_y: byte(1),
+                    bot_info: byte(2),
+                    sensors: byte(3),
+                    lm_dist: byte(4),
+                    rm_dist: byte(5),
+                };
+                Event::Sample {
+                    time_ps: t,
+                    snapshot: Snapshot { sample: e.a as u64, cycle: e.c, regs },
+                    motctl: MotCtl(byte(6)),
+                }
+            }
+            _ => return None,
+        })
+    }
+}
+
+/// `RTLD_DEEPBIND` (glibc): the library resolves its symbols in itself first.
+#[cfg(target_os = "linux")]
+const RTLD_DEEPBIND: std::ffi::c_int = 0x8;
+#[cfg(not(target_os = "linux"))]
+const RTLD_DEEPBIND: std::ffi::c_int = 0;
 
 /// Why a run stopped.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -63,11 +106,8 @@ impl BoardModel {
     /// (`+botsim_world=FILE`).
     pub fn load(path: &Path, args: &[String]) -> Result<BoardModel, BoardError> {
         let fail = |e: libloading::Error| BoardError::at(path, 0, 0, format!("cannot load the built design: {e}"));
-        // RTLD_DEEPBIND (Linux): the library uses its own Verilator runtime, never botsim's.
-        #[cfg(target_os = "linux")]
-        let flags = libloading::os::unix::RTLD_NOW | libloading::os::unix::RTLD_LOCAL | 0x8;
-        #[cfg(not(target_os = "linux"))]
-        let flags = libloading::os::unix::RTLD_NOW | libloading::os::unix::RTLD_LOCAL;
+        // The library uses its own Verilator runtime, never one linked into botsim.
+        let flags = libloading::os::unix::RTLD_NOW | libloading::os::unix::RTLD_LOCAL | RTLD_DEEPBIND;
         // SAFETY: the library is one botsim built from harness.cpp, with the ABI declared here.
         let lib: libloading::Library =
             unsafe { libloading::os::unix::Library::open(Some(path), flags) }.map_err(fail)?.into();
@@ -110,21 +150,20 @@ impl BoardModel {
     }
 
     /// Run until `until_ps`, until `stop_after_samples` bot samples in all, or until `buf`
-    /// is full; `buf` is filled from the start and truncated to what was recorded.
-    pub fn run(&mut self, until_ps: u64, stop_after_samples: u64, buf: &mut Vec<RawEvent>) -> Stop {
-        let cap = buf.capacity().max(64);
-        buf.clear();
-        buf.resize(cap, RawEvent::default());
+    /// is nearly full (the harness keeps room for one evaluation's records); returns why it
+    /// stopped and how many records it wrote from the start of `buf`.
+    pub fn run(&mut self, until_ps: u64, stop_after_samples: u64, buf: &mut [RawEvent]) -> (Stop, usize) {
+        let cap = buf.len().min(u32::MAX as usize) as u32;
         let mut n = 0u32;
-        // SAFETY: buf holds `cap` events; the harness writes at most that many.
-        let r = unsafe { (self.api.run)(self.ptr, until_ps, stop_after_samples, buf.as_mut_ptr(), cap as u32, &mut n) };
-        buf.truncate(n as usize);
-        match r {
+        // SAFETY: buf holds `cap` records; the harness writes at most that many.
+        let r = unsafe { (self.api.run)(self.ptr, until_ps, stop_after_samples, buf.as_mut_ptr(), cap, &mut n) };
+        let stop = match r {
             0 => Stop::Until,
             1 => Stop::BufferFull,
             2 => Stop::Samples,
             _ => Stop::Finished,
-        }
+        };
+        (stop, n as usize)
     }
 
     /// Simulated time in picoseconds.

@@ -4,11 +4,11 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use botsim::board::build::build;
-use botsim::board::model::{BoardModel, RawEvent, Stop, EVENT_DISPLAY, EVENT_LEDS, EVENT_SAMPLE};
-use botsim::files::write_atomic;
+use botsim::board::model::{BoardModel, Event, RawEvent, Stop};
+use botsim::files::{check_writable, write_atomic};
 use botsim::kcpsm6::loader;
 use botsim::render::{path_picture, PathStyle};
-use botsim::{Registers, Snapshot, World};
+use botsim::{Snapshot, World};
 use botsim_core::board::display::Display;
 use botsim_core::board::pins::BUTTONS;
 use botsim_core::board::plan::{collect, Plan, Request, Source};
@@ -240,7 +240,7 @@ pub fn run(a: Args) -> Result<(), String> {
     let mut display_log = String::new();
     let mut snapshots: Vec<Snapshot> = Vec::new();
     let mut json = String::new();
-    let mut buf: Vec<RawEvent> = Vec::with_capacity(4096);
+    let mut buf = vec![RawEvent::default(); 4096];
     let mut next_change = changes.iter().copied().filter(|&c| c > 0).peekable();
     let mut last_led = 0u16;
     let finished = loop {
@@ -248,35 +248,24 @@ pub fn run(a: Args) -> Result<(), String> {
             break None;
         }
         let until = next_change.peek().copied().unwrap_or(end_ps).min(end_ps);
-        let stop = model.run(until, stop_after, &mut buf);
-        for e in &buf {
-            match e.kind {
-                EVENT_DISPLAY => {
+        let (stop, n) = model.run(until, stop_after, &mut buf);
+        for e in buf[..n].iter().filter_map(Event::of) {
+            match e {
+                Event::Display { time_ps, an, seg, dp } => {
                     let before = display.lines().len();
-                    display.pins(e.time_ps, e.a as u8, (e.a >> 8) as u8 & 0x7F, e.a >> 15 & 1 == 1);
+                    display.pins(time_ps, an, seg, dp);
                     for l in &display.lines()[before..] {
                         display_log.push_str(&format!("{:>12.3} ms  display {}\n", l.time_ps as f64 / 1e9, l.text));
                     }
                 }
-                EVENT_LEDS => {
-                    last_led = e.a as u16;
-                    display_log.push_str(&format!("{:>12.3} ms  leds    {:016b}\n", e.time_ps as f64 / 1e9, last_led));
+                Event::Leds { time_ps, leds } => {
+                    last_led = leds;
+                    display_log.push_str(&format!("{:>12.3} ms  leds    {leds:016b}\n", time_ps as f64 / 1e9));
                 }
-                EVENT_SAMPLE => {
-                    let v = e.b;
-                    let regs = Registers {
-                        loc_x: v as u8,
-                        loc_y: (v >> 8) as u8,
-                        bot_info: (v >> 16) as u8,
-                        sensors: (v >> 24) as u8,
-                        lm_dist: (v >> 32) as u8,
-                        rm_dist: (v >> 40) as u8,
-                    };
-                    let s = Snapshot { sample: e.a as u64, cycle: e.c, regs };
-                    json.push_str(&json_row(&s, botsim::MotCtl((v >> 48) as u8)));
-                    snapshots.push(s);
+                Event::Sample { snapshot, motctl, .. } => {
+                    json.push_str(&json_row(&snapshot, motctl));
+                    snapshots.push(snapshot);
                 }
-                _ => {}
             }
         }
         match stop {
@@ -346,17 +335,6 @@ pub fn run(a: Args) -> Result<(), String> {
             sim_ps as f64 / 1e12,
             snapshots.len()
         );
-    }
-    Ok(())
-}
-
-fn check_writable(p: &std::path::Path) -> Result<(), String> {
-    if p.is_dir() {
-        return Err(format!("{}: is a folder, expected a file name", p.display()));
-    }
-    let dir = p.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(std::path::Path::new("."));
-    if !dir.is_dir() {
-        return Err(format!("{}: the folder {} does not exist", p.display(), dir.display()));
     }
     Ok(())
 }

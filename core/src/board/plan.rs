@@ -149,8 +149,6 @@ pub struct Plan {
     /// The user's files to compile, as they are (unchanged) or with replaced modules blanked.
     pub files: Vec<UserFile>,
     pub include_dirs: Vec<PathBuf>,
-    /// botsim's own modules to add (names from [`OWN_MODULES`]).
-    pub own: Vec<&'static str>,
     pub roms: Vec<Rom>,
     pub stubs: Vec<(String, Vec<String>)>,
     /// `BOTSIM_USED_<PRIMITIVE>` masks.
@@ -326,14 +324,9 @@ impl Plan {
         // Substitutions.
         let mut replaced = Vec::new();
         let mut warnings = Vec::new();
-        let mut own = Vec::new();
+        // botsim's own modules are always in the build (the design has a bot, and the bot
+        // has them all); the user's copies are reported.
         for (name, _) in OWN_MODULES {
-            // map and world_map come with bot; kcpsm6 also for the team's CPU.
-            let needed = used.contains(name) || matches!(name, "world_if" | "map" | "world_map") || name == "kcpsm6";
-            if !needed {
-                continue;
-            }
-            own.push(name);
             let from = defined.get(name).map(|(s, m)| format!("{}:{}", s.path.display(), m.line)).unwrap_or_default();
             if !from.is_empty() {
                 replaced.push(Replacement { module: name.to_string(), from, with: format!("botsim's {name}") });
@@ -357,7 +350,7 @@ impl Plan {
             req.programs.iter().map(|(p, i)| (p.clone(), i.clone(), false)).collect();
         let rom_modules: Vec<(&Source, &Module)> = defined
             .values()
-            .filter(|(_, m)| is_program_rom(m) && used.contains(&m.name) || m.name == "bot_pgm")
+            .filter(|(_, m)| (is_program_rom(m) && used.contains(&m.name)) || m.name == "bot_pgm")
             .copied()
             .collect();
         let team_roms = rom_modules.iter().filter(|(_, m)| m.name != "bot_pgm").count();
@@ -424,9 +417,9 @@ impl Plan {
 
         // The user's files, with replaced modules blanked (lines kept, so messages still
         // point at the user's lines).
-        let replaced_names: BTreeSet<String> = own
+        let replaced_names: BTreeSet<String> = OWN_MODULES
             .iter()
-            .map(|s| s.to_string())
+            .map(|(m, _)| m.to_string())
             .chain(PRIMITIVES.iter().map(|(p, _)| p.to_string()))
             .chain(roms.iter().map(|r| r.module.clone()))
             .chain(stub_ports.keys().cloned())
@@ -464,7 +457,6 @@ impl Plan {
             top,
             files,
             include_dirs,
-            own,
             roms,
             stubs,
             used_outputs,

@@ -18,121 +18,91 @@ use super::plan::Plan;
 /// The wrapper module's name.
 pub const TOP: &str = "botsim_board";
 
-/// The Verilog of `botsim_board` for `plan`.
+/// The wrapper's board outputs, and what each shows when the design has no such pin
+/// (everything dark: the display and VGA syncs are active low).
+const OUTPUTS_OFF: [(&str, &str); 9] = [
+    ("led", "16'h0000"),
+    ("seg", "7'h7F"),
+    ("dp", "1'b1"),
+    ("an", "8'hFF"),
+    ("vga_r", "4'h0"),
+    ("vga_g", "4'h0"),
+    ("vga_b", "4'h0"),
+    ("hsync", "1'b1"),
+    ("vsync", "1'b1"),
+];
+
+/// What a board input pin of `w` bits is connected to.
+fn input(role: Role, w: u32) -> Option<String> {
+    Some(match role {
+        Role::Clock => "clk".into(),
+        Role::Reset { active_low: true } => "~reset_pressed".into(),
+        Role::Reset { active_low: false } => "reset_pressed".into(),
+        Role::Button(b) => format!("btn[{b}]"),
+        Role::Switches => format!("sw[{}:0]", w.min(16) - 1),
+        _ => return None,
+    })
+}
+
+/// What the user's output wire `u` (`w` bits, a board output pin) drives: (wrapper output,
+/// expression). Narrower LEDs are zero-extended; missing anodes are off; VGA colours of
+/// fewer than 4 bits are aligned to the most significant bit.
+fn drives(role: Role, u: &str, w: u32) -> Vec<(&'static str, String)> {
+    let vga = |name: &'static str| {
+        let x = if w < 4 { format!("{{{u}, {}'b0}}", 4 - w) } else { format!("{u}[{}:{}]", w - 1, w - 4) };
+        vec![(name, x)]
+    };
+    match role {
+        Role::Leds => vec![("led", u.into())],
+        Role::Segments if w >= 8 => vec![("seg", format!("{u}[6:0]")), ("dp", format!("{u}[7]"))],
+        Role::Segments => vec![("seg", format!("{u}[6:0]"))],
+        Role::DecimalPoint => vec![("dp", u.into())],
+        Role::Anodes if w < 8 => vec![("an", format!("{{{{{}{{1'b1}}}}, {u}}}", 8 - w))],
+        Role::Anodes => vec![("an", format!("{u}[7:0]"))],
+        Role::VgaRed => vga("vga_r"),
+        Role::VgaGreen => vga("vga_g"),
+        Role::VgaBlue => vga("vga_b"),
+        Role::Hsync => vec![("hsync", u.into())],
+        Role::Vsync => vec![("vsync", u.into())],
+        _ => vec![],
+    }
+}
+
+/// The Verilog of `botsim_board` for `plan`, with `params` overriding the top's parameters.
 pub fn board_top(plan: &Plan, params: &[(String, String)]) -> String {
     let width = |port: &str| plan.widths.get(port).copied().unwrap_or(1).max(1);
     let mut decl = String::new();
     let mut conns = Vec::new();
-    let mut assigns = Vec::new();
-    let (mut has_seg, mut has_dp, mut has_an, mut has_led) = (false, false, false, false);
-    let (mut has_r, mut has_g, mut has_b, mut has_hs, mut has_vs) = (false, false, false, false, false);
-    let mut seg_bits = Vec::new();
+    let mut driven: Vec<(&str, String)> = Vec::new();
+    // Nexys4 DDR style: one port per segment (CA..CG).
+    let mut seg_lines: [Option<String>; 7] = Default::default();
     for (port, role) in &plan.pins {
         let w = width(port);
-        let c = match role {
-            Role::Clock => "clk".to_string(),
-            Role::Reset { active_low: true } => "~reset_pressed".to_string(),
-            Role::Reset { active_low: false } => "reset_pressed".to_string(),
-            Role::Button(b) => format!("btn[{b}]"),
-            Role::Switches => format!("sw[{}:0]", w.min(16) - 1),
-            Role::Leds => {
-                has_led = true;
-                decl.push_str(&format!("    wire [{}:0] user_led;\n", w - 1));
-                assigns.push(format!(
-                    "assign led = {{{{{}{{1'b0}}}}, user_led[{}:0]}};",
-                    16 - w.min(16),
-                    w.min(16) - 1
-                ));
-                "user_led".into()
-            }
-            Role::Segments => {
-                has_seg = true;
-                decl.push_str(&format!("    wire [{}:0] user_seg;\n", w - 1));
-                assigns.push("assign seg = user_seg[6:0];".into());
-                if w >= 8 {
-                    has_dp = true;
-                    assigns.push("assign dp = user_seg[7];".into());
-                }
-                "user_seg".into()
-            }
-            Role::Segment(i) => {
-                seg_bits.push(*i);
-                decl.push_str(&format!("    wire user_seg_{i};\n"));
-                format!("user_seg_{i}")
-            }
-            Role::DecimalPoint => {
-                has_dp = true;
-                decl.push_str("    wire user_dp;\n");
-                assigns.push("assign dp = user_dp;".into());
-                "user_dp".into()
-            }
-            Role::Anodes => {
-                has_an = true;
-                decl.push_str(&format!("    wire [{}:0] user_an;\n", w - 1));
-                let pad = 8 - w.min(8);
-                assigns.push(if pad > 0 {
-                    format!("assign an = {{{{{pad}{{1'b1}}}}, user_an[{}:0]}};", w.min(8) - 1)
-                } else {
-                    "assign an = user_an[7:0];".into()
-                });
-                "user_an".into()
-            }
-            Role::VgaRed | Role::VgaGreen | Role::VgaBlue => {
-                let (name, flag) = match role {
-                    Role::VgaRed => ("r", &mut has_r),
-                    Role::VgaGreen => ("g", &mut has_g),
-                    _ => ("b", &mut has_b),
-                };
-                *flag = true;
-                decl.push_str(&format!("    wire [{}:0] user_vga_{name};\n", w - 1));
-                let w4 = w.min(4);
-                assigns.push(if w4 < 4 {
-                    format!("assign vga_{name} = {{user_vga_{name}[{}:{}], {}'b0}};", w - 1, w - w4, 4 - w4)
-                } else {
-                    format!("assign vga_{name} = user_vga_{name}[{}:{}];", w - 1, w - 4)
-                });
-                format!("user_vga_{name}")
-            }
-            Role::Hsync => {
-                has_hs = true;
-                decl.push_str("    wire user_hsync;\n");
-                assigns.push("assign hsync = user_hsync;".into());
-                "user_hsync".into()
-            }
-            Role::Vsync => {
-                has_vs = true;
-                decl.push_str("    wire user_vsync;\n");
-                assigns.push("assign vsync = user_vsync;".into());
-                "user_vsync".into()
-            }
-        };
-        conns.push(format!(".{port}({c})"));
+        if let Some(c) = input(*role, w) {
+            conns.push(format!(".{port}({c})"));
+            continue;
+        }
+        let u = format!("user_{port}");
+        decl.push_str(&format!("    wire [{}:0] {u};\n", w - 1));
+        conns.push(format!(".{port}({u})"));
+        match role {
+            Role::Segment(i) => seg_lines[*i as usize] = Some(u),
+            _ => driven.extend(drives(*role, &u, w)),
+        }
     }
-    if !seg_bits.is_empty() {
-        has_seg = true;
-        let bits: Vec<String> =
-            (0..7).rev().map(|i| if seg_bits.contains(&i) { format!("user_seg_{i}") } else { "1'b1".into() }).collect();
-        assigns.push(format!("assign seg = {{{}}};", bits.join(", ")));
+    if seg_lines.iter().any(Option::is_some) {
+        let bits: Vec<String> = seg_lines.iter().rev().map(|l| l.clone().unwrap_or_else(|| "1'b1".into())).collect();
+        driven.push(("seg", format!("{{{}}}", bits.join(", "))));
     }
     // Ports with no board role: inputs low, outputs open.
     for name in &plan.unknown_pins {
         let input = plan.inputs.contains(name);
         conns.push(if input { format!(".{name}({}'d0)", width(name)) } else { format!(".{name}()") });
     }
-    let off = [
-        (has_led, "assign led = 16'h0000;"),
-        (has_seg, "assign seg = 7'h7F;"),
-        (has_dp, "assign dp = 1'b1;"),
-        (has_an, "assign an = 8'hFF;"),
-        (has_r, "assign vga_r = 4'h0;"),
-        (has_g, "assign vga_g = 4'h0;"),
-        (has_b, "assign vga_b = 4'h0;"),
-        (has_hs, "assign hsync = 1'b1;"),
-        (has_vs, "assign vsync = 1'b1;"),
-    ];
-    for (has, a) in off {
-        if !has {
-            assigns.push(a.into());
+    let mut assigns: Vec<String> = driven.iter().map(|(o, x)| format!("assign {o} = {x};")).collect();
+    for (out, off) in OUTPUTS_OFF {
+        if !driven.iter().any(|(o, _)| *o == out) {
+            assigns.push(format!("assign {out} = {off};"));
         }
     }
     let bot = format!("user.{}", plan.bot_path);
@@ -209,4 +179,69 @@ pub fn stub(module: &str, ports: &[String]) -> String {
          /* verilator lint_off UNUSEDSIGNAL */\n\
          module {module} (\n{list}\n);\nendmodule\n"
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::board::plan::{Request, Source};
+    use crate::board::scan::scan;
+    use std::path::PathBuf;
+
+    fn plan(top: &str) -> Plan {
+        let text = format!("{top}\nbot b (.clk(clk100));\nendmodule\n");
+        let src = Source { path: PathBuf::from("top.v"), modules: scan(&text), text };
+        let req = Request {
+            top: None,
+            programs: vec![],
+            bot_firmware: kcpsm6::image::Image::zeroed(),
+            force_own_firmware: false,
+            stubs: vec![],
+        };
+        Plan::new(&[src], vec![], &req).unwrap()
+    }
+
+    fn assigns(v: &str) -> Vec<&str> {
+        v.lines().map(str::trim).filter(|l| l.starts_with("assign ") && !l.contains("bot_")).collect()
+    }
+
+    #[test]
+    fn nexys3_pins_map_to_the_nexys4_board() {
+        // board.md 1: Nexys3 has an active-high reset `btns`, seg[7:0] with dp in bit 7,
+        // four anodes and 3/3/2-bit VGA colours.
+        let p = plan(
+            "module n3(input clk100, input btns, input [7:0] sw, output [7:0] led, output [7:0] seg, \
+             output [3:0] an, output [2:0] vgaRed, output [2:1] vgaBlue, output Hsync);",
+        );
+        let v = board_top(&p, &[]);
+        for c in [".clk100(clk),", ".btns(reset_pressed),", ".sw(sw[7:0]),"] {
+            assert!(v.lines().any(|l| l.trim() == c), "{c} in {v}");
+        }
+        assert_eq!(
+            assigns(&v),
+            [
+                "assign led = user_led;",
+                "assign seg = user_seg[6:0];",
+                "assign dp = user_seg[7];",
+                "assign an = {{4{1'b1}}, user_an};",
+                "assign vga_r = {user_vgaRed, 1'b0};",
+                "assign vga_b = {user_vgaBlue, 2'b0};",
+                "assign hsync = user_Hsync;",
+                "assign vga_g = 4'h0;",
+                "assign vsync = 1'b1;",
+            ]
+        );
+    }
+
+    #[test]
+    fn nexys4_ddr_segment_lines_and_parameters() {
+        let p = plan(
+            "module a7 #(parameter SIMULATE = 0) (input CLK100MHZ, input CPU_RESETN, output CA, output CB, \
+             output CG, output DP, output [7:0] AN);",
+        );
+        let v = board_top(&p, &[("SIMULATE".into(), "1".into())]);
+        assert!(v.contains("a7 #(.SIMULATE(1)) user ("), "{v}");
+        assert!(v.lines().any(|l| l.trim() == ".CPU_RESETN(~reset_pressed),"), "{v}");
+        assert!(assigns(&v).contains(&"assign seg = {user_CG, 1'b1, 1'b1, 1'b1, 1'b1, user_CB, user_CA};"), "{v}");
+    }
 }

@@ -1,9 +1,10 @@
 //! A run resolved from the arguments: the program, the world, the driver, what to write. Every
 //! input is read and every output path checked here, before the (possibly long) run starts.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use botsim::driver::{Driver, LineFollower, ScriptDriver};
+use botsim::files::check_writable;
 use botsim::kcpsm6::asm::{Options, RomSize};
 use botsim::kcpsm6::image::{Format, Image};
 use botsim::script::MotorScript;
@@ -110,21 +111,4 @@ impl Plan {
             png: args.png.clone(),
         })
     }
-}
-
-/// Fail early on an output that cannot be written (before a long run), without touching a
-/// file already there: outputs are written beside their name and renamed over it, so what
-/// must be writable is the folder.
-fn check_writable(path: &Path) -> Result<(), String> {
-    if path.is_dir() {
-        return Err(format!("{}: error: cannot write file: is a directory", path.display()));
-    }
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    let probe = dir.join(format!(".botsim-write-check-{}", std::process::id()));
-    std::fs::write(&probe, b"")
-        .and_then(|()| std::fs::remove_file(&probe))
-        .map_err(|e| format!("{}: error: cannot write file: {}", path.display(), botsim::kcpsm6::diag::io_reason(&e)))
 }

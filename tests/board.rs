@@ -141,3 +141,27 @@ fn a_verilog_syntax_error_is_one_error_at_the_users_line() {
     let e = one_line_error(&board(&[&top]));
     assert!(e.starts_with(&format!("{top}:3:")), "{e}");
 }
+
+/// LED value after 1 ms of `tests/board_designs/clocks` with `--param KIND=kind`.
+fn edges_in_one_ms(kind: u8) -> u64 {
+    let o = board(&["tests/board_designs/clocks", "--param", &format!("KIND={kind}"), "--seconds", "0.001", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    summary["leds"].as_u64().unwrap()
+}
+
+#[test]
+fn an_mmcm_at_a_non_integer_ratio_puts_every_edge_at_its_true_time() {
+    // 100 MHz x 9.75 / 15 = 65 MHz: period 1e6/65 ps = 15,384.615... ps. The oscillator's
+    // rising edges are at 10 ns, 20 ns, ...; LOCKED rises on the 16th (160 ns); the output
+    // runs from its first grid edge after that, k = 11 (169.23 ns), and its edge k = 65,000
+    // falls exactly on 1 ms. Edges 11..=65,000: 64,990 (with drift, or with the period
+    // rounded to 15,385 ps, edge 65,000 would land 25 ns late and be missed).
+    assert_eq!(edges_in_one_ms(0), 64_990);
+}
+
+#[test]
+fn a_dcm_clkfx_runs_at_its_multiply_and_divide() {
+    // 100 MHz x 2 / 8 = 25 MHz (40 ns): locked at 160 ns, edges k = 5 (200 ns) ..= 25,000.
+    assert_eq!(edges_in_one_ms(1), 24_996);
+}

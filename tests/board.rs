@@ -1,6 +1,8 @@
-//! `botsim board` on real board designs: the example Nexys4 Project 2 design in
-//! examples/nexys4_proj2 (its own KCPSM6 and firmware, debounce, seven-segment driver,
-//! interface), and small broken designs for the errors. Each design is verilated and
+//! `botsim board` on real board designs: the example Nexys4 Project 2 designs
+//! (examples/common with examples/nexys4_proj2, or with examples/nexys4_vga for the VGA
+//! display: their own KCPSM6 and firmware, debounce, seven-segment driver, interface, a
+//! Clocking-Wizard-style MMCM, DTG, icon and colorizer), a clock test design, and small broken
+//! designs for the errors. Each design is verilated and
 //! compiled once per cache folder (target/botsim-board-cache).
 
 use std::path::{Path, PathBuf};
@@ -34,6 +36,7 @@ fn the_example_design_shows_the_bots_registers_on_its_display() {
     let dir = tempfile::tempdir().unwrap();
     let (csv, disp) = (dir.path().join("t.csv"), dir.path().join("d.txt"));
     let o = board(&[
+        "examples/common",
         "examples/nexys4_proj2",
         "--param",
         "SIMULATE=1",
@@ -76,7 +79,17 @@ fn the_example_design_shows_the_bots_registers_on_its_display() {
 fn the_trace_follows_the_samples_asked_for_and_reruns_reuse_the_build() {
     let dir = tempfile::tempdir().unwrap();
     let csv = dir.path().join("t.csv");
-    let args = ["examples/nexys4_proj2", "--param", "SIMULATE=1", "--timing", "fast", "--samples", "40", "--trace-csv"];
+    let args = [
+        "examples/common",
+        "examples/nexys4_proj2",
+        "--param",
+        "SIMULATE=1",
+        "--timing",
+        "fast",
+        "--samples",
+        "40",
+        "--trace-csv",
+    ];
     let mut a: Vec<&str> = args.to_vec();
     a.push(csv.to_str().unwrap());
     let first = board(&a);
@@ -164,4 +177,66 @@ fn an_mmcm_at_a_non_integer_ratio_puts_every_edge_at_its_true_time() {
 fn a_dcm_clkfx_runs_at_its_multiply_and_divide() {
     // 100 MHz x 2 / 8 = 25 MHz (40 ns): locked at 160 ns, edges k = 5 (200 ns) ..= 25,000.
     assert_eq!(edges_in_one_ms(1), 24_996);
+}
+
+/// Decode a PNG into (width, height, RGB bytes).
+fn rgb(png_bytes: &[u8]) -> (u32, u32, Vec<u8>) {
+    let mut r = png::Decoder::new(std::io::Cursor::new(png_bytes)).read_info().unwrap();
+    let mut buf = vec![0; r.output_buffer_size().unwrap()];
+    let info = r.next_frame(&mut buf).unwrap();
+    buf.truncate(info.buffer_size());
+    (info.width, info.height, buf)
+}
+
+#[test]
+fn a_vga_frame_from_the_designs_pins_equals_botsim_frame_for_the_same_state() {
+    let dir = tempfile::tempdir().unwrap();
+    let (frames, csv) = (dir.path().join("frames"), dir.path().join("t.csv"));
+    // hw timing: samples 0 and 1 come right after reset (1 ms), the next about 53 ms later;
+    // frames (16.8 ms each) start when the DTG's first vertical sync falls, about 15.7 ms
+    // after the MMCM locks, so frames 0 and 1 show the bot standing at sample 1.
+    let o = board(&[
+        "examples/common",
+        "examples/nexys4_vga",
+        "--param",
+        "SIMULATE=1",
+        "--seconds",
+        "0.052",
+        "--frames",
+        frames.to_str().unwrap(),
+        "--trace-csv",
+        csv.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(summary["vga_frames"], 2, "{summary}");
+    let text = std::fs::read_to_string(&csv).unwrap();
+    let last: Vec<u8> = text.lines().nth(2).unwrap().split(',').skip(2).map(|v| v.parse().unwrap()).collect();
+    let snapshot = botsim::Snapshot {
+        sample: 1,
+        cycle: 0,
+        regs: botsim::Registers {
+            loc_x: last[0],
+            loc_y: last[1],
+            bot_info: last[2],
+            sensors: last[3],
+            lm_dist: last[4],
+            rm_dist: last[5],
+        },
+    };
+    let want = rgb(&botsim::render::display::frame(&botsim::World::builtin(), Some(&snapshot)));
+    for k in 0..2 {
+        let got = rgb(&std::fs::read(frames.join(format!("frame_{k:05}.png"))).unwrap());
+        assert_eq!((got.0, got.1), (640, 480));
+        if let Some(i) = (0..got.2.len() / 3).find(|&i| got.2[3 * i..3 * i + 3] != want.2[3 * i..3 * i + 3]) {
+            panic!(
+                "frame {k}: pixel ({}, {}) is {:?}, botsim frame has {:?}",
+                i % 640,
+                i / 640,
+                &got.2[3 * i..3 * i + 3],
+                &want.2[3 * i..3 * i + 3]
+            );
+        }
+    }
 }

@@ -1,7 +1,6 @@
 // nexys4fpga.v: botsim's example of a course Project 2 board design (clean-room, written for
-// botsim from spec board.md): the Nexys4 pins, a debounced reset and buttons, a seven-segment
-// driver, the team's own KCPSM6 running proj2demo.psm, the interface between it and the
-// Rojobot's registers (upd_sysregs interrupts the team CPU), and the `bot` itself.
+// botsim from spec board.md): the Nexys4 pins around the system in ../common (the team's
+// PicoBlaze and firmware, the interface to the Rojobot, the seven-segment display, the bot).
 `timescale 1ns / 1ps
 module nexys4fpga #(
     parameter SIMULATE = 0
@@ -16,67 +15,9 @@ module nexys4fpga #(
     output wire [ 7:0] an,
     output wire [ 7:0] JA
 );
-    wire        sysreset;
-    wire [ 4:0] db_btns;
-    wire [15:0] db_sw;
-
-    debounce #(.RESET_POLARITY_LOW(1), .SIMULATE(SIMULATE)) DB (
-        .clk(clk), .pbtn_in({btnC, btnL, btnU, btnR, btnD}), .switch_in(sw),
-        .reset_in(btnCpuReset), .pbtn_db(db_btns), .swtch_db(db_sw), .reset_out(sysreset)
+    proj2_system #(.SIMULATE(SIMULATE)) SYS (
+        .clk(clk), .btnCpuReset(btnCpuReset), .btnC(btnC), .btnU(btnU), .btnD(btnD), .btnL(btnL),
+        .btnR(btnR), .sw(sw), .led(led), .seg(seg), .dp(dp), .an(an), .JA(JA),
+        .vid_row(10'd0), .vid_col(10'd0), .vid_pixel_out(), .locx(), .locy(), .botinfo()
     );
-
-    // The team's PicoBlaze and its program.
-    wire [11:0] address;
-    wire [17:0] instruction;
-    wire        bram_enable, rdl;
-    wire [ 7:0] port_id, out_port, in_port;
-    wire        write_strobe, k_write_strobe, read_strobe;
-    wire        interrupt, interrupt_ack;
-
-    kcpsm6 #(.interrupt_vector(12'h3FF), .scratch_pad_memory_size(64), .hwbuild(8'h00)) APPCPU (
-        .address(address), .instruction(instruction), .bram_enable(bram_enable),
-        .port_id(port_id), .write_strobe(write_strobe), .k_write_strobe(k_write_strobe),
-        .out_port(out_port), .read_strobe(read_strobe), .in_port(in_port),
-        .interrupt(interrupt), .interrupt_ack(interrupt_ack), .sleep(1'b0),
-        .reset(sysreset | rdl), .clk(clk)
-    );
-
-    proj2demo #(.C_FAMILY("7S"), .C_RAM_SIZE_KWORDS(1), .C_JTAG_LOADER_ENABLE(0)) APPPGM (
-        .enable(bram_enable), .address(address), .instruction(instruction), .rdl(rdl), .clk(clk)
-    );
-
-    // The Rojobot and the interface to it.
-    wire [7:0] motctl, locx, locy, botinfo, sensors, lmdist, rmdist;
-    wire       upd_sysregs;
-    wire [4:0] dig7, dig6, dig5, dig4, dig3, dig2, dig1, dig0;
-    wire [7:0] decpts;
-    wire [15:0] leds;
-
-    bot ROJOBOT (
-        .MotCtl_in(motctl), .LocX_reg(locx), .LocY_reg(locy), .Sensors_reg(sensors),
-        .BotInfo_reg(botinfo), .LMDist_reg(lmdist), .RMDist_reg(rmdist),
-        .vid_row(10'd0), .vid_col(10'd0), .vid_pixel_out(),
-        .clk(clk), .reset(sysreset), .upd_sysregs(upd_sysregs)
-    );
-
-    nexys4_bot_if BOTIF (
-        .clk(clk), .reset(sysreset),
-        .port_id(port_id), .out_port(out_port), .in_port(in_port),
-        .write_strobe(write_strobe), .k_write_strobe(k_write_strobe), .read_strobe(read_strobe),
-        .interrupt(interrupt), .interrupt_ack(interrupt_ack),
-        .btns(db_btns), .switches(db_sw), .leds(leds),
-        .dig7(dig7), .dig6(dig6), .dig5(dig5), .dig4(dig4), .dig3(dig3), .dig2(dig2), .dig1(dig1), .dig0(dig0),
-        .decpts(decpts),
-        .motctl(motctl), .locx(locx), .locy(locy), .botinfo(botinfo), .sensors(sensors),
-        .lmdist(lmdist), .rmdist(rmdist), .upd_sysregs(upd_sysregs)
-    );
-
-    sevensegment SSB (
-        .clk(clk), .reset(sysreset),
-        .d7(dig7), .d6(dig6), .d5(dig5), .d4(dig4), .d3(dig3), .d2(dig2), .d1(dig1), .d0(dig0),
-        .dp(decpts), .seg(seg), .dp_out(dp), .an(an)
-    );
-
-    assign led = leds;
-    assign JA = {clk, sysreset, upd_sysregs, interrupt, interrupt_ack, 3'b000};
 endmodule

@@ -71,6 +71,8 @@ struct Board {
     uint64_t evals = 0;
     uint8_t last_an = 0xFF, last_seg = 0x7F, last_dp = 1;
     uint16_t last_led = 0;
+    bool vga = false;  // record the VGA pins (only when frames are asked for)
+    uint16_t last_vga = 0x3000;
     bool last_upd = false;
     uint64_t samples = 0;
     std::string fatal;
@@ -168,6 +170,8 @@ void board_set_inputs(Board* b, uint32_t reset_pressed, uint32_t buttons, uint32
     b->evals++;
 }
 
+void board_record_vga(Board* b, int on) { b->vga = on != 0; }
+
 uint64_t board_time_ps(Board* b) { return b->now; }
 uint64_t board_evals(Board* b) { return b->evals; }
 uint64_t board_bot_cycles(Board* b) { return b->top->bot_cycles; }
@@ -188,8 +192,8 @@ uint32_t board_run(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boa
     Vboard* top = b->top;
     const size_t nc = b->clocks.size();
     Clock* clocks = b->clocks.data();
-    // Room for one eval's events (at most 3) must remain.
-    while (*n + 3 <= cap) {
+    // Room for one eval's events (at most 4) must remain.
+    while (*n + 4 <= cap) {
         uint64_t t = UINT64_MAX;
         for (size_t i = 0; i < nc; i++)
             if (!clocks[i].stopped && clocks[i].next_t < t) t = clocks[i].next_t;
@@ -226,6 +230,13 @@ uint32_t board_run(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boa
             b->last_seg = seg;
             b->last_dp = dp;
             record(buf, n, t, BOARD_EVENT_DISPLAY, an | (uint32_t)seg << 8 | (uint32_t)dp << 15, 0, 0);
+        }
+        if (b->vga) {
+            uint16_t v = (uint16_t)(top->vga_r << 8 | top->vga_g << 4 | top->vga_b | top->hsync << 12 | top->vsync << 13);
+            if (v != b->last_vga) {
+                b->last_vga = v;
+                record(buf, n, t, BOARD_EVENT_VGA, v, 0, 0);
+            }
         }
         if (top->led != b->last_led) {
             b->last_led = top->led;

@@ -28,6 +28,9 @@ pub enum Event {
     /// upd_sysregs rose: the bot's registers (the cycle counted in the bot's clock from
     /// power-up) and the MotCtl it was given.
     Sample { time_ps: u64, snapshot: Snapshot, motctl: MotCtl },
+    /// The VGA pins changed (recorded only after [`BoardModel::record_vga`]):
+    /// `r << 8 | g << 4 | b | hsync << 12 | vsync << 13`.
+    Vga { time_ps: u64, pins: u16 },
 }
 
 impl Event {
@@ -53,6 +56,7 @@ impl Event {
                     motctl: MotCtl(byte(6)),
                 }
             }
+            4 => Event::Vga { time_ps: t, pins: e.a as u16 },
             _ => return None,
         })
     }
@@ -85,6 +89,7 @@ struct Api {
     open_vcd: unsafe extern "C" fn(*mut Opaque, *const c_char) -> c_int,
     close_vcd: unsafe extern "C" fn(*mut Opaque),
     set_inputs: unsafe extern "C" fn(*mut Opaque, u32, u32, u32),
+    record_vga: unsafe extern "C" fn(*mut Opaque, c_int),
     run: unsafe extern "C" fn(*mut Opaque, u64, u64, *mut RawEvent, u32, *mut u32) -> u32,
     time_ps: unsafe extern "C" fn(*mut Opaque) -> u64,
     evals: unsafe extern "C" fn(*mut Opaque) -> u64,
@@ -123,6 +128,7 @@ impl BoardModel {
             open_vcd: sym!(b"board_open_vcd"),
             close_vcd: sym!(b"board_close_vcd"),
             set_inputs: sym!(b"board_set_inputs"),
+            record_vga: sym!(b"board_record_vga"),
             run: sym!(b"board_run"),
             time_ps: sym!(b"board_time_ps"),
             evals: sym!(b"board_evals"),
@@ -147,6 +153,13 @@ impl BoardModel {
     pub fn set_inputs(&mut self, reset_pressed: bool, buttons: u8, switches: u16) {
         // SAFETY: ptr is live until drop.
         unsafe { (self.api.set_inputs)(self.ptr, reset_pressed as u32, buttons as u32, switches as u32) }
+    }
+
+    /// Record every change of the VGA pins from now on (for frame capture; it costs a
+    /// comparison per evaluation and an event per change).
+    pub fn record_vga(&mut self, on: bool) {
+        // SAFETY: ptr is live.
+        unsafe { (self.api.record_vga)(self.ptr, on as c_int) }
     }
 
     /// Run until `until_ps`, until `stop_after_samples` bot samples in all, or until `buf`

@@ -12,6 +12,7 @@ use botsim::{Snapshot, World};
 use botsim_core::board::display::Display;
 use botsim_core::board::pins::BUTTONS;
 use botsim_core::board::plan::{collect, Plan, Request, Source};
+use botsim_core::board::vga::Capture;
 
 use crate::cli::args::FirmwareArgs;
 use crate::cli::run::{csv_row, json_row, CSV_HEADER};
@@ -75,6 +76,12 @@ pub struct Args {
     /// The bot's path on the world as a PNG
     #[arg(long, value_name = "FILE")]
     png: Option<PathBuf>,
+    /// Save the frames of the design's VGA output (PNG, 640 x 480 or 1024 x 768) in this folder
+    #[arg(long, value_name = "DIR")]
+    frames: Option<PathBuf>,
+    /// With --frames: every N-th frame
+    #[arg(long, value_name = "N", default_value_t = 1, requires = "frames")]
+    frame_every: u64,
     /// Every change of the seven-segment display (and LEDs), one line each
     #[arg(long, value_name = "FILE")]
     display: Option<PathBuf>,
@@ -158,6 +165,10 @@ pub fn run(a: Args) -> Result<(), String> {
     for p in [&a.trace_csv, &a.trace_json, &a.png, &a.display, &a.vcd].into_iter().flatten() {
         check_writable(p)?;
     }
+    if let Some(d) = &a.frames {
+        std::fs::create_dir_all(d).map_err(|e| format!("{}: error: cannot create the folder: {e}", d.display()))?;
+        check_writable(&d.join("frame.png"))?;
+    }
 
     // Plan and build.
     let (files, mut include_dirs) = collect(&a.sources).map_err(|e| e.to_string())?;
@@ -206,6 +217,10 @@ pub fn run(a: Args) -> Result<(), String> {
     if let Some(v) = &a.vcd {
         model.open_vcd(v).map_err(|e| e.to_string())?;
     }
+    model.record_vga(a.frames.is_some());
+    let mut vga = Capture::default();
+    let mut frames_seen = 0u64;
+    let mut frames_written = 0u64;
     let end_ps = match (a.seconds, a.samples) {
         (Some(s), _) => (s * 1e12) as u64,
         (None, Some(_)) => u64::MAX,
@@ -266,6 +281,16 @@ pub fn run(a: Args) -> Result<(), String> {
                     json.push_str(&json_row(&snapshot, motctl));
                     snapshots.push(snapshot);
                 }
+                Event::Vga { time_ps, pins } => vga.pins(time_ps, pins),
+            }
+        }
+        if let Some(dir) = &a.frames {
+            for f in vga.take() {
+                if frames_seen % a.frame_every.max(1) == 0 {
+                    write_atomic(&dir.join(format!("frame_{frames_seen:05}.png")), &f.png())?;
+                    frames_written += 1;
+                }
+                frames_seen += 1;
             }
         }
         match stop {
@@ -323,6 +348,9 @@ pub fn run(a: Args) -> Result<(), String> {
             "end": end.map(|(x, y)| serde_json::json!({"loc_x": x, "loc_y": y})),
             "display": last_display,
             "leds": last_led,
+            "vga_frames": frames_seen,
+            "vga_frames_written": frames_written,
+            "vga_unknown_frames": vga.unknown,
             "evaluations": evals,
             "wall_seconds": wall,
             "build_seconds": built.seconds,

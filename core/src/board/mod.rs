@@ -1,13 +1,14 @@
 //! Board simulation, the Verilator-free half: a student's Nexys4 design read from its
 //! sources ([`scan`]), the plan of what botsim substitutes ([`plan`]), the board's pins
 //! ([`pins`]), the generated Verilog around it ([`wrapper`]), and what the board shows
-//! ([`display`]: the seven-segment display as a person sees it). The `botsim` crate builds
+//! ([`display`]: the seven-segment display as a person sees it; [`vga`]: frames from the VGA pins). The `botsim` crate builds
 //! and runs the plan (`botsim::board`).
 
 pub mod display;
 pub mod pins;
 pub mod plan;
 pub mod scan;
+pub mod vga;
 pub mod wrapper;
 
 use std::fmt;

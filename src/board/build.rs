@@ -30,6 +30,27 @@ fn own_rtl(file: &str) -> &'static str {
     }
 }
 
+/// Verilator's options for every board build (part of the cache key). The C++ is compiled
+/// position-independent for the shared library; calls inside it bind locally (no PLT or
+/// interposition for the model's inline helpers).
+const VERILATOR_FLAGS: &[&str] = &[
+    "--trace",
+    "--timescale",
+    "1ns/1ps",
+    "-O3",
+    "--x-assign",
+    "fast",
+    "-Wno-fatal",
+    "-Wno-lint",
+    "-Wno-style",
+    "-Wno-MULTITOP",
+    "-Wno-TIMESCALEMOD",
+    "-CFLAGS",
+    "-fPIC -O2 -fvisibility-inlines-hidden -fno-semantic-interposition -DVL_USER_FINISH -DVL_USER_FATAL -I..",
+    "-LDFLAGS",
+    "-shared -Wl,-Bsymbolic",
+];
+
 /// A built design.
 #[derive(Clone, Debug)]
 pub struct Built {
@@ -101,6 +122,7 @@ pub fn build(plan: &Plan, params: &[(String, String)], quiet: bool) -> Result<Bu
     let mut h = DefaultHasher::new();
     env!("CARGO_PKG_VERSION").hash(&mut h);
     HARNESS.hash(&mut h);
+    VERILATOR_FLAGS.hash(&mut h);
     ABI.hash(&mut h);
     f.generated.hash(&mut h);
     f.defines.hash(&mut h);
@@ -167,20 +189,7 @@ pub fn build(plan: &Plan, params: &[(String, String)], quiet: bool) -> Result<Bu
         .args(["--cc", "--exe", "--build", "-j"])
         .arg(jobs.to_string())
         .args(["--prefix", "Vboard", "--top-module", wrapper::TOP, "--Mdir", "obj", "-o", "libboard.so"])
-        .args([
-            "--trace",
-            "--timescale",
-            "1ns/1ps",
-            "-O3",
-            "--x-assign",
-            "fast",
-            "-Wno-fatal",
-            "-Wno-lint",
-            "-Wno-style",
-        ])
-        .args(["-Wno-MULTITOP", "-Wno-TIMESCALEMOD"])
-        .args(["-CFLAGS", "-fPIC -O2 -DVL_USER_FINISH -DVL_USER_FATAL -I.."])
-        .args(["-LDFLAGS", "-shared"]);
+        .args(VERILATOR_FLAGS);
     for d in &f.defines {
         cmd.arg(format!("+define+{d}"));
     }

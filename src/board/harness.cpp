@@ -22,40 +22,61 @@ extern "C" {
 
 namespace {
 
+// A clock edge's time, rounded to the picosecond: q + r / den, the numerator carrying den / 2
+// for the rounding. Stepping it by a period adds and carries; nothing divides per edge.
+struct EdgeTime {
+    uint64_t q = 0, r = 0;
+};
+
 struct Clock {
-    CData* q;                 // the level the harness drives
-    const CData* run;         // null: always runs
-    unsigned __int128 num;    // period = num / den ps
-    uint64_t den;
-    uint64_t phase_num;       // offset of rising edge 0 = phase_num / den ps
-    uint64_t duty_permille;
-    uint64_t n = 0;           // index of the next period
+    CData* q;                  // the level the harness drives
+    const CData* run;          // null: always runs
+    uint64_t num, den;         // period = num / den ps
+    uint64_t phase_num;        // rising edge k at (phase_num + k * num) / den ps
+    uint64_t high_num;         // the high time, num * duty / 1000
+    uint64_t step_q = 0, step_r = 0;  // num / den, num % den
+    EdgeTime rise, fall;       // the next rising and falling edges
     bool next_high = true;
     uint64_t next_t = 0;
     bool stopped = false;
 
-    uint64_t edge_time(uint64_t k, bool rising) const {
-        unsigned __int128 t = phase_num + num * k;
-        if (!rising) t += num * duty_permille / 1000;
-        return (uint64_t)((t + den / 2) / den);
-    }
-    void schedule_from(uint64_t now) {
-        // The first rising edge at or after `now` (called when a clock starts).
-        unsigned __int128 k = 0;
-        unsigned __int128 scaled = (unsigned __int128)now * den;
-        if (scaled > phase_num) k = (scaled - phase_num + num - 1) / num;
-        n = (uint64_t)k;
+    Clock(CData* q_, const CData* run_, uint64_t num_, uint64_t den_, uint64_t phase_num_, uint64_t duty_permille)
+        : q(q_), run(run_), num(num_), den(den_), phase_num(phase_num_),
+          high_num((uint64_t)((unsigned __int128)num_ * duty_permille / 1000)),
+          step_q(num_ / den_), step_r(num_ % den_) {}
+
+    // Start with period k's rising edge.
+    void start_at(uint64_t k) {
+        unsigned __int128 nr = (unsigned __int128)phase_num + (unsigned __int128)k * num + den / 2;
+        unsigned __int128 nf = nr + high_num;
+        rise = {(uint64_t)(nr / den), (uint64_t)(nr % den)};
+        fall = {(uint64_t)(nf / den), (uint64_t)(nf % den)};
         next_high = true;
-        next_t = edge_time(n, true);
+        next_t = rise.q;
+    }
+    // The first rising edge at or after `now` (when a clock starts).
+    void schedule_from(uint64_t now) {
+        unsigned __int128 scaled = (unsigned __int128)now * den;
+        unsigned __int128 k = scaled > phase_num ? (scaled - phase_num + num - 1) / num : 0;
+        start_at((uint64_t)k);
+    }
+    void step(EdgeTime& e) const {
+        e.q += step_q;
+        e.r += step_r;
+        if (e.r >= den) {
+            e.r -= den;
+            e.q++;
+        }
     }
     void advance() {
         if (next_high) {
             next_high = false;
-            next_t = edge_time(n, false);
+            next_t = fall.q;
+            step(rise);
         } else {
-            n++;
             next_high = true;
-            next_t = edge_time(n, true);
+            next_t = rise.q;
+            step(fall);
         }
     }
 };
@@ -95,7 +116,7 @@ Board* board_new(int argc, const char** argv) {
     current = b;
     b->top->eval();
     // The oscillator, then every generated clock.
-    Clock osc{&b->top->clk, nullptr, 10000, 1, 0, 500};
+    Clock osc(&b->top->clk, nullptr, 10000, 1, 0, 500);
     osc.schedule_from(1);
     b->clocks.push_back(osc);
     for (auto& kv : *b->ctx.scopeNameMap()) {
@@ -103,16 +124,13 @@ Board* board_new(int argc, const char** argv) {
         const VerilatedVar* q = s->varFind("q");
         const VerilatedVar* num = s->varFind("botsim_period_num");
         if (!q || !num) continue;
-        Clock c{};
-        c.q = (CData*)q->datap();
-        c.run = (const CData*)s->varFind("running")->datap();
-        c.num = (uint32_t) * (IData*)num->datap();
-        c.den = (uint32_t) * (IData*)s->varFind("botsim_period_den")->datap();
+        uint64_t period_num = (uint32_t) * (IData*)num->datap();
+        uint64_t period_den = (uint32_t) * (IData*)s->varFind("botsim_period_den")->datap();
+        if (period_den == 0 || period_num == 0) continue;
         int32_t mdeg = *(IData*)s->varFind("botsim_phase_mdeg")->datap();
         int64_t m = ((int64_t)mdeg % 360000 + 360000) % 360000;
-        c.phase_num = (uint64_t)(c.num * (uint64_t)m / 360000);
-        c.duty_permille = *(IData*)s->varFind("botsim_duty_permille")->datap();
-        if (c.den == 0 || c.num == 0) continue;
+        Clock c((CData*)q->datap(), (const CData*)s->varFind("running")->datap(), period_num, period_den,
+                period_num * (uint64_t)m / 360000, *(IData*)s->varFind("botsim_duty_permille")->datap());
         c.stopped = true;
         b->clocks.push_back(c);
     }
@@ -157,7 +175,7 @@ void board_close_vcd(Board* b) {
 size_t board_clock_count(Board* b) { return b->clocks.size(); }
 
 void board_clock(Board* b, size_t i, uint64_t* num, uint64_t* den) {
-    *num = (uint64_t)b->clocks[i].num;
+    *num = b->clocks[i].num;
     *den = b->clocks[i].den;
 }
 
@@ -185,80 +203,152 @@ static inline void record(BoardEvent* buf, uint32_t* n, uint64_t t, uint32_t kin
     e.c = c;
 }
 
+}  // extern "C"
+
+namespace {
+
+// What the board showed last; kept in locals while a run loops (the model's eval() is opaque
+// to the compiler, so fields behind `b` would be reloaded after every evaluation).
+struct Shown {
+    uint8_t an, seg, dp;
+    uint16_t led, vga;
+    bool upd;
+    uint64_t samples, evals;
+};
+
+// The run loop. kOneClock: the oscillator is the only clock (most designs), so the scheduler
+// reduces to stepping it.
+template <bool kOneClock>
+uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, BoardEvent* buf, uint32_t cap,
+                  uint32_t* n) {
+    Vboard* top = b->top;
+    const size_t nc = b->clocks.size();
+    Clock* clocks = b->clocks.data();
+    const bool vga = b->vga;
+    Shown s{b->last_an, b->last_seg, b->last_dp, b->last_led, b->last_vga, b->last_upd, b->samples, b->evals};
+    uint32_t why = BOARD_BUFFER_FULL;
+    // Room for one evaluation's records (at most 4) must remain.
+    while (*n + 4 <= cap) {
+        uint64_t t;
+        if (kOneClock) {
+            t = clocks[0].next_t;
+        } else {
+            t = UINT64_MAX;
+            for (size_t i = 0; i < nc; i++)
+                if (!clocks[i].stopped && clocks[i].next_t < t) t = clocks[i].next_t;
+        }
+        if (t > until_ps) {
+            b->now = until_ps;
+            why = BOARD_UNTIL;
+            break;
+        }
+        b->ctx.time(t);
+        if (kOneClock) {
+            *clocks[0].q = clocks[0].next_high;
+            clocks[0].advance();
+        } else {
+            for (size_t i = 0; i < nc; i++) {
+                Clock& c = clocks[i];
+                if (c.stopped || c.next_t != t) continue;
+                *c.q = c.next_high;
+                c.advance();
+            }
+        }
+        top->eval();
+        s.evals++;
+        b->now = t;
+        if (b->vcd) b->vcd->dump(t);
+        if (b->ctx.gotFinish()) {  // $finish, or vl_fatal
+            why = BOARD_FINISHED;
+            break;
+        }
+        if (!kOneClock) {
+            // Clocks that start or stop with this evaluation.
+            for (size_t i = 1; i < nc; i++) {
+                Clock& c = clocks[i];
+                bool runs = *c.run != 0;
+                if (c.stopped && runs) {
+                    c.stopped = false;
+                    c.schedule_from(t + 1);
+                } else if (!c.stopped && !runs && *c.q == 0) {
+                    c.stopped = true;
+                }
+            }
+        }
+        uint8_t an = top->an, seg = top->seg, dp = top->dp;
+        if (an != s.an || seg != s.seg || dp != s.dp) {
+            s.an = an;
+            s.seg = seg;
+            s.dp = dp;
+            record(buf, n, t, BOARD_EVENT_DISPLAY, an | (uint32_t)seg << 8 | (uint32_t)dp << 15, 0, 0);
+        }
+        if (vga) {
+            uint16_t v = (uint16_t)(top->vga_r << 8 | top->vga_g << 4 | top->vga_b | top->hsync << 12 | top->vsync << 13);
+            if (v != s.vga) {
+                s.vga = v;
+                record(buf, n, t, BOARD_EVENT_VGA, v, 0, 0);
+            }
+        }
+        if (top->led != s.led) {
+            s.led = top->led;
+            record(buf, n, t, BOARD_EVENT_LEDS, top->led, 0, 0);
+        }
+        bool upd = top->bot_upd;
+        if (upd != s.upd) {
+            s.upd = upd;
+            if (upd) {
+                uint64_t regs = (uint64_t)top->bot_locx | (uint64_t)top->bot_locy << 8 |
+                                (uint64_t)top->bot_info << 16 | (uint64_t)top->bot_sensors << 24 |
+                                (uint64_t)top->bot_lmdist << 32 | (uint64_t)top->bot_rmdist << 40 |
+                                (uint64_t)top->bot_motctl << 48;
+                record(buf, n, t, BOARD_EVENT_SAMPLE, (uint32_t)s.samples, regs, top->bot_cycles);
+                if (++s.samples >= stop_after_samples) {
+                    why = BOARD_SAMPLES;
+                    break;
+                }
+            }
+        }
+    }
+    b->last_an = s.an;
+    b->last_seg = s.seg;
+    b->last_dp = s.dp;
+    b->last_led = s.led;
+    b->last_vga = s.vga;
+    b->last_upd = s.upd;
+    b->samples = s.samples;
+    b->evals = s.evals;
+    return why;
+}
+
+}  // namespace
+
+extern "C" {
+
 uint32_t board_run(Board* b, uint64_t until_ps, uint64_t stop_after_samples, BoardEvent* buf, uint32_t cap,
                    uint32_t* n) {
     current = b;
     *n = 0;
-    Vboard* top = b->top;
-    const size_t nc = b->clocks.size();
-    Clock* clocks = b->clocks.data();
-    // Room for one eval's events (at most 4) must remain.
-    while (*n + 4 <= cap) {
-        uint64_t t = UINT64_MAX;
-        for (size_t i = 0; i < nc; i++)
-            if (!clocks[i].stopped && clocks[i].next_t < t) t = clocks[i].next_t;
-        if (t > until_ps || t == UINT64_MAX) {
-            b->now = until_ps;
-            return BOARD_UNTIL;
-        }
-        b->ctx.time(t);
-        b->now = t;
-        for (size_t i = 0; i < nc; i++) {
-            Clock& c = clocks[i];
-            if (c.stopped || c.next_t != t) continue;
-            *c.q = c.next_high ? 1 : 0;
-            c.advance();
-        }
-        top->eval();
-        b->evals++;
-        if (b->vcd) b->vcd->dump(t);
-        if (!b->fatal.empty() || b->ctx.gotFinish()) return BOARD_FINISHED;
-        // Clocks that start or stop with this evaluation.
-        for (size_t i = 1; i < nc; i++) {
-            Clock& c = clocks[i];
-            bool runs = *c.run != 0;
-            if (c.stopped && runs) {
-                c.stopped = false;
-                c.schedule_from(t + 1);
-            } else if (!c.stopped && !runs && *c.q == 0) {
-                c.stopped = true;
-            }
-        }
-        uint8_t an = top->an, seg = top->seg, dp = top->dp;
-        if (an != b->last_an || seg != b->last_seg || dp != b->last_dp) {
-            b->last_an = an;
-            b->last_seg = seg;
-            b->last_dp = dp;
-            record(buf, n, t, BOARD_EVENT_DISPLAY, an | (uint32_t)seg << 8 | (uint32_t)dp << 15, 0, 0);
-        }
-        if (b->vga) {
-            uint16_t v = (uint16_t)(top->vga_r << 8 | top->vga_g << 4 | top->vga_b | top->hsync << 12 | top->vsync << 13);
-            if (v != b->last_vga) {
-                b->last_vga = v;
-                record(buf, n, t, BOARD_EVENT_VGA, v, 0, 0);
-            }
-        }
-        if (top->led != b->last_led) {
-            b->last_led = top->led;
-            record(buf, n, t, BOARD_EVENT_LEDS, top->led, 0, 0);
-        }
-        bool upd = top->bot_upd;
-        if (upd && !b->last_upd) {
-            uint64_t regs = (uint64_t)top->bot_locx | (uint64_t)top->bot_locy << 8 | (uint64_t)top->bot_info << 16 |
-                            (uint64_t)top->bot_sensors << 24 | (uint64_t)top->bot_lmdist << 32 |
-                            (uint64_t)top->bot_rmdist << 40 | (uint64_t)top->bot_motctl << 48;
-            record(buf, n, t, BOARD_EVENT_SAMPLE, (uint32_t)b->samples, regs, top->bot_cycles);
-            b->samples++;
-            b->last_upd = true;
-            if (b->samples >= stop_after_samples) return BOARD_SAMPLES;
-        } else if (!upd) {
-            b->last_upd = false;
-        }
-    }
-    return BOARD_BUFFER_FULL;
+    return b->clocks.size() == 1 ? run_loop<true>(b, until_ps, stop_after_samples, buf, cap, n)
+                                 : run_loop<false>(b, until_ps, stop_after_samples, buf, cap, n);
 }
 
 const char* board_fatal(Board* b) { return b->fatal.c_str(); }
+
+// The minimal harness the board harness is measured against (botsim board --bench): the
+// oscillator alone, two evaluations per cycle, nothing checked or recorded. Use it on a board
+// of its own: it moves the model's time without the scheduler.
+void board_bench_minimal(Board* b, uint64_t cycles) {
+    current = b;
+    Vboard* top = b->top;
+    for (uint64_t i = 0; i < cycles; i++) {
+        b->ctx.timeInc(5000);
+        top->clk = 1;
+        top->eval();
+        b->ctx.timeInc(5000);
+        top->clk = 0;
+        top->eval();
+    }
+}
 
 }  // extern "C"
 

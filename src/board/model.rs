@@ -96,6 +96,7 @@ struct Api {
     clock_count: unsafe extern "C" fn(*mut Opaque) -> usize,
     clock: unsafe extern "C" fn(*mut Opaque, usize, *mut u64, *mut u64),
     fatal: unsafe extern "C" fn(*mut Opaque) -> *const c_char,
+    bench_minimal: unsafe extern "C" fn(*mut Opaque, u64),
 }
 
 /// A running board simulation.
@@ -110,7 +111,8 @@ impl BoardModel {
     /// Load the library at `path` and create the model with the plusargs `args`
     /// (`+botsim_world=FILE`).
     pub fn load(path: &Path, args: &[String]) -> Result<BoardModel, BoardError> {
-        let fail = |e: libloading::Error| BoardError::at(path, 0, 0, format!("cannot load the built design: {e}"));
+        // libloading's message names the file.
+        let fail = |e: libloading::Error| BoardError::plain(format!("cannot load the built design: {e}"));
         // The library uses its own Verilator runtime, never one linked into botsim.
         let flags = libloading::os::unix::RTLD_NOW | libloading::os::unix::RTLD_LOCAL | RTLD_DEEPBIND;
         // SAFETY: the library is one botsim built from harness.cpp, with the ABI declared here.
@@ -135,6 +137,7 @@ impl BoardModel {
             clock_count: sym!(b"board_clock_count"),
             clock: sym!(b"board_clock"),
             fatal: sym!(b"board_fatal"),
+            bench_minimal: sym!(b"board_bench_minimal"),
         };
         let cargs: Vec<CString> = std::iter::once("botsim".to_string())
             .chain(args.iter().cloned())
@@ -210,6 +213,14 @@ impl BoardModel {
         // SAFETY: the harness returns a NUL-terminated string owned by the model.
         let s = unsafe { CStr::from_ptr((self.api.fatal)(self.ptr)) }.to_string_lossy().into_owned();
         (!s.is_empty()).then_some(s)
+    }
+
+    /// Run `cycles` of the 100 MHz oscillator with the minimal harness (two evaluations per
+    /// cycle, no other clock, nothing recorded): the reference `botsim board --bench`
+    /// measures the board harness against. Use a model of its own for it.
+    pub fn bench_minimal(&mut self, cycles: u64) {
+        // SAFETY: ptr is live.
+        unsafe { (self.api.bench_minimal)(self.ptr, cycles) }
     }
 
     /// Start a waveform of the whole design.

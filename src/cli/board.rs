@@ -88,6 +88,11 @@ pub struct Args {
     /// A waveform of the whole design
     #[arg(long, value_name = "FILE")]
     vcd: Option<PathBuf>,
+    /// Measure instead of run: the board harness against a minimal C++ harness of the same
+    /// built design (100 MHz oscillator only, nothing recorded), in Mcycles/s of the 100 MHz
+    /// clock, over --seconds of simulated time [default: 0.05], seven alternating rounds
+    #[arg(long)]
+    bench: bool,
     /// Print the summary as JSON
     #[arg(long)]
     json: bool,
@@ -207,13 +212,12 @@ pub fn run(a: Args) -> Result<(), String> {
         say(format!("  verilator warning {code} ({n}x), first: {first}"));
     }
 
+    if a.bench {
+        return bench(&built.library, &world, a.seconds.unwrap_or(0.05), a.json);
+    }
+
     // Run.
-    // The world file is read when the model is created, then removed.
-    let world_file = std::env::temp_dir().join(format!("botsim-world-{}.mem", std::process::id()));
-    std::fs::write(&world_file, world.to_mem()).map_err(|e| format!("{}: {e}", world_file.display()))?;
-    let model = BoardModel::load(&built.library, &[format!("+botsim_world={}", world_file.display())]);
-    let _ = std::fs::remove_file(&world_file);
-    let mut model = model.map_err(|e| e.to_string())?;
+    let mut model = load(&built.library, &world)?;
     if let Some(v) = &a.vcd {
         model.open_vcd(v).map_err(|e| e.to_string())?;
     }
@@ -362,6 +366,78 @@ pub fn run(a: Args) -> Result<(), String> {
             "simulated {:.3} s in {wall:.1} s: {} samples, the bot ended at {end}, the display showed \"{last_display}\", LEDs {last_led:016b}",
             sim_ps as f64 / 1e12,
             snapshots.len()
+        );
+    }
+    Ok(())
+}
+
+/// Create the model of a built design on `world` (the world file is read when the model is
+/// created, then removed).
+fn load(library: &std::path::Path, world: &World) -> Result<BoardModel, String> {
+    let world_file = std::env::temp_dir().join(format!("botsim-world-{}.mem", std::process::id()));
+    std::fs::write(&world_file, world.to_mem()).map_err(|e| format!("{}: {e}", world_file.display()))?;
+    let model = BoardModel::load(library, &[format!("+botsim_world={}", world_file.display())]);
+    let _ = std::fs::remove_file(&world_file);
+    model.map_err(|e| e.to_string())
+}
+
+/// Rounds of `--bench`.
+const ROUNDS: usize = 7;
+
+/// `--bench`: both harnesses on fresh models of the same library, the reset released from
+/// the start, alternating; the board harness's events are decoded as a run decodes them. The
+/// cost is the median of the rounds' ratios (each round measures both side by side).
+fn bench(library: &std::path::Path, world: &World, seconds: f64, json: bool) -> Result<(), String> {
+    let cycles = (seconds * 1e8) as u64;
+    let (mut board_rates, mut minimal_rates) = (Vec::new(), Vec::new());
+    let mut buf = vec![RawEvent::default(); 4096];
+    for _ in 0..ROUNDS {
+        let mut m = load(library, world)?;
+        m.set_inputs(false, 0, 0);
+        let mut display = Display::default();
+        let mut samples = 0u64;
+        let t = Instant::now();
+        loop {
+            let (stop, n) = m.run(cycles * 10_000, u64::MAX, &mut buf);
+            for e in buf[..n].iter().filter_map(Event::of) {
+                match e {
+                    Event::Display { time_ps, an, seg, dp } => display.pins(time_ps, an, seg, dp),
+                    Event::Sample { .. } => samples += 1,
+                    _ => {}
+                }
+            }
+            if stop != Stop::BufferFull {
+                break;
+            }
+        }
+        board_rates.push(cycles as f64 / t.elapsed().as_secs_f64() / 1e6);
+        let _ = samples;
+        let mut m = load(library, world)?;
+        m.set_inputs(false, 0, 0);
+        let t = Instant::now();
+        m.bench_minimal(cycles);
+        minimal_rates.push(cycles as f64 / t.elapsed().as_secs_f64() / 1e6);
+    }
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    let mut costs: Vec<f64> = minimal_rates.iter().zip(&board_rates).map(|(m, b)| m / b - 1.0).collect();
+    let cost = median(&mut costs);
+    let best = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);
+    // Noise on a shared machine only slows a run down: the best rates are the least disturbed.
+    let best_cost = best(&minimal_rates) / best(&board_rates) - 1.0;
+    let (b, m) = (median(&mut board_rates), median(&mut minimal_rates));
+    if json {
+        println!(
+            "{}",
+            serde_json::json!({"board_mcycles_per_s": b, "minimal_mcycles_per_s": m, "board_cost": cost, "board_cost_best": best_cost, "cycles": cycles, "rounds": ROUNDS})
+        );
+    } else {
+        println!(
+            "board harness {b:.2} Mcycles/s, minimal harness {m:.2} Mcycles/s (medians): the board harness costs {:+.1} % (median of {ROUNDS} side-by-side rounds of {cycles} cycles of 100 MHz; best against best {:+.1} %)",
+            cost * 100.0,
+            best_cost * 100.0
         );
     }
     Ok(())

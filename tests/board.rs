@@ -8,6 +8,8 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+mod common;
+
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
@@ -238,5 +240,83 @@ fn a_vga_frame_from_the_designs_pins_equals_botsim_frame_for_the_same_state() {
                 &want.2[3 * i..3 * i + 3]
             );
         }
+    }
+}
+
+/// The rows of a `--trace-csv` file, each as its columns.
+fn rows(path: &Path) -> Vec<Vec<u64>> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect()
+}
+
+/// The team firmware examples/common/linefollow.psm (the `line-follow` algorithm in KCPSM6
+/// assembly, loaded with --program into the example's ROM) drives the bot through the whole
+/// board; `botsim run --driver line-follow` is the reference.
+fn follow_through_the_board(map: Option<&Path>) {
+    let dir = tempfile::tempdir().unwrap();
+    let (reference, through_board) = (dir.path().join("run.csv"), dir.path().join("board.csv"));
+    let mut run_args = vec!["run", "--timing", "fast", "--compat", "botsim20", "--driver", "line-follow", "--json"];
+    let map_arg = map.map(|m| m.to_str().unwrap().to_string());
+    if let Some(m) = &map_arg {
+        run_args.extend(["--map", m]);
+    }
+    run_args.extend(["--trace-csv", reference.to_str().unwrap()]);
+    let o = Command::new(env!("CARGO_BIN_EXE_botsim")).args(&run_args).output().unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(summary["driver"], "reached the end of the line");
+    let want = rows(&reference);
+
+    let samples = (want.len() + 1).to_string();
+    let mut args = vec![
+        "examples/common",
+        "examples/nexys4_proj2",
+        "--program",
+        "examples/common/linefollow.psm",
+        "--param",
+        "SIMULATE=1",
+        "--timing",
+        "fast",
+        "--compat",
+        "botsim20",
+        "--samples",
+        &samples,
+        "--trace-csv",
+        through_board.to_str().unwrap(),
+    ];
+    if let Some(m) = &map_arg {
+        args.extend(["--map", m]);
+    }
+    let o = board(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("holding the program from examples/common/linefollow.psm"), "{}", stderr(&o));
+    let got = rows(&through_board);
+    assert_eq!(got.len(), want.len() + 1);
+    // Samples 0 and 1 come 246 clocks apart right after reset: too soon for the team CPU's
+    // interrupt, its decision and its MotCtl write, which reach the bot one sample later than
+    // botsim run's driver (it sets MotCtl between two clocks). From then on the board follows
+    // the reference one sample behind, register for register.
+    assert_eq!(got[1][2..], got[0][2..], "sample 1 still has the start state");
+    for i in 1..want.len() {
+        assert_eq!(got[i + 1][2..], want[i][2..], "board sample {} against reference sample {i}", i + 1);
+    }
+    let end = got.last().unwrap();
+    assert_eq!(end[5], 0x18, "on the line (sensors 000) with a wall ahead (both proximity bits)");
+}
+
+#[test]
+fn the_team_firmware_follows_the_line_of_the_builtin_course_through_the_board() {
+    follow_through_the_board(None);
+}
+
+#[test]
+fn the_team_firmware_follows_the_line_of_the_course_maps_through_the_board() {
+    for name in ["world_map_part1", "world_map_lr", "world_map_loop"] {
+        let Some(map) = common::reference_map(&format!("{name}.txt")) else { return };
+        follow_through_the_board(Some(&map));
     }
 }

@@ -349,7 +349,13 @@ pub fn run(a: Args) -> Result<(), String> {
             "simulated_seconds": sim_ps as f64 / 1e12,
             "stopped_by": finished.unwrap_or("interrupt"),
             "samples": snapshots.len(),
-            "end": end.map(|(x, y)| serde_json::json!({"loc_x": x, "loc_y": y})),
+            "end": snapshots.last().map(|s| serde_json::json!({
+                "loc_x": s.regs.loc_x, "loc_y": s.regs.loc_y, "sensors": s.regs.sensors,
+                "orientation": s.orientation().name(), "movement": s.movement().name(),
+                // Stopped on the line with a wall straight ahead: the end of a course.
+                "at_line_end": s.sensors().on_line() && s.sensors().prox_left() && s.sensors().prox_right()
+                    && s.movement() == botsim::Movement::Stopped,
+            })),
             "display": last_display,
             "leds": last_led,
             "vga_frames": frames_seen,

@@ -324,3 +324,15 @@ fn the_team_firmware_follows_the_line_of_the_course_maps_through_the_board() {
         follow_through_the_board(Some(&map));
     }
 }
+
+#[test]
+fn a_vivado_project_gives_its_design_sources_and_its_top() {
+    // tests/board_designs/vivado/proj2.xpr lists the example design relative to $PPRDIR,
+    // names the top, and has a simulation file set with a file that is not Verilog.
+    let o = board(&["tests/board_designs/vivado/proj2.xpr", "--param", "SIMULATE=1", "--seconds", "0.045", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(summary["top"], "nexys4fpga");
+    // The bot at its start (64, 64) facing east, shown by the team firmware.
+    assert_eq!(summary["display"], "4040   2");
+}

@@ -32,7 +32,7 @@ use crate::cli::run::{csv_row, json_row, CSV_HEADER};
   botsim board src/ --program src/proj2demo.psm --param SIMULATE=1 --samples 200 --trace-csv trace.csv
   botsim board src/ --press btnC@100+50 --switches 00FF --json")]
 pub struct Args {
-    /// Verilog files or folders
+    /// Verilog files, folders, or a Vivado project (.xpr)
     #[arg(required = true, value_name = "SOURCE")]
     sources: Vec<PathBuf>,
     /// The top module (default: the one module nothing instantiates with a clock pin)
@@ -176,11 +176,14 @@ pub fn run(a: Args) -> Result<(), String> {
     }
 
     // Plan and build.
-    let (files, mut include_dirs) = collect(&a.sources).map_err(|e| e.to_string())?;
+    let collected = collect(&a.sources).map_err(|e| e.to_string())?;
+    let mut include_dirs = collected.include_dirs;
+    let collected_notes = collected.notes;
     include_dirs.extend(a.include.iter().cloned());
-    let sources = files.iter().map(|f| Source::read(f)).collect::<Result<Vec<_>, _>>().map_err(|e| e.to_string())?;
+    let sources =
+        collected.files.iter().map(|f| Source::read(f)).collect::<Result<Vec<_>, _>>().map_err(|e| e.to_string())?;
     let req = Request {
-        top: a.top.clone(),
+        top: a.top.clone().or(collected.top),
         programs,
         bot_firmware,
         force_own_firmware: a.firmware.any(),
@@ -192,6 +195,9 @@ pub fn run(a: Args) -> Result<(), String> {
             eprintln!("{s}");
         }
     };
+    for n in &collected_notes {
+        say(format!("note: {n}"));
+    }
     say(format!("botsim board: top `{}`, bot at `{}.{}`", plan.top, plan.top, plan.bot_path));
     for r in &plan.replaced {
         let from = if r.from.is_empty() { String::new() } else { format!(" ({})", r.from) };

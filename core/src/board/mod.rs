@@ -10,6 +10,7 @@ pub mod plan;
 pub mod scan;
 pub mod vga;
 pub mod wrapper;
+pub mod xpr;
 
 use std::fmt;
 use std::path::Path;

@@ -56,27 +56,54 @@ impl Source {
     }
 }
 
+/// The sources named on the command line.
+#[derive(Clone, Debug, Default)]
+pub struct Collected {
+    /// Verilog files, in a stable order.
+    pub files: Vec<PathBuf>,
+    /// Include folders: every source's folder and every folder holding a `.vh`.
+    pub include_dirs: Vec<PathBuf>,
+    /// The top a Vivado project names.
+    pub top: Option<String>,
+    /// What the user should know about how the sources were found.
+    pub notes: Vec<String>,
+}
+
 /// The sources named on the command line: files as given, folders searched recursively
 /// for `.v` and `.sv` (`.vh`/`.svh` files are include files: their folders go on the
-/// include path).
-pub fn collect(inputs: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<PathBuf>), BoardError> {
+/// include path), Vivado projects (`.xpr`: their design sources and top, [`super::xpr`]).
+pub fn collect(inputs: &[PathBuf]) -> Result<Collected, BoardError> {
     let mut files = Vec::new();
     let mut include_dirs = BTreeSet::new();
+    let mut top = None;
+    let mut notes = Vec::new();
+    fn add(f: PathBuf, files: &mut Vec<PathBuf>, include_dirs: &mut BTreeSet<PathBuf>) {
+        match f.extension().and_then(|e| e.to_str()) {
+            // A file named twice (a folder and a project listing it) is read once.
+            Some("v" | "sv") if !files.contains(&f) => files.push(f),
+            Some("vh" | "svh") => {
+                include_dirs.insert(f.parent().unwrap_or(Path::new(".")).to_path_buf());
+            }
+            _ => {}
+        }
+    }
     for input in inputs {
         let meta = std::fs::metadata(input).map_err(|e| BoardError::at(input, 0, 0, format!("cannot read: {e}")))?;
         if meta.is_dir() {
             let mut found: Vec<PathBuf> = walk(input)?;
             found.sort();
             for f in found {
-                match f.extension().and_then(|e| e.to_str()) {
-                    Some("v" | "sv") => files.push(f),
-                    Some("vh" | "svh") => {
-                        include_dirs.insert(f.parent().unwrap_or(Path::new(".")).to_path_buf());
-                    }
-                    _ => {}
-                }
+                add(f, &mut files, &mut include_dirs);
             }
-        } else {
+        } else if input.extension().is_some_and(|e| e == "xpr") {
+            let project = super::xpr::Project::read(input)?;
+            let (found, project_notes) = project.sources(input)?;
+            for f in found {
+                add(f, &mut files, &mut include_dirs);
+            }
+            notes.extend(project_notes);
+            top = top.or(project.top);
+        } else if !files.contains(input) {
             files.push(input.clone());
         }
     }
@@ -84,9 +111,11 @@ pub fn collect(inputs: &[PathBuf]) -> Result<(Vec<PathBuf>, Vec<PathBuf>), Board
         include_dirs.insert(f.parent().unwrap_or(Path::new(".")).to_path_buf());
     }
     if files.is_empty() {
-        return Err(BoardError::plain("no Verilog sources found (.v or .sv files, or folders holding them)"));
+        return Err(BoardError::plain(
+            "no Verilog sources found (.v or .sv files, folders holding them, or a Vivado .xpr)",
+        ));
     }
-    Ok((files, include_dirs.into_iter().collect()))
+    Ok(Collected { files, include_dirs: include_dirs.into_iter().collect(), top, notes })
 }
 
 fn walk(dir: &Path) -> Result<Vec<PathBuf>, BoardError> {

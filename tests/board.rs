@@ -336,3 +336,19 @@ fn a_vivado_project_gives_its_design_sources_and_its_top() {
     // The bot at its start (64, 64) facing east, shown by the team firmware.
     assert_eq!(summary["display"], "4040   2");
 }
+
+#[test]
+fn block_and_distributed_memory_cores_come_from_their_xci_and_init_files() {
+    // tests/board_designs/memcore: the switches address rom_b (a Block Memory Generator ROM
+    // from rom_b.xci and rom_b.coe: word k = 0x0A + 7k) on LED[7:0] and rom_d (a Distributed
+    // Memory Generator ROM from rom_d.xci and rom_d.mif: word k = 0xF0 + k) on LED[15:8].
+    // The Vivado simulation wrapper of rom_b, which instantiates Xilinx's library model, is
+    // in the sources and must be replaced.
+    for (k, want) in [(3u16, 0xF31Fu64), (1, 0xF111), (0, 0xF00A)] {
+        let sw = format!("{k:04X}");
+        let o = board(&["tests/board_designs/memcore", "--switches", &sw, "--seconds", "0.0001", "--json"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        assert_eq!(summary["leds"].as_u64().unwrap(), want, "switches {sw}");
+    }
+}

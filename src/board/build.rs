@@ -93,6 +93,9 @@ fn files(plan: &Plan, params: &[(String, String)]) -> Files {
     for (module, text) in wrapper::roms(plan) {
         generated.push((format!("rom_{module}.v"), text));
     }
+    for core in &plan.cores {
+        generated.push((format!("core_{}.v", core.name), core.verilog()));
+    }
     for (module, ports) in &plan.stubs {
         generated.push((format!("stub_{module}.v"), wrapper::stub(module, ports)));
     }

@@ -10,6 +10,7 @@ use botsim::kcpsm6::loader;
 use botsim::render::{path_picture, PathStyle};
 use botsim::{Snapshot, World};
 use botsim_core::board::display::Display;
+use botsim_core::board::memcore::MemCore;
 use botsim_core::board::pins::BUTTONS;
 use botsim_core::board::plan::{collect, Plan, Request, Source};
 use botsim_core::board::vga::Capture;
@@ -182,7 +183,14 @@ pub fn run(a: Args) -> Result<(), String> {
     include_dirs.extend(a.include.iter().cloned());
     let sources =
         collected.files.iter().map(|f| Source::read(f)).collect::<Result<Vec<_>, _>>().map_err(|e| e.to_string())?;
+    let mut cores = Vec::new();
+    for x in &collected.xci {
+        if let Some(core) = MemCore::from_xci(x).map_err(|e| e.to_string())? {
+            cores.push((x.clone(), core));
+        }
+    }
     let req = Request {
+        cores,
         top: a.top.clone().or(collected.top),
         programs,
         bot_firmware,

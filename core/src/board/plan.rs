@@ -11,6 +11,7 @@ use std::path::{Path, PathBuf};
 
 use kcpsm6::image::Image;
 
+use super::memcore::MemCore;
 use super::pins::{self, Role};
 use super::scan::{self, Dir, Instance, Module};
 use super::BoardError;
@@ -67,6 +68,8 @@ pub struct Collected {
     pub top: Option<String>,
     /// What the user should know about how the sources were found.
     pub notes: Vec<String>,
+    /// Vivado IP files (`.xci`): memory cores among them are modelled ([`super::memcore`]).
+    pub xci: Vec<PathBuf>,
 }
 
 /// The sources named on the command line: files as given, folders searched recursively
@@ -77,10 +80,12 @@ pub fn collect(inputs: &[PathBuf]) -> Result<Collected, BoardError> {
     let mut include_dirs = BTreeSet::new();
     let mut top = None;
     let mut notes = Vec::new();
-    fn add(f: PathBuf, files: &mut Vec<PathBuf>, include_dirs: &mut BTreeSet<PathBuf>) {
+    let mut xci = Vec::new();
+    fn add(f: PathBuf, files: &mut Vec<PathBuf>, include_dirs: &mut BTreeSet<PathBuf>, xci: &mut Vec<PathBuf>) {
         match f.extension().and_then(|e| e.to_str()) {
             // A file named twice (a folder and a project listing it) is read once.
             Some("v" | "sv") if !files.contains(&f) => files.push(f),
+            Some("xci") if !xci.contains(&f) => xci.push(f),
             Some("vh" | "svh") => {
                 include_dirs.insert(f.parent().unwrap_or(Path::new(".")).to_path_buf());
             }
@@ -93,16 +98,21 @@ pub fn collect(inputs: &[PathBuf]) -> Result<Collected, BoardError> {
             let mut found: Vec<PathBuf> = walk(input)?;
             found.sort();
             for f in found {
-                add(f, &mut files, &mut include_dirs);
+                add(f, &mut files, &mut include_dirs, &mut xci);
             }
         } else if input.extension().is_some_and(|e| e == "xpr") {
             let project = super::xpr::Project::read(input)?;
             let (found, project_notes) = project.sources(input)?;
+            for f in project.files.iter().filter(|f| f.extension().is_some_and(|e| e == "xci") && f.exists()) {
+                add(f.clone(), &mut files, &mut include_dirs, &mut xci);
+            }
             for f in found {
-                add(f, &mut files, &mut include_dirs);
+                add(f, &mut files, &mut include_dirs, &mut xci);
             }
             notes.extend(project_notes);
             top = top.or(project.top);
+        } else if input.extension().is_some_and(|e| e == "xci") {
+            add(input.clone(), &mut files, &mut include_dirs, &mut xci);
         } else if !files.contains(input) {
             files.push(input.clone());
         }
@@ -115,7 +125,7 @@ pub fn collect(inputs: &[PathBuf]) -> Result<Collected, BoardError> {
             "no Verilog sources found (.v or .sv files, folders holding them, or a Vivado .xpr)",
         ));
     }
-    Ok(Collected { files, include_dirs: include_dirs.into_iter().collect(), top, notes })
+    Ok(Collected { files, include_dirs: include_dirs.into_iter().collect(), top, notes, xci })
 }
 
 fn walk(dir: &Path) -> Result<Vec<PathBuf>, BoardError> {
@@ -152,6 +162,8 @@ pub struct Request {
     /// True when the request selects botsim's firmware even if the user has a `bot_pgm`.
     pub force_own_firmware: bool,
     pub stubs: Vec<String>,
+    /// Memory cores from the design's `.xci` files, with the file each came from.
+    pub cores: Vec<(PathBuf, MemCore)>,
 }
 
 /// One line of the substitution report.
@@ -180,6 +192,8 @@ pub struct Plan {
     pub include_dirs: Vec<PathBuf>,
     pub roms: Vec<Rom>,
     pub stubs: Vec<(String, Vec<String>)>,
+    /// Memory cores to model.
+    pub cores: Vec<MemCore>,
     /// `BOTSIM_USED_<PRIMITIVE>` masks.
     pub used_outputs: BTreeMap<String, u8>,
     pub replaced: Vec<Replacement>,
@@ -313,6 +327,10 @@ impl Plan {
                     *mask |= connected_mask(inst, outs);
                     continue;
                 }
+                if req.cores.iter().any(|(_, c)| c.name == inst.module) {
+                    used.insert(inst.module.clone());
+                    continue;
+                }
                 if stubs.contains(inst.module.as_str()) {
                     let set = stub_ports.entry(inst.module.clone()).or_default();
                     set.extend(inst.connections.iter().map(|(p, _)| p.clone()));
@@ -371,6 +389,17 @@ impl Plan {
                     with: format!("botsim's behavioural {name}"),
                 });
             }
+        }
+
+        let cores: Vec<MemCore> =
+            req.cores.iter().filter(|(_, c)| used.contains(&c.name)).map(|(_, c)| c.clone()).collect();
+        for (xci, c) in req.cores.iter().filter(|(_, c)| used.contains(&c.name)) {
+            let from = defined.get(c.name.as_str()).map(|(s, m)| format!("{}:{}", s.path.display(), m.line));
+            replaced.push(Replacement {
+                module: c.name.clone(),
+                from: from.unwrap_or_default(),
+                with: format!("a behavioural memory core configured as in {}", xci.display()),
+            });
         }
 
         // Program ROMs.
@@ -452,6 +481,7 @@ impl Plan {
             .chain(PRIMITIVES.iter().map(|(p, _)| p.to_string()))
             .chain(roms.iter().map(|r| r.module.clone()))
             .chain(stub_ports.keys().cloned())
+            .chain(cores.iter().map(|c| c.name.clone()))
             .collect();
         let mut files = Vec::new();
         for s in sources {
@@ -488,6 +518,7 @@ impl Plan {
             include_dirs,
             roms,
             stubs,
+            cores,
             used_outputs,
             replaced,
             warnings,
@@ -539,7 +570,14 @@ mod tests {
     }
 
     fn request() -> Request {
-        Request { top: None, programs: vec![], bot_firmware: Image::zeroed(), force_own_firmware: false, stubs: vec![] }
+        Request {
+            top: None,
+            programs: vec![],
+            bot_firmware: Image::zeroed(),
+            force_own_firmware: false,
+            stubs: vec![],
+            cores: vec![],
+        }
     }
 
     #[test]

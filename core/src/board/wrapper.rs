@@ -197,6 +197,7 @@ mod tests {
             bot_firmware: kcpsm6::image::Image::zeroed(),
             force_own_firmware: false,
             stubs: vec![],
+            cores: vec![],
         };
         Plan::new(&[src], vec![], &req).unwrap()
     }

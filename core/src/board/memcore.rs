@@ -230,8 +230,8 @@ pub fn parse_coe(text: &str) -> Result<Vec<u64>, (u32, String)> {
     for (n, raw) in text.lines().enumerate() {
         let line_no = n as u32 + 1;
         let mut line = raw.trim();
-        if line.starts_with(';') {
-            continue; // a comment line
+        if line.starts_with(';') && !in_vector {
+            continue; // a comment line (inside the vector, `;` ends it)
         }
         if !in_vector {
             let lower = line.to_ascii_lowercase();
@@ -307,6 +307,8 @@ mod tests {
         );
         assert_eq!(parse_coe("memory_initialization_radix=2;\nmemory_initialization_vector=\n012;").unwrap_err().0, 3);
         assert_eq!(parse_mif("0101\n1111\n").unwrap(), [5, 15]);
+        // The closing `;` alone on the last line.
+        assert_eq!(parse_coe("memory_initialization_radix=16;\nmemory_initialization_vector=\n1,\n2\n;\n").unwrap(), [1, 2]);
     }
 
     fn xci(component: &str, values: &[(&str, &str)]) -> String {

@@ -352,3 +352,63 @@ fn block_and_distributed_memory_cores_come_from_their_xci_and_init_files() {
         assert_eq!(summary["leds"].as_u64().unwrap(), want, "switches {sw}");
     }
 }
+
+#[test]
+fn a_stimulus_file_drives_the_switches_and_a_waveform_window_covers_its_times() {
+    let dir = tempfile::tempdir().unwrap();
+    let (stim, vcd) = (dir.path().join("stim.txt"), dir.path().join("w.vcd"));
+    // The example firmware drives the bot with the switches' motor byte (forward when 0).
+    std::fs::write(&stim, "# reverse from 1.5 ms (after the reset and the first samples)\n1.5ms switches 22\n")
+        .unwrap();
+    let o = board(&[
+        "examples/common",
+        "examples/nexys4_proj2",
+        "--param",
+        "SIMULATE=1",
+        "--timing",
+        "fast",
+        "--seconds",
+        "0.005",
+        "--stimulus",
+        stim.to_str().unwrap(),
+        "--vcd",
+        vcd.to_str().unwrap(),
+        "--trace-from",
+        "2ms",
+        "--trace-to",
+        "201000c",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(summary["end"]["movement"], "reverse");
+    assert!(summary["end"]["loc_x"].as_u64().unwrap() < 64, "{summary}");
+    // The window: from 2 ms to 201,000 cycles of 100 MHz (2.01 ms): its first and last time
+    // stamps are its ends, in picoseconds, with both edges of every cycle between.
+    let mut times = vec![];
+    for cmd in vcd::Parser::new(std::io::BufReader::new(std::fs::File::open(&vcd).unwrap())) {
+        if let vcd::Command::Timestamp(t) = cmd.unwrap() {
+            times.push(t);
+        }
+    }
+    assert_eq!(times.first(), Some(&2_000_000_000));
+    assert_eq!(times.last(), Some(&2_010_000_000));
+    assert_eq!(times.len(), 2 * 1_000 + 1);
+}
+
+#[test]
+fn a_build_past_its_budget_is_stopped_with_one_error_and_leaves_nothing() {
+    let cache = tempfile::tempdir().unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_botsim"))
+        .args(["board", "tests/board_designs/clocks", "--seconds", "0.0001"])
+        .current_dir(root())
+        .env("BOTSIM_CACHE", cache.path())
+        .env("BOTSIM_BUILD_TIMEOUT", "1")
+        .output()
+        .unwrap();
+    let e = one_line_error(&o);
+    assert_eq!(e, "the build took longer than 1 s and was stopped (BOTSIM_BUILD_TIMEOUT sets the limit)");
+    let boards = cache.path().join("boards");
+    let left: Vec<_> = std::fs::read_dir(&boards).map(|d| d.flatten().map(|e| e.path()).collect()).unwrap_or_default();
+    assert!(left.is_empty(), "{left:?}");
+}

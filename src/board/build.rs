@@ -5,9 +5,10 @@
 use std::collections::hash_map::DefaultHasher;
 use std::collections::BTreeMap;
 use std::hash::{Hash, Hasher};
+use std::io::Read;
 use std::path::{Path, PathBuf};
-use std::process::Command;
-use std::time::Instant;
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
 
 use botsim_core::board::plan::{Plan, OWN_MODULES};
 use botsim_core::board::wrapper;
@@ -210,9 +211,9 @@ pub fn build(plan: &Plan, params: &[(String, String)], quiet: bool) -> Result<Bu
         }
     }
     cmd.arg("harness.cpp");
-    let out = cmd
-        .output()
-        .map_err(|e| BoardError::plain(format!("cannot run verilator: {e} (install it: scripts/setup.sh)")))?;
+    let out = run_with_budget(&mut cmd, build_budget()).inspect_err(|_| {
+        let _ = std::fs::remove_dir_all(&tmp);
+    })?;
     let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
     let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
     if !out.status.success() || !tmp.join("obj/libboard.so").exists() {
@@ -226,6 +227,55 @@ pub fn build(plan: &Plan, params: &[(String, String)], quiet: bool) -> Result<Bu
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::rename(&tmp, &dir).map_err(|e| BoardError::at(&dir, 0, 0, format!("cannot keep the build: {e}")))?;
     Ok(Built { library, warnings: parse_warnings(&stderr, &f), seconds: Some(t0.elapsed().as_secs_f64()) })
+}
+
+/// The longest a build may take: `$BOTSIM_BUILD_TIMEOUT` seconds, else 20 minutes.
+fn build_budget() -> Duration {
+    let secs = std::env::var("BOTSIM_BUILD_TIMEOUT").ok().and_then(|v| v.parse().ok()).unwrap_or(1200);
+    Duration::from_secs(secs)
+}
+
+/// Run the build within `budget`; past it, stop the whole build (Verilator's make and its
+/// compilers: the process group) and say so.
+fn run_with_budget(cmd: &mut Command, budget: Duration) -> Result<Output, BoardError> {
+    use std::os::unix::process::CommandExt;
+    let mut child = cmd
+        .process_group(0)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| BoardError::plain(format!("cannot run verilator: {e} (install it: scripts/setup.sh)")))?;
+    let read = |r: Option<Box<dyn Read + Send>>| {
+        std::thread::spawn(move || {
+            let mut v = Vec::new();
+            if let Some(mut r) = r {
+                let _ = r.read_to_end(&mut v);
+            }
+            v
+        })
+    };
+    let out_reader = read(child.stdout.take().map(|s| Box::new(s) as Box<dyn Read + Send>));
+    let err_reader = read(child.stderr.take().map(|s| Box::new(s) as Box<dyn Read + Send>));
+    let start = Instant::now();
+    let status = loop {
+        match child.try_wait() {
+            Ok(Some(status)) => break status,
+            Ok(None) if start.elapsed() < budget => std::thread::sleep(Duration::from_millis(50)),
+            Ok(None) => {
+                // SAFETY: signals the build's own process group (process_group(0) above).
+                unsafe { libc::kill(-(child.id() as libc::pid_t), libc::SIGKILL) };
+                let _ = child.wait();
+                return Err(BoardError::plain(format!(
+                    "the build took longer than {} s and was stopped (BOTSIM_BUILD_TIMEOUT sets the limit)",
+                    budget.as_secs()
+                )));
+            }
+            Err(e) => return Err(BoardError::plain(format!("the build failed: {e}"))),
+        }
+    };
+    let stdout = out_reader.join().unwrap_or_default();
+    let stderr = err_reader.join().unwrap_or_default();
+    Ok(Output { status, stdout, stderr })
 }
 
 fn absolute(p: &Path) -> PathBuf {

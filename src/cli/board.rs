@@ -11,8 +11,8 @@ use botsim::render::{path_picture, PathStyle};
 use botsim::{Snapshot, World};
 use botsim_core::board::display::Display;
 use botsim_core::board::memcore::MemCore;
-use botsim_core::board::pins::BUTTONS;
 use botsim_core::board::plan::{collect, Plan, Request, Source};
+use botsim_core::board::stimulus::{parse_press, parse_time, Stimulus};
 use botsim_core::board::vga::Capture;
 
 use crate::cli::args::FirmwareArgs;
@@ -53,12 +53,16 @@ pub struct Args {
     /// Stop after S seconds of simulated time [default: 1, or unlimited with --samples]
     #[arg(long, value_name = "S")]
     seconds: Option<f64>,
-    /// Press a button: NAME@MS[+MS] (btnC, btnU, btnD, btnL, btnR; btnCpuReset too)
+    /// Press a button: NAME@TIME[+DURATION] (btnC, btnU, btnD, btnL, btnR, btnCpuReset; times
+    /// in ms, or with a unit: 250us, 2s, 5000000c for cycles of 100 MHz; 100 ms by default)
     #[arg(long, value_name = "BTN@MS[+MS]")]
     press: Vec<String>,
-    /// The switches, in hexadecimal
+    /// The switches from power-up, in hexadecimal
     #[arg(long, value_name = "HEX")]
     switches: Option<String>,
+    /// A stimulus file: one `TIME press NAME [DURATION]` or `TIME switches HEX` per line
+    #[arg(long, value_name = "FILE")]
+    stimulus: Option<PathBuf>,
     /// A parameter of the top: NAME=VALUE (e.g. SIMULATE=1)
     #[arg(long, value_name = "NAME=VALUE")]
     param: Vec<String>,
@@ -89,6 +93,12 @@ pub struct Args {
     /// A waveform of the whole design
     #[arg(long, value_name = "FILE")]
     vcd: Option<PathBuf>,
+    /// With --vcd: start the waveform at this time (ms, or 250us, 2s, 5000000c)
+    #[arg(long, value_name = "TIME", requires = "vcd")]
+    trace_from: Option<String>,
+    /// With --vcd: end the waveform at this time
+    #[arg(long, value_name = "TIME", requires = "vcd")]
+    trace_to: Option<String>,
     /// Measure instead of run: the board harness against a minimal C++ harness of the same
     /// built design (100 MHz oscillator only, nothing recorded), in Mcycles/s of the 100 MHz
     /// clock, over --seconds of simulated time [default: 0.05], seven alternating rounds
@@ -102,46 +112,29 @@ pub struct Args {
     quiet: bool,
 }
 
-/// One `--press`: buttons bit, from, to (ps).
-struct Press {
-    bit: Option<u8>,
-    from: u64,
-    to: u64,
-}
-
-const PS_PER_MS: u64 = 1_000_000_000;
-
-fn parse_press(s: &str) -> Result<Press, String> {
-    let bad = || format!("--press {s}: expected NAME@MS or NAME@MS+MS, e.g. btnC@100+50");
-    let (name, when) = s.split_once('@').ok_or_else(bad)?;
-    let (at, len) = when.split_once('+').unwrap_or((when, "100"));
-    let at: f64 = at.parse().map_err(|_| bad())?;
-    let len: f64 = len.parse().map_err(|_| bad())?;
-    if at.is_nan() || len.is_nan() || at < 0.0 || len <= 0.0 {
-        return Err(bad());
-    }
-    let bit = if name.eq_ignore_ascii_case("btnCpuReset") {
-        None
-    } else {
-        Some(BUTTONS.iter().position(|b| b.eq_ignore_ascii_case(name)).ok_or_else(|| {
-            format!("--press {s}: unknown button `{name}` (btnC, btnU, btnD, btnL, btnR, btnCpuReset)")
-        })? as u8)
-    };
-    let from = (at * PS_PER_MS as f64) as u64;
-    Ok(Press { bit, from, to: from + (len * PS_PER_MS as f64) as u64 })
-}
-
-/// The reset button is pressed at power-up and released after this long (1 ms).
-const POWER_ON_RESET_PS: u64 = PS_PER_MS;
-
 pub fn run(a: Args) -> Result<(), String> {
     // Arguments first: every bad one is one line before anything is built.
-    let presses = a.press.iter().map(|p| parse_press(p)).collect::<Result<Vec<_>, _>>()?;
-    let switches = match &a.switches {
-        Some(h) => u16::from_str_radix(h.trim_start_matches("0x"), 16)
-            .map_err(|_| format!("--switches {h}: expected up to four hexadecimal digits"))?,
-        None => 0,
+    let mut stimulus = match &a.stimulus {
+        Some(f) => {
+            let text = std::fs::read_to_string(f).map_err(|e| format!("{}: error: cannot read: {e}", f.display()))?;
+            Stimulus::parse(f, &text).map_err(|e| e.to_string())?
+        }
+        None => Stimulus::default(),
     };
+    for p in &a.press {
+        stimulus.presses.push(parse_press(p)?);
+    }
+    if let Some(h) = &a.switches {
+        stimulus.initial_switches = u16::from_str_radix(h.trim_start_matches("0x"), 16)
+            .map_err(|_| format!("--switches {h}: expected up to four hexadecimal digits"))?;
+    }
+    let window = |arg: &Option<String>, name: &str| {
+        arg.as_deref().map(parse_time).transpose().map_err(|e| format!("--{name}: {e}"))
+    };
+    let (vcd_from, vcd_to) = (window(&a.trace_from, "trace-from")?.unwrap_or(0), window(&a.trace_to, "trace-to")?);
+    if vcd_to.is_some_and(|to| to <= vcd_from) {
+        return Err("--trace-to: must come after --trace-from".into());
+    }
     let params = a
         .param
         .iter()
@@ -232,7 +225,7 @@ pub fn run(a: Args) -> Result<(), String> {
 
     // Run.
     let mut model = load(&built.library, &world)?;
-    if let Some(v) = &a.vcd {
+    if let (Some(v), 0) = (&a.vcd, vcd_from) {
         model.open_vcd(v).map_err(|e| e.to_string())?;
     }
     model.record_vga(a.frames.is_some());
@@ -245,28 +238,15 @@ pub fn run(a: Args) -> Result<(), String> {
         (None, None) => 1_000_000_000_000,
     };
     let stop_after = a.samples.unwrap_or(u64::MAX);
-    // Input changes: power-on reset release, each press and release.
-    let mut changes: Vec<u64> = vec![POWER_ON_RESET_PS];
-    for p in &presses {
-        changes.extend([p.from, p.to]);
+    // Where the run stops to change something: the inputs, and the waveform window.
+    let mut stops = stimulus.change_times();
+    if a.vcd.is_some() {
+        stops.extend([vcd_from].into_iter().chain(vcd_to).filter(|&t| t > 0));
+        stops.sort_unstable();
+        stops.dedup();
     }
-    changes.sort_unstable();
-    changes.dedup();
-    let inputs_at = |t: u64| {
-        let mut reset = t < POWER_ON_RESET_PS;
-        let mut buttons = 0u8;
-        for p in &presses {
-            if (p.from..p.to).contains(&t) {
-                match p.bit {
-                    Some(b) => buttons |= 1 << b,
-                    None => reset = true,
-                }
-            }
-        }
-        (reset, buttons)
-    };
-    let (r, b) = inputs_at(0);
-    model.set_inputs(r, b, switches);
+    let (r, b, sw) = stimulus.inputs_at(0);
+    model.set_inputs(r, b, sw);
 
     let t0 = Instant::now();
     let mut display = Display::default();
@@ -274,7 +254,7 @@ pub fn run(a: Args) -> Result<(), String> {
     let mut snapshots: Vec<Snapshot> = Vec::new();
     let mut json = String::new();
     let mut buf = vec![RawEvent::default(); 4096];
-    let mut next_change = changes.iter().copied().filter(|&c| c > 0).peekable();
+    let mut next_change = stops.into_iter().peekable();
     let mut last_led = 0u16;
     let finished = loop {
         if crate::cli::interrupted() {
@@ -322,8 +302,16 @@ pub fn run(a: Args) -> Result<(), String> {
                 }
                 if next_change.peek().is_some_and(|&c| c <= t) {
                     next_change.next();
-                    let (r, b) = inputs_at(t);
-                    model.set_inputs(r, b, switches);
+                    let (r, b, sw) = stimulus.inputs_at(t);
+                    model.set_inputs(r, b, sw);
+                    if let Some(v) = &a.vcd {
+                        if t == vcd_from {
+                            model.open_vcd(v).map_err(|e| e.to_string())?;
+                        }
+                        if Some(t) == vcd_to {
+                            model.close_vcd();
+                        }
+                    }
                 }
             }
         }

@@ -308,7 +308,10 @@ mod tests {
         assert_eq!(parse_coe("memory_initialization_radix=2;\nmemory_initialization_vector=\n012;").unwrap_err().0, 3);
         assert_eq!(parse_mif("0101\n1111\n").unwrap(), [5, 15]);
         // The closing `;` alone on the last line.
-        assert_eq!(parse_coe("memory_initialization_radix=16;\nmemory_initialization_vector=\n1,\n2\n;\n").unwrap(), [1, 2]);
+        assert_eq!(
+            parse_coe("memory_initialization_radix=16;\nmemory_initialization_vector=\n1,\n2\n;\n").unwrap(),
+            [1, 2]
+        );
     }
 
     fn xci(component: &str, values: &[(&str, &str)]) -> String {

@@ -9,6 +9,7 @@ pub mod memcore;
 pub mod pins;
 pub mod plan;
 pub mod scan;
+pub mod stimulus;
 pub mod vga;
 pub mod wrapper;
 pub mod xpr;

@@ -1,0 +1,198 @@
+//! The board's inputs over time: the reset button held at power-up, button presses and
+//! switch settings, from the command line (`--press btnC@100+50`, `--switches 00FF`) or a
+//! stimulus file. Times are simulated: milliseconds by default, or with a unit: `ms`, `us`,
+//! `ns`, `s`, or `c` for cycles of the board's 100 MHz clock.
+//!
+//! A stimulus file has one action per line, `#` comments:
+//!
+//! ```text
+//! # time    action
+//! 100ms     press btnC 50ms     # press btnC for 50 ms (default 100 ms)
+//! 250       switches 00FF       # from 250 ms on
+//! 30000000c press btnCpuReset 1ms
+//! ```
+//!
+//! ```
+//! use botsim_core::board::stimulus::{parse_time, Stimulus};
+//! assert_eq!(parse_time("2.5").unwrap(), 2_500_000_000);
+//! assert_eq!(parse_time("100c").unwrap(), 1_000_000);
+//! let s = Stimulus::parse(std::path::Path::new("s.txt"), "1ms press btnU 2ms\n4ms switches 0F\n").unwrap();
+//! assert_eq!(s.inputs_at(2_000_000_000), (false, 0b00010, 0));
+//! assert_eq!(s.inputs_at(5_000_000_000), (false, 0, 0x0F));
+//! ```
+
+use std::path::Path;
+
+use super::pins::BUTTONS;
+use super::BoardError;
+
+/// Picoseconds per millisecond.
+pub const PS_PER_MS: u64 = 1_000_000_000;
+/// The reset button is pressed at power-up and released after this long (1 ms).
+pub const POWER_ON_RESET_PS: u64 = PS_PER_MS;
+/// A press without a duration lasts this long (100 ms).
+pub const DEFAULT_PRESS_PS: u64 = 100 * PS_PER_MS;
+
+/// A time with an optional unit, in picoseconds.
+pub fn parse_time(s: &str) -> Result<u64, String> {
+    let s = s.trim();
+    let (num, scale) = if let Some(n) = s.strip_suffix("ms") {
+        (n, 1e9)
+    } else if let Some(n) = s.strip_suffix("us") {
+        (n, 1e6)
+    } else if let Some(n) = s.strip_suffix("ns") {
+        (n, 1e3)
+    } else if let Some(n) = s.strip_suffix('s') {
+        (n, 1e12)
+    } else if let Some(n) = s.strip_suffix('c') {
+        (n, 1e4)
+    } else {
+        (s, 1e9)
+    };
+    match num.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && v >= 0.0 && v * scale < 1.8e19 => Ok((v * scale).round() as u64),
+        _ => Err(format!("`{s}` is not a time (e.g. 100, 100ms, 250us, 2s, 5000000c)")),
+    }
+}
+
+/// One button press: the bit of `btn` (None: the reset button), from, to (ps).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Press {
+    pub button: Option<u8>,
+    pub from: u64,
+    pub to: u64,
+}
+
+fn button(name: &str) -> Result<Option<u8>, String> {
+    if name.eq_ignore_ascii_case("btnCpuReset") {
+        return Ok(None);
+    }
+    BUTTONS
+        .iter()
+        .position(|b| b.eq_ignore_ascii_case(name))
+        .map(|b| Some(b as u8))
+        .ok_or_else(|| format!("unknown button `{name}` (btnC, btnU, btnD, btnL, btnR, btnCpuReset)"))
+}
+
+/// `NAME@TIME[+DURATION]`, as `--press` takes it.
+pub fn parse_press(s: &str) -> Result<Press, String> {
+    let bad = |why: String| format!("--press {s}: {why}");
+    let (name, when) =
+        s.split_once('@').ok_or_else(|| bad("expected NAME@TIME[+DURATION], e.g. btnC@100+50".into()))?;
+    let (at, len) = match when.split_once('+') {
+        Some((a, l)) => (parse_time(a).map_err(bad)?, parse_time(l).map_err(bad)?),
+        None => (parse_time(when).map_err(bad)?, DEFAULT_PRESS_PS),
+    };
+    if len == 0 {
+        return Err(bad("a press lasts longer than 0".into()));
+    }
+    Ok(Press { button: button(name).map_err(bad)?, from: at, to: at + len })
+}
+
+/// The inputs over a run.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Stimulus {
+    pub presses: Vec<Press>,
+    /// Switch settings from a time on, in time order; before the first, `initial_switches`.
+    pub switches: Vec<(u64, u16)>,
+    pub initial_switches: u16,
+}
+
+impl Stimulus {
+    /// Parse a stimulus file; errors carry its file:line:col.
+    pub fn parse(path: &Path, text: &str) -> Result<Stimulus, BoardError> {
+        let mut s = Stimulus::default();
+        for (n, raw) in text.lines().enumerate() {
+            let line = raw.split('#').next().unwrap_or("");
+            let words: Vec<(usize, &str)> =
+                line.split_whitespace().map(|w| (w.as_ptr() as usize - raw.as_ptr() as usize + 1, w)).collect();
+            let Some(&(c0, t)) = words.first() else { continue };
+            let at = |col: usize, m: String| BoardError::at(path, n as u32 + 1, col as u32, m);
+            let time = parse_time(t).map_err(|m| at(c0, m))?;
+            match words.get(1).map(|w| (w.0, w.1.to_ascii_lowercase())) {
+                Some((_, ref a)) if a == "press" => {
+                    let &(cb, name) =
+                        words.get(2).ok_or_else(|| at(c0, "press what? (e.g. `100ms press btnC 50ms`)".into()))?;
+                    let len = match words.get(3) {
+                        Some(&(cl, l)) => parse_time(l).map_err(|m| at(cl, m))?,
+                        None => DEFAULT_PRESS_PS,
+                    };
+                    s.presses.push(Press { button: button(name).map_err(|m| at(cb, m))?, from: time, to: time + len });
+                }
+                Some((_, ref a)) if a == "switches" => {
+                    let &(cv, v) =
+                        words.get(2).ok_or_else(|| at(c0, "switches to what? (e.g. `250ms switches 00FF`)".into()))?;
+                    let v = u16::from_str_radix(v.trim_start_matches("0x"), 16)
+                        .map_err(|_| at(cv, format!("`{v}`: expected up to four hexadecimal digits")))?;
+                    s.switches.push((time, v));
+                }
+                Some((ca, ref a)) => return Err(at(ca, format!("unknown action `{a}` (press, switches)"))),
+                None => return Err(at(c0, "a time needs an action (press, switches)".into())),
+            }
+        }
+        s.switches.sort_by_key(|&(t, _)| t);
+        Ok(s)
+    }
+
+    /// Every time at which an input changes (after 0), with the power-on reset's release.
+    pub fn change_times(&self) -> Vec<u64> {
+        let mut t: Vec<u64> = std::iter::once(POWER_ON_RESET_PS)
+            .chain(self.presses.iter().flat_map(|p| [p.from, p.to]))
+            .chain(self.switches.iter().map(|&(t, _)| t))
+            .filter(|&t| t > 0)
+            .collect();
+        t.sort_unstable();
+        t.dedup();
+        t
+    }
+
+    /// (reset pressed, buttons, switches) at time `t`.
+    pub fn inputs_at(&self, t: u64) -> (bool, u8, u16) {
+        let mut reset = t < POWER_ON_RESET_PS;
+        let mut buttons = 0;
+        for p in self.presses.iter().filter(|p| (p.from..p.to).contains(&t)) {
+            match p.button {
+                Some(b) => buttons |= 1 << b,
+                None => reset = true,
+            }
+        }
+        let switches = self.switches.iter().rev().find(|&&(at, _)| at <= t).map_or(self.initial_switches, |&(_, v)| v);
+        (reset, buttons, switches)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn times_presses_and_file_errors_with_their_column() {
+        assert_eq!(parse_time("250us").unwrap(), 250_000_000);
+        assert_eq!(parse_time("1s").unwrap(), 1_000_000_000_000);
+        assert!(parse_time("-1").is_err() && parse_time("soon").is_err());
+        assert_eq!(
+            parse_press("btnC@100+50").unwrap(),
+            Press { button: Some(0), from: 100 * PS_PER_MS, to: 150 * PS_PER_MS }
+        );
+        assert_eq!(parse_press("btnCpuReset@5000c").unwrap().button, None);
+        assert!(parse_press("btnX@1").unwrap_err().contains("unknown button `btnX`"));
+        let p = Path::new("stim.txt");
+        let e = Stimulus::parse(p, "# start\n10ms press btnQ\n").unwrap_err().to_string();
+        assert_eq!(e, "stim.txt:2:12: unknown button `btnQ` (btnC, btnU, btnD, btnL, btnR, btnCpuReset)");
+        let e = Stimulus::parse(p, "  10ms  jump\n").unwrap_err().to_string();
+        assert_eq!(e, "stim.txt:1:9: unknown action `jump` (press, switches)");
+        let e = Stimulus::parse(p, "10ms switches zz\n").unwrap_err().to_string();
+        assert_eq!(e, "stim.txt:1:15: `zz`: expected up to four hexadecimal digits");
+    }
+
+    #[test]
+    fn the_reset_is_held_at_power_up_and_inputs_follow_their_times() {
+        let s = Stimulus::parse(Path::new("s"), "3ms press btnCpuReset 1ms\n2ms switches 1\n1.5ms press btnR 1ms\n")
+            .unwrap();
+        assert_eq!(s.inputs_at(0), (true, 0, 0));
+        assert_eq!(s.inputs_at(PS_PER_MS), (false, 0, 0));
+        assert_eq!(s.inputs_at(2 * PS_PER_MS), (false, 0b10000, 1));
+        assert_eq!(s.inputs_at(3 * PS_PER_MS), (true, 0, 1));
+        assert_eq!(s.change_times(), [1.0, 1.5, 2.0, 2.5, 3.0, 4.0].map(|ms: f64| (ms * PS_PER_MS as f64) as u64));
+    }
+}

@@ -412,3 +412,47 @@ fn a_build_past_its_budget_is_stopped_with_one_error_and_leaves_nothing() {
     let left: Vec<_> = std::fs::read_dir(&boards).map(|d| d.flatten().map(|e| e.path()).collect()).unwrap_or_default();
     assert!(left.is_empty(), "{left:?}");
 }
+
+/// The first and last time stamps of a VCD file.
+fn vcd_span(path: &Path) -> (u64, u64, usize) {
+    let mut times = vec![];
+    for cmd in vcd::Parser::new(std::io::BufReader::new(std::fs::File::open(path).unwrap())) {
+        if let vcd::Command::Timestamp(t) = cmd.unwrap() {
+            times.push(t);
+        }
+    }
+    (times[0], *times.last().unwrap(), times.len())
+}
+
+#[test]
+fn a_waveform_window_in_samples_holds_the_iteration_and_its_pulse_as_botsim_run_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let (csv, vcd) = (dir.path().join("t.csv"), dir.path().join("w.vcd"));
+    let o = board(&[
+        "examples/common",
+        "examples/nexys4_proj2",
+        "--param",
+        "SIMULATE=1",
+        "--timing",
+        "fast",
+        "--samples",
+        "12",
+        "--trace-csv",
+        csv.to_str().unwrap(),
+        "--vcd",
+        vcd.to_str().unwrap(),
+        "--trace-from",
+        "10",
+        "--trace-to",
+        "10",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // The bot runs on the 100 MHz clock, whose k-th rising edge is at k x 10 ns: a sample at
+    // cycle c was seen at c x 10,000 ps. The window opens at sample 9's pulse and closes three
+    // clocks after sample 10's began.
+    let cycle = |k: usize| rows(&csv)[k][1];
+    let (first, last, _) = vcd_span(&vcd);
+    assert_eq!(first, cycle(9) * 10_000);
+    assert_eq!(last, cycle(10) * 10_000 + 30_000);
+}

@@ -1,5 +1,6 @@
 //! `botsim board`: simulate a student's whole board design with the world in the loop.
 
+use std::collections::BTreeSet;
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -93,11 +94,12 @@ pub struct Args {
     /// A waveform of the whole design
     #[arg(long, value_name = "FILE")]
     vcd: Option<PathBuf>,
-    /// With --vcd: start the waveform at this time (ms, or 250us, 2s, 5000000c)
-    #[arg(long, value_name = "TIME", requires = "vcd")]
+    /// With --vcd: start the waveform at bot sample N (its iteration in full), at cycle Nc of
+    /// the 100 MHz clock, or at a time (2ms, 250us, 1s)
+    #[arg(long, value_name = "N|Nc|TIME", requires = "vcd")]
     trace_from: Option<String>,
-    /// With --vcd: end the waveform at this time
-    #[arg(long, value_name = "TIME", requires = "vcd")]
+    /// With --vcd: end the waveform after sample N (its pulse included), at cycle Nc, or at a time
+    #[arg(long, value_name = "N|Nc|TIME", requires = "vcd")]
     trace_to: Option<String>,
     /// Measure instead of run: the board harness against a minimal C++ harness of the same
     /// built design (100 MHz oscillator only, nothing recorded), in Mcycles/s of the 100 MHz
@@ -128,12 +130,12 @@ pub fn run(a: Args) -> Result<(), String> {
         stimulus.initial_switches = u16::from_str_radix(h.trim_start_matches("0x"), 16)
             .map_err(|_| format!("--switches {h}: expected up to four hexadecimal digits"))?;
     }
-    let window = |arg: &Option<String>, name: &str| {
-        arg.as_deref().map(parse_time).transpose().map_err(|e| format!("--{name}: {e}"))
-    };
-    let (vcd_from, vcd_to) = (window(&a.trace_from, "trace-from")?.unwrap_or(0), window(&a.trace_to, "trace-to")?);
-    if vcd_to.is_some_and(|to| to <= vcd_from) {
-        return Err("--trace-to: must come after --trace-from".into());
+    let vcd_from = a.trace_from.as_deref().map(|m| parse_mark(m, "trace-from")).transpose()?.unwrap_or(Mark::Time(0));
+    let vcd_to = a.trace_to.as_deref().map(|m| parse_mark(m, "trace-to")).transpose()?;
+    match (vcd_from, vcd_to) {
+        (Mark::Sample(f), Some(Mark::Sample(t))) if t < f => return Err("--trace-to: before --trace-from".into()),
+        (Mark::Time(f), Some(Mark::Time(t))) if t <= f => return Err("--trace-to: before --trace-from".into()),
+        _ => {}
     }
     let params = a
         .param
@@ -225,8 +227,11 @@ pub fn run(a: Args) -> Result<(), String> {
 
     // Run.
     let mut model = load(&built.library, &world)?;
-    if let (Some(v), 0) = (&a.vcd, vcd_from) {
+    // The waveform: open from the start, or at its --trace-from mark.
+    let (mut vcd_open, mut vcd_done, mut vcd_close_at) = (false, a.vcd.is_none(), None);
+    if let (Some(v), Mark::Time(0) | Mark::Sample(0)) = (&a.vcd, vcd_from) {
         model.open_vcd(v).map_err(|e| e.to_string())?;
+        vcd_open = true;
     }
     model.record_vga(a.frames.is_some());
     let mut vga = Capture::default();
@@ -237,13 +242,15 @@ pub fn run(a: Args) -> Result<(), String> {
         (None, Some(_)) => u64::MAX,
         (None, None) => 1_000_000_000_000,
     };
-    let stop_after = a.samples.unwrap_or(u64::MAX);
-    // Where the run stops to change something: the inputs, and the waveform window.
-    let mut stops = stimulus.change_times();
+    let sample_limit = a.samples.unwrap_or(u64::MAX);
+    // Times at which the run stops to change something: the inputs, the waveform window.
+    let mut stops: BTreeSet<u64> = stimulus.change_times().into_iter().collect();
     if a.vcd.is_some() {
-        stops.extend([vcd_from].into_iter().chain(vcd_to).filter(|&t| t > 0));
-        stops.sort_unstable();
-        stops.dedup();
+        for m in [Some(vcd_from), vcd_to].into_iter().flatten() {
+            if let Mark::Time(t) = m {
+                stops.insert(t);
+            }
+        }
     }
     let (r, b, sw) = stimulus.inputs_at(0);
     model.set_inputs(r, b, sw);
@@ -254,14 +261,20 @@ pub fn run(a: Args) -> Result<(), String> {
     let mut snapshots: Vec<Snapshot> = Vec::new();
     let mut json = String::new();
     let mut buf = vec![RawEvent::default(); 4096];
-    let mut next_change = stops.into_iter().peekable();
     let mut last_led = 0u16;
     let finished = loop {
         if crate::cli::interrupted() {
             break None;
         }
-        let until = next_change.peek().copied().unwrap_or(end_ps).min(end_ps);
-        let (stop, n) = model.run(until, stop_after, &mut buf);
+        let now = model.time_ps();
+        let until = stops.range(now + 1..).next().copied().unwrap_or(end_ps).min(end_ps);
+        // A window given in samples: stop after sample s - 1 to open, after sample s to close.
+        let window_limit = match (vcd_done, vcd_open, vcd_from, vcd_to) {
+            (false, false, Mark::Sample(s), _) => Some(s),
+            (false, true, _, Some(Mark::Sample(s))) if vcd_close_at.is_none() => Some(s + 1),
+            _ => None,
+        };
+        let (stop, n) = model.run(until, window_limit.map_or(sample_limit, |w| w.min(sample_limit)), &mut buf);
         for e in buf[..n].iter().filter_map(Event::of) {
             match e {
                 Event::Display { time_ps, an, seg, dp } => {
@@ -293,23 +306,35 @@ pub fn run(a: Args) -> Result<(), String> {
         }
         match stop {
             Stop::BufferFull => continue,
-            Stop::Samples => break Some("samples"),
+            Stop::Samples if snapshots.len() as u64 >= sample_limit => break Some("samples"),
+            Stop::Samples => {
+                // A window mark in samples.
+                if let (false, Some(v)) = (vcd_open, &a.vcd) {
+                    model.open_vcd(v).map_err(|e| e.to_string())?;
+                    vcd_open = true;
+                } else {
+                    // Close with the whole 2-clock pulse in the window (3 clocks of 100 MHz).
+                    let t = model.time_ps() + 30_000;
+                    stops.insert(t);
+                    vcd_close_at = Some(t);
+                }
+            }
             Stop::Finished => break Some("finish"),
             Stop::Until => {
                 let t = model.time_ps();
                 if t >= end_ps {
                     break Some("time");
                 }
-                if next_change.peek().is_some_and(|&c| c <= t) {
-                    next_change.next();
+                if stops.contains(&t) {
                     let (r, b, sw) = stimulus.inputs_at(t);
                     model.set_inputs(r, b, sw);
                     if let Some(v) = &a.vcd {
-                        if t == vcd_from {
+                        if !vcd_open && !vcd_done && vcd_from == Mark::Time(t) {
                             model.open_vcd(v).map_err(|e| e.to_string())?;
-                        }
-                        if Some(t) == vcd_to {
+                            vcd_open = true;
+                        } else if vcd_open && (vcd_to == Some(Mark::Time(t)) || vcd_close_at == Some(t)) {
                             model.close_vcd();
+                            (vcd_open, vcd_done) = (false, true);
                         }
                     }
                 }
@@ -377,6 +402,22 @@ pub fn run(a: Args) -> Result<(), String> {
         );
     }
     Ok(())
+}
+
+/// Where a waveform window opens or closes: after a bot sample, or at a time (cycles of the
+/// 100 MHz clock are a time).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Mark {
+    Sample(u64),
+    Time(u64),
+}
+
+/// `N` (sample N, as `botsim run` takes it), `Nc` (cycle N of 100 MHz) or a time with a unit.
+fn parse_mark(s: &str, name: &str) -> Result<Mark, String> {
+    if !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit()) {
+        return s.parse().map(Mark::Sample).map_err(|_| format!("--{name} {s}: too large"));
+    }
+    parse_time(s).map(Mark::Time).map_err(|e| format!("--{name}: {e} or a sample number"))
 }
 
 /// Create the model of a built design on `world` (the world file is read when the model is

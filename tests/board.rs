@@ -24,6 +24,14 @@ fn board(args: &[&str]) -> Output {
         .unwrap()
 }
 
+/// `botsim board` on an example design (examples/common with the top in `top_dir`), its
+/// debounce in simulation mode, with `args`.
+fn example(top_dir: &str, args: &[&str]) -> Output {
+    let mut all = vec!["examples/common", top_dir, "--param", "SIMULATE=1"];
+    all.extend_from_slice(args);
+    board(&all)
+}
+
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
@@ -37,19 +45,10 @@ fn hex(v: u8) -> char {
 fn the_example_design_shows_the_bots_registers_on_its_display() {
     let dir = tempfile::tempdir().unwrap();
     let (csv, disp) = (dir.path().join("t.csv"), dir.path().join("d.txt"));
-    let o = board(&[
-        "examples/common",
+    let o = example(
         "examples/nexys4_proj2",
-        "--param",
-        "SIMULATE=1",
-        "--seconds",
-        "0.045",
-        "--trace-csv",
-        csv.to_str().unwrap(),
-        "--display",
-        disp.to_str().unwrap(),
-        "--json",
-    ]);
+        &["--seconds", "0.045", "--trace-csv", csv.to_str().unwrap(), "--display", disp.to_str().unwrap(), "--json"],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(summary["top"], "nexys4fpga");
@@ -81,33 +80,22 @@ fn the_example_design_shows_the_bots_registers_on_its_display() {
 fn the_trace_follows_the_samples_asked_for_and_reruns_reuse_the_build() {
     let dir = tempfile::tempdir().unwrap();
     let csv = dir.path().join("t.csv");
-    let args = [
-        "examples/common",
-        "examples/nexys4_proj2",
-        "--param",
-        "SIMULATE=1",
-        "--timing",
-        "fast",
-        "--samples",
-        "40",
-        "--trace-csv",
-    ];
-    let mut a: Vec<&str> = args.to_vec();
-    a.push(csv.to_str().unwrap());
-    let first = board(&a);
+    let a = ["--timing", "fast", "--samples", "40", "--trace-csv", csv.to_str().unwrap()];
+    let first = example("examples/nexys4_proj2", &a);
     assert!(first.status.success(), "{}", stderr(&first));
-    let again = board(&a);
+    let again = example("examples/nexys4_proj2", &a);
     assert!(again.status.success());
     assert!(stderr(&again).contains("reused the build"), "{}", stderr(&again));
     let text = std::fs::read_to_string(&csv).unwrap();
     let mut lines = text.lines();
     assert_eq!(lines.next().unwrap(), "sample,cycle,loc_x,loc_y,bot_info,sensors,lm_dist,rm_dist");
     let rows: Vec<&str> = lines.collect();
-    assert_eq!(rows.len(), 40);
-    assert!(rows[39].starts_with("39,"));
+    // Samples 0 (the dump after reset) to 40, as botsim run --samples 40 gives.
+    assert_eq!(rows.len(), 41);
+    assert!(rows[40].starts_with("40,"));
     // Driving forward (switches off) from (64, 64) facing east: LocX grows.
     let x = |r: &str| r.split(',').nth(2).unwrap().parse::<u32>().unwrap();
-    assert!(x(rows[39]) > x(rows[0]), "{rows:?}");
+    assert!(x(rows[40]) > x(rows[0]), "{rows:?}");
 }
 
 fn write(dir: &Path, name: &str, text: &str) -> String {
@@ -197,19 +185,10 @@ fn a_vga_frame_from_the_designs_pins_equals_botsim_frame_for_the_same_state() {
     // hw timing: samples 0 and 1 come right after reset (1 ms), the next about 53 ms later;
     // frames (16.8 ms each) start when the DTG's first vertical sync falls, about 15.7 ms
     // after the MMCM locks, so frames 0 and 1 show the bot standing at sample 1.
-    let o = board(&[
-        "examples/common",
+    let o = example(
         "examples/nexys4_vga",
-        "--param",
-        "SIMULATE=1",
-        "--seconds",
-        "0.052",
-        "--frames",
-        frames.to_str().unwrap(),
-        "--trace-csv",
-        csv.to_str().unwrap(),
-        "--json",
-    ]);
+        &["--seconds", "0.052", "--frames", frames.to_str().unwrap(), "--trace-csv", csv.to_str().unwrap(), "--json"],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(summary["vga_frames"], 2, "{summary}");
@@ -271,14 +250,11 @@ fn follow_through_the_board(map: Option<&Path>) {
     assert_eq!(summary["driver"], "reached the end of the line");
     let want = rows(&reference);
 
-    let samples = (want.len() + 1).to_string();
+    // Samples 0 to want.len(): one more than the reference's.
+    let samples = want.len().to_string();
     let mut args = vec![
-        "examples/common",
-        "examples/nexys4_proj2",
         "--program",
         "examples/common/linefollow.psm",
-        "--param",
-        "SIMULATE=1",
         "--timing",
         "fast",
         "--compat",
@@ -292,7 +268,7 @@ fn follow_through_the_board(map: Option<&Path>) {
     if let Some(m) = &map_arg {
         args.extend(["--map", m]);
     }
-    let o = board(&args);
+    let o = example("examples/nexys4_proj2", &args);
     assert!(o.status.success(), "{}", stderr(&o));
     // What examples/ci/botsim-board.yml checks.
     let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
@@ -360,40 +336,33 @@ fn a_stimulus_file_drives_the_switches_and_a_waveform_window_covers_its_times() 
     // The example firmware drives the bot with the switches' motor byte (forward when 0).
     std::fs::write(&stim, "# reverse from 1.5 ms (after the reset and the first samples)\n1.5ms switches 22\n")
         .unwrap();
-    let o = board(&[
-        "examples/common",
+    let o = example(
         "examples/nexys4_proj2",
-        "--param",
-        "SIMULATE=1",
-        "--timing",
-        "fast",
-        "--seconds",
-        "0.005",
-        "--stimulus",
-        stim.to_str().unwrap(),
-        "--vcd",
-        vcd.to_str().unwrap(),
-        "--trace-from",
-        "2ms",
-        "--trace-to",
-        "201000c",
-        "--json",
-    ]);
+        &[
+            "--timing",
+            "fast",
+            "--seconds",
+            "0.005",
+            "--stimulus",
+            stim.to_str().unwrap(),
+            "--vcd",
+            vcd.to_str().unwrap(),
+            "--trace-from",
+            "2ms",
+            "--trace-to",
+            "201000c",
+            "--json",
+        ],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(summary["end"]["movement"], "reverse");
     assert!(summary["end"]["loc_x"].as_u64().unwrap() < 64, "{summary}");
     // The window: from 2 ms to 201,000 cycles of 100 MHz (2.01 ms): its first and last time
     // stamps are its ends, in picoseconds, with both edges of every cycle between.
-    let mut times = vec![];
-    for cmd in vcd::Parser::new(std::io::BufReader::new(std::fs::File::open(&vcd).unwrap())) {
-        if let vcd::Command::Timestamp(t) = cmd.unwrap() {
-            times.push(t);
-        }
-    }
-    assert_eq!(times.first(), Some(&2_000_000_000));
-    assert_eq!(times.last(), Some(&2_010_000_000));
-    assert_eq!(times.len(), 2 * 1_000 + 1);
+    let (first, last, stamps) = vcd_span(&vcd);
+    assert_eq!((first, last), (2_000_000_000, 2_010_000_000));
+    assert_eq!(stamps, 2 * 1_000 + 1);
 }
 
 #[test]
@@ -428,25 +397,24 @@ fn vcd_span(path: &Path) -> (u64, u64, usize) {
 fn a_waveform_window_in_samples_holds_the_iteration_and_its_pulse_as_botsim_run_does() {
     let dir = tempfile::tempdir().unwrap();
     let (csv, vcd) = (dir.path().join("t.csv"), dir.path().join("w.vcd"));
-    let o = board(&[
-        "examples/common",
+    let o = example(
         "examples/nexys4_proj2",
-        "--param",
-        "SIMULATE=1",
-        "--timing",
-        "fast",
-        "--samples",
-        "12",
-        "--trace-csv",
-        csv.to_str().unwrap(),
-        "--vcd",
-        vcd.to_str().unwrap(),
-        "--trace-from",
-        "10",
-        "--trace-to",
-        "10",
-        "--json",
-    ]);
+        &[
+            "--timing",
+            "fast",
+            "--samples",
+            "12",
+            "--trace-csv",
+            csv.to_str().unwrap(),
+            "--vcd",
+            vcd.to_str().unwrap(),
+            "--trace-from",
+            "10",
+            "--trace-to",
+            "10",
+            "--json",
+        ],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     // The bot runs on the 100 MHz clock, whose k-th rising edge is at k x 10 ns: a sample at
     // cycle c was seen at c x 10,000 ps. The window opens at sample 9's pulse and closes three

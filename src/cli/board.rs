@@ -48,7 +48,8 @@ pub struct Args {
     map: Option<PathBuf>,
     #[command(flatten)]
     firmware: FirmwareArgs,
-    /// Stop after the bot's N-th upd_sysregs pulse after reset
+    /// Stop after the bot's N-th upd_sysregs pulse after reset (sample 0 is the dump after
+    /// reset, as in botsim run: the trace has samples 0 to N)
     #[arg(long, value_name = "N")]
     samples: Option<u64>,
     /// Stop after S seconds of simulated time [default: 1, or unlimited with --samples]
@@ -242,7 +243,8 @@ pub fn run(a: Args) -> Result<(), String> {
         (None, Some(_)) => u64::MAX,
         (None, None) => 1_000_000_000_000,
     };
-    let sample_limit = a.samples.unwrap_or(u64::MAX);
+    // As botsim run: sample 0 is the dump after reset, --samples N stops after sample N.
+    let sample_limit = a.samples.map_or(u64::MAX, |n| n.saturating_add(1));
     // Times at which the run stops to change something: the inputs, the waveform window.
     let mut stops: BTreeSet<u64> = stimulus.change_times().into_iter().collect();
     if a.vcd.is_some() {

@@ -18,3 +18,26 @@ typedef struct BoardEvent {
     uint64_t b;
     uint64_t c;
 } BoardEvent;
+
+/* botsim board --cpu iss: the host's model of one KCPSM6 instance begins with a pointer to
+ * its functions (kcpsm6_iss.v packs the pins and unpacks the state). */
+typedef struct BoardCpuFns {
+    uint64_t (*tick)(void* cpu, uint64_t pins);
+    uint64_t (*state)(const void* cpu);
+} BoardCpuFns;
+
+/* A probe on one RTL KCPSM6's ports (the lock-step build), which begins with a pointer to
+ * its function: the pins and state of one cycle, packed as kcpsm6_iss.v packs them, and
+ * the time of the rising edge that ends it. */
+typedef struct BoardProbeFns {
+    void (*record)(void* probe, uint64_t pins, uint64_t state, uint64_t time_ps);
+} BoardProbeFns;
+
+/* What a design built for --cpu iss or lockstep asks of its host: a model (or a probe) for
+ * the instance whose hierarchical name is `path`, or null (the run then stops with a fatal
+ * error). */
+typedef struct BoardHost {
+    void* ctx;
+    void* (*cpu_new)(void* ctx, const char* path, uint32_t hwbuild, uint32_t vector, uint32_t scratch_pad);
+    void* (*probe_new)(void* ctx, const char* path);
+} BoardHost;

@@ -18,6 +18,20 @@ const HARNESS: &str = include_str!("harness.cpp");
 const ABI: &str = include_str!("board_abi.h");
 const XILINX: &str = include_str!("../../rtl/board/xilinx.v");
 const CLKGEN: &str = include_str!("../../rtl/board/botsim_clkgen.v");
+const KCPSM6_ISS: &str = include_str!("../../rtl/board/kcpsm6_iss.v");
+const KCPSM6_PROBE: &str = include_str!("../../rtl/board/kcpsm6_probe.v");
+
+/// What stands in for every KCPSM6 of the design.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum CpuModel {
+    /// botsim's RTL core (rtl/kcpsm6.v), evaluated by Verilator.
+    Rtl,
+    /// The instruction-set simulator behind the same ports (rtl/board/kcpsm6_iss.v).
+    Iss,
+    /// The RTL core with a probe on its ports (rtl/board/kcpsm6_probe.v): the lock-step's
+    /// RTL side.
+    RtlProbed,
+}
 
 /// botsim's own RTL, by file name.
 fn own_rtl(file: &str) -> &'static str {
@@ -50,6 +64,10 @@ const VERILATOR_FLAGS: &[&str] = &[
     "-fPIC -O2 -fvisibility-inlines-hidden -fno-semantic-interposition -DVL_USER_FINISH -DVL_USER_FATAL -I..",
     "-LDFLAGS",
     "-shared -Wl,-Bsymbolic",
+    // Verilator's makefile compiles with -Os after CFLAGS; -O2 makes boards about twice as
+    // fast (docs/PERFORMANCE.md).
+    "-MAKEFLAGS",
+    "OPT_FAST=-O2 OPT_GLOBAL=-O2 OPT_SLOW=-O1",
 ];
 
 /// A built design.
@@ -82,14 +100,22 @@ struct Files {
     defines: Vec<String>,
 }
 
-fn files(plan: &Plan, params: &[(String, String)]) -> Files {
+fn files(plan: &Plan, params: &[(String, String)], cpu: CpuModel) -> Files {
     let mut generated = vec![
         ("botsim_board.v".to_string(), wrapper::board_top(plan, params)),
         ("xilinx.v".to_string(), XILINX.to_string()),
         ("botsim_clkgen.v".to_string(), CLKGEN.to_string()),
     ];
     for (_, file) in OWN_MODULES {
-        generated.push((format!("botsim_{file}"), own_rtl(file).to_string()));
+        let text = match (file, cpu) {
+            ("kcpsm6.v", CpuModel::Iss) => KCPSM6_ISS.to_string(),
+            ("kcpsm6.v", CpuModel::RtlProbed) => {
+                generated.push(("botsim_kcpsm6_probe.v".into(), KCPSM6_PROBE.into()));
+                own_rtl(file).replacen("module kcpsm6 #(", "module kcpsm6_rtl #(", 1)
+            }
+            _ => own_rtl(file).to_string(),
+        };
+        generated.push((format!("botsim_{file}"), text));
     }
     for (module, text) in wrapper::roms(plan) {
         generated.push((format!("rom_{module}.v"), text));
@@ -120,9 +146,9 @@ fn files(plan: &Plan, params: &[(String, String)]) -> Files {
     Files { generated, user, defines }
 }
 
-/// Build (or find in the cache) the library for `plan`.
-pub fn build(plan: &Plan, params: &[(String, String)], quiet: bool) -> Result<Built, BoardError> {
-    let f = files(plan, params);
+/// Build (or find in the cache) the library for `plan` with `cpu` for its KCPSM6s.
+pub fn build(plan: &Plan, params: &[(String, String)], cpu: CpuModel, quiet: bool) -> Result<Built, BoardError> {
+    let f = files(plan, params, cpu);
     let mut h = DefaultHasher::new();
     env!("CARGO_PKG_VERSION").hash(&mut h);
     HARNESS.hash(&mut h);

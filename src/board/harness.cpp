@@ -7,6 +7,7 @@
 // that changes then, evaluates once, dumps the waveform if one is open, and records what the
 // board shows (display and LED changes, every upd_sysregs of the bot) into the caller's buffer.
 #include "Vboard.h"
+#include "Vboard___024root.h"
 #include "verilated.h"
 #include "verilated_syms.h"
 #include "verilated_vcd_c.h"
@@ -19,6 +20,13 @@
 extern "C" {
 #include "board_abi.h"
 }
+
+// The model's evaluation proper, which Vboard::eval() wraps (Verilator 5's generated name).
+// eval() also marks activity for the waveform and does a single-threaded model's thread
+// bookkeeping through thread-local variables, which in a shared library cost more than the
+// evaluation of a small design; runs without a waveform call this directly (measured in
+// docs/PERFORMANCE.md).
+void Vboard___024root___eval(Vboard___024root* vlSelf);
 
 namespace {
 
@@ -97,23 +105,33 @@ struct Board {
     bool last_upd = false;
     uint64_t samples = 0;
     std::string fatal;
+    const BoardHost* host = nullptr;  // the KCPSM6 models of a --cpu iss build
 };
 
 static thread_local Board* current = nullptr;
 
+// Every call into a board first makes it the thread's current one: for the harness's DPI
+// functions and vl_fatal, and for Verilator's runtime, which reaches the model's context
+// through the thread (several boards on one thread, as in a lock-step run, take turns).
+static inline void enter(Board* b) {
+    current = b;
+    Verilated::threadContextp(&b->ctx);
+}
+
 extern "C" {
 
-Board* board_new(int argc, const char** argv) {
+Board* board_new_hosted(int argc, const char** argv, const BoardHost* host) {
     Board* b = new Board;
+    b->host = host;
     b->ctx.commandArgs(argc, argv);
     b->ctx.traceEverOn(true);
     b->ctx.fatalOnError(false);
+    enter(b);
     b->top = new Vboard(&b->ctx, "TOP");
     b->top->clk = 0;
     b->top->reset_pressed = 0;
     b->top->btn = 0;
     b->top->sw = 0;
-    current = b;
     b->top->eval();
     // The oscillator, then every generated clock.
     Clock osc(&b->top->clk, nullptr, 10000, 1, 0, 500);
@@ -137,9 +155,11 @@ Board* board_new(int argc, const char** argv) {
     return b;
 }
 
+Board* board_new(int argc, const char** argv) { return board_new_hosted(argc, argv, nullptr); }
+
 void board_free(Board* b) {
     if (!b) return;
-    current = b;
+    enter(b);
     if (b->vcd) {
         b->vcd->close();
         delete b->vcd;
@@ -150,7 +170,7 @@ void board_free(Board* b) {
 }
 
 int board_open_vcd(Board* b, const char* path) {
-    current = b;
+    enter(b);
     if (b->vcd) return 0;
     b->vcd = new VerilatedVcdC;
     b->top->trace(b->vcd, 99);
@@ -165,6 +185,7 @@ int board_open_vcd(Board* b, const char* path) {
 }
 
 void board_close_vcd(Board* b) {
+    enter(b);
     if (b->vcd) {
         b->vcd->close();
         delete b->vcd;
@@ -180,7 +201,7 @@ void board_clock(Board* b, size_t i, uint64_t* num, uint64_t* den) {
 }
 
 void board_set_inputs(Board* b, uint32_t reset_pressed, uint32_t buttons, uint32_t switches) {
-    current = b;
+    enter(b);
     b->top->reset_pressed = reset_pressed & 1;
     b->top->btn = buttons & 0x1F;
     b->top->sw = switches & 0xFFFF;
@@ -254,10 +275,14 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
                 c.advance();
             }
         }
-        top->eval();
-        s.evals++;
         b->now = t;
-        if (b->vcd) b->vcd->dump(t);
+        if (b->vcd) {
+            top->eval();
+            b->vcd->dump(t);
+        } else {
+            Vboard___024root___eval(top->rootp);
+        }
+        s.evals++;
         if (b->ctx.gotFinish()) {  // $finish, or vl_fatal
             why = BOARD_FINISHED;
             break;
@@ -326,7 +351,7 @@ extern "C" {
 
 uint32_t board_run(Board* b, uint64_t until_ps, uint64_t stop_after_samples, BoardEvent* buf, uint32_t cap,
                    uint32_t* n) {
-    current = b;
+    enter(b);
     *n = 0;
     return b->clocks.size() == 1 ? run_loop<true>(b, until_ps, stop_after_samples, buf, cap, n)
                                  : run_loop<false>(b, until_ps, stop_after_samples, buf, cap, n);
@@ -338,7 +363,7 @@ const char* board_fatal(Board* b) { return b->fatal.c_str(); }
 // oscillator alone, two evaluations per cycle, nothing checked or recorded. Use it on a board
 // of its own: it moves the model's time without the scheduler.
 void board_bench_minimal(Board* b, uint64_t cycles) {
-    current = b;
+    enter(b);
     Vboard* top = b->top;
     for (uint64_t i = 0; i < cycles; i++) {
         b->ctx.timeInc(5000);
@@ -351,6 +376,52 @@ void board_bench_minimal(Board* b, uint64_t cycles) {
 }
 
 }  // extern "C"
+
+// --cpu iss (rtl/board/kcpsm6_iss.v): each KCPSM6 instance gets its model from the host when
+// the design starts; every rising edge of its clock goes straight to the model's own tick.
+namespace {
+uint64_t no_tick(void*, uint64_t) { return 0; }
+uint64_t no_state(const void*) { return 0; }
+const BoardCpuFns no_fns = {no_tick, no_state};
+const BoardCpuFns* const no_cpu = &no_fns;  // what an instance gets when there is no model
+}  // namespace
+
+extern "C" void* botsim_iss_new(const char* path, int hwbuild, int vector, int scratch_pad) {
+    Board* b = current;
+    void* cpu = b && b->host ? b->host->cpu_new(b->host->ctx, path, hwbuild, vector, scratch_pad) : nullptr;
+    if (cpu) return cpu;
+    Verilated::threadContextp()->gotFinish(true);
+    if (b && b->fatal.empty()) b->fatal = std::string("no instruction-set model for the KCPSM6 ") + path;
+    return (void*)&no_cpu;
+}
+
+extern "C" long long botsim_iss_state(void* cpu) {
+    return (long long)(*(const BoardCpuFns* const*)cpu)->state(cpu);
+}
+
+extern "C" long long botsim_iss_tick(void* cpu, long long pins) {
+    return (long long)(*(const BoardCpuFns* const*)cpu)->tick(cpu, (uint64_t)pins);
+}
+
+// The lock-step build (rtl/board/kcpsm6_probe.v): every cycle's ports of each RTL KCPSM6.
+namespace {
+void no_record(void*, uint64_t, uint64_t, uint64_t) {}
+const BoardProbeFns no_probe_fns = {no_record};
+const BoardProbeFns* const no_probe = &no_probe_fns;
+}  // namespace
+
+extern "C" void* botsim_probe_new(const char* path) {
+    Board* b = current;
+    void* p = b && b->host ? b->host->probe_new(b->host->ctx, path) : nullptr;
+    if (p) return p;
+    Verilated::threadContextp()->gotFinish(true);
+    if (b && b->fatal.empty()) b->fatal = std::string("no probe for the KCPSM6 ") + path;
+    return (void*)&no_probe;
+}
+
+extern "C" void botsim_probe(void* probe, long long pins, long long state) {
+    (*(const BoardProbeFns* const*)probe)->record(probe, (uint64_t)pins, (uint64_t)state, current->now);
+}
 
 // $finish ends the run (the runtime is built with VL_USER_FINISH); a fatal runtime error
 // ($fatal, a failed VCD write) too, keeping its message for the board that raised it.

@@ -3,6 +3,8 @@
 //! harness (cached), [`model`] loads it and runs it.
 
 pub mod build;
+pub mod iss;
+pub mod lockstep;
 pub mod model;
 
 pub use botsim_core::board::*;

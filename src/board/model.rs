@@ -7,6 +7,8 @@ use std::path::Path;
 use botsim_core::board::BoardError;
 use botsim_core::{MotCtl, Registers, Snapshot};
 
+use super::iss::{Host, RawHost};
+
 /// One record of the harness's buffer, as `board_abi.h` lays it out; [`Event::of`] reads it.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default)]
@@ -84,7 +86,7 @@ pub enum Stop {
 type Opaque = std::ffi::c_void;
 
 struct Api {
-    new: unsafe extern "C" fn(c_int, *const *const c_char) -> *mut Opaque,
+    new: unsafe extern "C" fn(c_int, *const *const c_char, *const RawHost) -> *mut Opaque,
     free: unsafe extern "C" fn(*mut Opaque),
     open_vcd: unsafe extern "C" fn(*mut Opaque, *const c_char) -> c_int,
     close_vcd: unsafe extern "C" fn(*mut Opaque),
@@ -103,14 +105,17 @@ struct Api {
 pub struct BoardModel {
     api: Api,
     ptr: *mut Opaque,
+    /// The KCPSM6 models of a `--cpu iss` build (freed after the model).
+    host: Option<Box<Host>>,
     // Dropped last: the functions above live in it.
     _lib: libloading::Library,
 }
 
 impl BoardModel {
     /// Load the library at `path` and create the model with the plusargs `args`
-    /// (`+botsim_world=FILE`).
-    pub fn load(path: &Path, args: &[String]) -> Result<BoardModel, BoardError> {
+    /// (`+botsim_world=FILE`); a design built for `--cpu iss` takes its KCPSM6 models from
+    /// `host`.
+    pub fn load(path: &Path, args: &[String], host: Option<Box<Host>>) -> Result<BoardModel, BoardError> {
         // libloading's message names the file.
         let fail = |e: libloading::Error| BoardError::plain(format!("cannot load the built design: {e}"));
         // The library uses its own Verilator runtime, never one linked into botsim.
@@ -125,7 +130,7 @@ impl BoardModel {
             };
         }
         let api = Api {
-            new: sym!(b"board_new"),
+            new: sym!(b"board_new_hosted"),
             free: sym!(b"board_free"),
             open_vcd: sym!(b"board_open_vcd"),
             close_vcd: sym!(b"board_close_vcd"),
@@ -144,12 +149,23 @@ impl BoardModel {
             .map(|a| CString::new(a).unwrap_or_default())
             .collect();
         let ptrs: Vec<*const c_char> = cargs.iter().map(|c| c.as_ptr()).collect();
-        // SAFETY: argv outlives the call (the context copies the arguments).
-        let ptr = unsafe { (api.new)(ptrs.len() as c_int, ptrs.as_ptr()) };
+        let raw = host.as_ref().map_or(std::ptr::null(), |h| h.raw());
+        // SAFETY: argv outlives the call (the context copies the arguments); the host is
+        // boxed and kept with the model.
+        let ptr = unsafe { (api.new)(ptrs.len() as c_int, ptrs.as_ptr(), raw) };
         if ptr.is_null() {
             return Err(BoardError::at(path, 0, 0, "the built design could not be created"));
         }
-        Ok(BoardModel { api, ptr, _lib: lib })
+        Ok(BoardModel { api, ptr, host, _lib: lib })
+    }
+
+    /// The KCPSM6 models (or probes), for a `--cpu iss` or lock-step build.
+    pub fn host(&self) -> Option<&Host> {
+        self.host.as_deref()
+    }
+
+    pub fn host_mut(&mut self) -> Option<&mut Host> {
+        self.host.as_deref_mut()
     }
 
     /// Set the board's inputs (they act from the current time on).

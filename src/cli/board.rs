@@ -4,7 +4,9 @@ use std::collections::BTreeSet;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use botsim::board::build::build;
+use botsim::board::build::{build, CpuModel};
+use botsim::board::iss::Host;
+use botsim::board::lockstep::Lockstep;
 use botsim::board::model::{BoardModel, Event, RawEvent, Stop};
 use botsim::files::{check_writable, write_atomic};
 use botsim::kcpsm6::loader;
@@ -102,6 +104,11 @@ pub struct Args {
     /// With --vcd: end the waveform after sample N (its pulse included), at cycle Nc, or at a time
     #[arg(long, value_name = "N|Nc|TIME", requires = "vcd")]
     trace_to: Option<String>,
+    /// What runs every KCPSM6 of the design (the team's and the bot's): rtl (botsim's RTL core
+    /// under Verilator) or iss (the cycle-exact instruction-set simulator behind the same
+    /// ports: only the rest of the design is evaluated by Verilator; same results, faster)
+    #[arg(long, value_enum, default_value = "rtl")]
+    cpu: CpuArg,
     /// Measure instead of run: the board harness against a minimal C++ harness of the same
     /// built design (100 MHz oscillator only, nothing recorded), in Mcycles/s of the 100 MHz
     /// clock, over --seconds of simulated time [default: 0.05], seven alternating rounds
@@ -113,6 +120,58 @@ pub struct Args {
     /// Print nothing but errors
     #[arg(short, long)]
     quiet: bool,
+}
+
+/// `--cpu`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum CpuArg {
+    Rtl,
+    Iss,
+    Lockstep,
+}
+
+/// The board being run: one model, or the RTL and ISS boards in lock-step.
+enum Sim {
+    One(BoardModel),
+    Pair(Box<Lockstep>),
+}
+
+impl Sim {
+    fn main(&mut self) -> &mut BoardModel {
+        match self {
+            Sim::One(m) => m,
+            Sim::Pair(p) => &mut p.rtl,
+        }
+    }
+    fn run(&mut self, until: u64, samples: u64, buf: &mut [RawEvent]) -> Result<(Stop, usize), String> {
+        match self {
+            Sim::One(m) => Ok(m.run(until, samples, buf)),
+            Sim::Pair(p) => p.run(until, samples, buf).map_err(|d| d.to_string()),
+        }
+    }
+    fn set_inputs(&mut self, r: bool, b: u8, sw: u16) {
+        match self {
+            Sim::One(m) => m.set_inputs(r, b, sw),
+            Sim::Pair(p) => p.set_inputs(r, b, sw),
+        }
+    }
+    fn record_vga(&mut self, on: bool) {
+        match self {
+            Sim::One(m) => m.record_vga(on),
+            // Both boards' VGA pins are compared.
+            Sim::Pair(p) => {
+                p.rtl.record_vga(true);
+                p.iss.record_vga(true);
+            }
+        }
+    }
+    /// A model error of a --cpu iss or lockstep run.
+    fn check(&self) -> Result<(), String> {
+        match self {
+            Sim::One(m) => m.host().map_or(Ok(()), Host::check),
+            Sim::Pair(p) => p.check().map_err(|e| e.to_string()),
+        }
+    }
 }
 
 pub fn run(a: Args) -> Result<(), String> {
@@ -213,7 +272,24 @@ pub fn run(a: Args) -> Result<(), String> {
     if !plan.unknown_pins.is_empty() {
         say(format!("  ports with no board pin (inputs held low, outputs open): {}", plan.unknown_pins.join(", ")));
     }
-    let built = build(&plan, &params, a.quiet || a.json).map_err(|e| e.to_string())?;
+    let cpu = match a.cpu {
+        CpuArg::Rtl => CpuModel::Rtl,
+        CpuArg::Iss => CpuModel::Iss,
+        CpuArg::Lockstep => CpuModel::RtlProbed,
+    };
+    let lockstep = a.cpu == CpuArg::Lockstep;
+    if lockstep && a.bench {
+        return Err("--bench measures one board: --cpu rtl or iss".into());
+    }
+    // The models' programs are known before anything is built.
+    let host = |plan: &Plan, cpu: CpuModel| -> Result<Option<Box<Host>>, String> {
+        match cpu {
+            CpuModel::Rtl => Ok(None),
+            _ => Host::for_plan(plan, lockstep).map(Some).map_err(|e| e.to_string()),
+        }
+    };
+    host(&plan, cpu)?;
+    let built = build(&plan, &params, cpu, a.quiet || a.json).map_err(|e| e.to_string())?;
     match built.seconds {
         Some(s) => say(format!("  built in {s:.1} s ({})", built.library.display())),
         None => say(format!("  reused the build in {}", built.library.parent().unwrap_or(&built.library).display())),
@@ -222,16 +298,31 @@ pub fn run(a: Args) -> Result<(), String> {
         say(format!("  verilator warning {code} ({n}x), first: {first}"));
     }
 
+    let twin = if lockstep {
+        let b = build(&plan, &params, CpuModel::Iss, a.quiet || a.json).map_err(|e| e.to_string())?;
+        match b.seconds {
+            Some(s) => say(format!("  built the ISS board in {s:.1} s")),
+            None => say("  reused the ISS board's build".into()),
+        }
+        Some(b)
+    } else {
+        None
+    };
+
     if a.bench {
-        return bench(&built.library, &world, a.seconds.unwrap_or(0.05), a.json);
+        return bench(&built.library, &world, a.seconds.unwrap_or(0.05), a.json, &|| host(&plan, cpu));
     }
 
     // Run.
-    let mut model = load(&built.library, &world)?;
+    let first = load(&built.library, &world, host(&plan, cpu)?)?;
+    let mut model = match &twin {
+        Some(b) => Sim::Pair(Box::new(Lockstep::new(first, load(&b.library, &world, host(&plan, CpuModel::Iss)?)?))),
+        None => Sim::One(first),
+    };
     // The waveform: open from the start, or at its --trace-from mark.
     let (mut vcd_open, mut vcd_done, mut vcd_close_at) = (false, a.vcd.is_none(), None);
     if let (Some(v), Mark::Time(0) | Mark::Sample(0)) = (&a.vcd, vcd_from) {
-        model.open_vcd(v).map_err(|e| e.to_string())?;
+        model.main().open_vcd(v).map_err(|e| e.to_string())?;
         vcd_open = true;
     }
     model.record_vga(a.frames.is_some());
@@ -268,7 +359,7 @@ pub fn run(a: Args) -> Result<(), String> {
         if crate::cli::interrupted() {
             break None;
         }
-        let now = model.time_ps();
+        let now = model.main().time_ps();
         let until = stops.range(now + 1..).next().copied().unwrap_or(end_ps).min(end_ps);
         // A window given in samples: stop after sample s - 1 to open, after sample s to close.
         let window_limit = match (vcd_done, vcd_open, vcd_from, vcd_to) {
@@ -276,7 +367,7 @@ pub fn run(a: Args) -> Result<(), String> {
             (false, true, _, Some(Mark::Sample(s))) if vcd_close_at.is_none() => Some(s + 1),
             _ => None,
         };
-        let (stop, n) = model.run(until, window_limit.map_or(sample_limit, |w| w.min(sample_limit)), &mut buf);
+        let (stop, n) = model.run(until, window_limit.map_or(sample_limit, |w| w.min(sample_limit)), &mut buf)?;
         for e in buf[..n].iter().filter_map(Event::of) {
             match e {
                 Event::Display { time_ps, an, seg, dp } => {
@@ -312,18 +403,18 @@ pub fn run(a: Args) -> Result<(), String> {
             Stop::Samples => {
                 // A window mark in samples.
                 if let (false, Some(v)) = (vcd_open, &a.vcd) {
-                    model.open_vcd(v).map_err(|e| e.to_string())?;
+                    model.main().open_vcd(v).map_err(|e| e.to_string())?;
                     vcd_open = true;
                 } else {
                     // Close with the whole 2-clock pulse in the window (3 clocks of 100 MHz).
-                    let t = model.time_ps() + 30_000;
+                    let t = model.main().time_ps() + 30_000;
                     stops.insert(t);
                     vcd_close_at = Some(t);
                 }
             }
             Stop::Finished => break Some("finish"),
             Stop::Until => {
-                let t = model.time_ps();
+                let t = model.main().time_ps();
                 if t >= end_ps {
                     break Some("time");
                 }
@@ -332,10 +423,10 @@ pub fn run(a: Args) -> Result<(), String> {
                     model.set_inputs(r, b, sw);
                     if let Some(v) = &a.vcd {
                         if !vcd_open && !vcd_done && vcd_from == Mark::Time(t) {
-                            model.open_vcd(v).map_err(|e| e.to_string())?;
+                            model.main().open_vcd(v).map_err(|e| e.to_string())?;
                             vcd_open = true;
                         } else if vcd_open && (vcd_to == Some(Mark::Time(t)) || vcd_close_at == Some(t)) {
-                            model.close_vcd();
+                            model.main().close_vcd();
                             (vcd_open, vcd_done) = (false, true);
                         }
                     }
@@ -344,12 +435,13 @@ pub fn run(a: Args) -> Result<(), String> {
         }
     };
     let wall = t0.elapsed().as_secs_f64();
-    let sim_ps = model.time_ps();
+    let sim_ps = model.main().time_ps();
     display.settle(sim_ps);
-    if let Some(f) = model.fatal() {
+    model.check()?;
+    if let Some(f) = model.main().fatal() {
         return Err(format!("the design stopped: {f}"));
     }
-    model.close_vcd();
+    model.main().close_vcd();
 
     // Outputs.
     if let Some(p) = &a.trace_csv {
@@ -371,7 +463,7 @@ pub fn run(a: Args) -> Result<(), String> {
     }
     let last_display = display.lines().last().map(|l| l.text.clone()).unwrap_or_default();
     let end = snapshots.last().map(|s| (s.regs.loc_x, s.regs.loc_y));
-    let evals = model.evals();
+    let evals = model.main().evals();
     if a.json {
         let v = serde_json::json!({
             "top": plan.top,
@@ -424,10 +516,10 @@ fn parse_mark(s: &str, name: &str) -> Result<Mark, String> {
 
 /// Create the model of a built design on `world` (the world file is read when the model is
 /// created, then removed).
-fn load(library: &std::path::Path, world: &World) -> Result<BoardModel, String> {
+fn load(library: &std::path::Path, world: &World, host: Option<Box<Host>>) -> Result<BoardModel, String> {
     let world_file = std::env::temp_dir().join(format!("botsim-world-{}.mem", std::process::id()));
     std::fs::write(&world_file, world.to_mem()).map_err(|e| format!("{}: {e}", world_file.display()))?;
-    let model = BoardModel::load(library, &[format!("+botsim_world={}", world_file.display())]);
+    let model = BoardModel::load(library, &[format!("+botsim_world={}", world_file.display())], host);
     let _ = std::fs::remove_file(&world_file);
     model.map_err(|e| e.to_string())
 }
@@ -438,12 +530,18 @@ const ROUNDS: usize = 7;
 /// `--bench`: both harnesses on fresh models of the same library, the reset released from
 /// the start, alternating; the board harness's events are decoded as a run decodes them. The
 /// cost is the median of the rounds' ratios (each round measures both side by side).
-fn bench(library: &std::path::Path, world: &World, seconds: f64, json: bool) -> Result<(), String> {
+fn bench(
+    library: &std::path::Path,
+    world: &World,
+    seconds: f64,
+    json: bool,
+    host: &dyn Fn() -> Result<Option<Box<Host>>, String>,
+) -> Result<(), String> {
     let cycles = (seconds * 1e8) as u64;
     let (mut board_rates, mut minimal_rates) = (Vec::new(), Vec::new());
     let mut buf = vec![RawEvent::default(); 4096];
     for _ in 0..ROUNDS {
-        let mut m = load(library, world)?;
+        let mut m = load(library, world, host()?)?;
         m.set_inputs(false, 0, 0);
         let mut display = Display::default();
         let mut samples = 0u64;
@@ -463,7 +561,7 @@ fn bench(library: &std::path::Path, world: &World, seconds: f64, json: bool) -> 
         }
         board_rates.push(cycles as f64 / t.elapsed().as_secs_f64() / 1e6);
         let _ = samples;
-        let mut m = load(library, world)?;
+        let mut m = load(library, world, host()?)?;
         m.set_inputs(false, 0, 0);
         let t = Instant::now();
         m.bench_minimal(cycles);

@@ -183,6 +183,22 @@ pub struct Rom {
     pub origin: String,
 }
 
+/// The instance name of the KCPSM6 inside botsim's `bot` (rtl/bot.v), and of its ROM.
+pub const BOT_CPU_INSTANCE: &str = "BOTSIMCPU";
+
+/// A KCPSM6 in the design, and the program ROM wired to its `instruction` port (what
+/// `--cpu iss` loads into the instruction-set simulator that stands in for it).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct CpuSite {
+    /// The hierarchical path from the top (`SYS.APPCPU`).
+    pub path: String,
+    /// The ROM module whose `instruction` output drives the instance's `instruction`, or
+    /// why none was found.
+    pub rom: Result<String, String>,
+    /// Where the instance is: file:line.
+    pub at: String,
+}
+
 /// Everything the build needs.
 #[derive(Clone, Debug)]
 pub struct Plan {
@@ -208,6 +224,8 @@ pub struct Plan {
     pub bot_path: String,
     /// The user instantiates the bot with `Loc_Y_reg` (later copies of the course files).
     pub loc_y_reg: bool,
+    /// Every KCPSM6 instance: the team's and, last, the bot's.
+    pub cpus: Vec<CpuSite>,
 }
 
 /// A user file in the build: its path, and its text when modules were blanked out of it.
@@ -297,6 +315,7 @@ impl Plan {
         let mut missing: Option<BoardError> = None;
         let stubs: BTreeSet<&str> = req.stubs.iter().map(String::as_str).collect();
         let mut stub_ports: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+        let mut cpus = Vec::new();
         let mut stack: Vec<(String, String)> = vec![(top.clone(), String::new())];
         let mut depth_guard = 0;
         while let Some((name, path)) = stack.pop() {
@@ -320,6 +339,11 @@ impl Plan {
                 let child_path = if path.is_empty() { inst.name.clone() } else { format!("{path}.{}", inst.name) };
                 if inst.module == "bot" && inst.connections.iter().any(|(p, _)| p == "Loc_Y_reg") {
                     loc_y_reg = true;
+                }
+                if inst.module == "kcpsm6" {
+                    let rom = rom_of(inst, m, |n| defined.get(n).is_some_and(|(_, d)| is_program_rom(d)));
+                    let at = format!("{}:{}", src.path.display(), inst.line);
+                    cpus.push(CpuSite { path: child_path.clone(), rom, at });
                 }
                 if let Some((_, outs)) = PRIMITIVES.iter().find(|(p, _)| *p == inst.module) {
                     used.insert(inst.module.clone());
@@ -357,7 +381,11 @@ impl Plan {
             return Err(e);
         }
         let bot_path = match bot_paths.as_slice() {
-            [one] => one.clone(),
+            [one] => {
+                let path = format!("{one}.{BOT_CPU_INSTANCE}");
+                cpus.push(CpuSite { path, rom: Ok("bot_pgm".into()), at: "botsim's bot".into() });
+                one.clone()
+            }
             [] => return Err(BoardError::plain(format!("the design under `{top}` has no `bot` instance"))),
             many => {
                 return Err(BoardError::plain(format!(
@@ -528,7 +556,30 @@ impl Plan {
             inputs,
             bot_path,
             loc_y_reg,
+            cpus,
         })
+    }
+}
+
+/// The program ROM wired to the KCPSM6 instance `cpu` of module `m`: the one ROM instance of
+/// `m` whose `instruction` output is connected to the same net as the CPU's `instruction`
+/// input (the course's template wires them so).
+fn rom_of(cpu: &Instance, m: &Module, is_rom: impl Fn(&str) -> bool) -> Result<String, String> {
+    let net = |i: &Instance| {
+        i.connections.iter().find(|(p, _)| p == "instruction").map(|(_, e)| e.split_whitespace().collect::<String>())
+    };
+    let Some(wire) = net(cpu).filter(|w| !w.is_empty()) else {
+        return Err(format!("its `instruction` port is not connected by name in `{}`", m.name));
+    };
+    let roms: Vec<&Instance> = m
+        .instances
+        .iter()
+        .filter(|i| (is_rom(&i.module) || i.module == "bot_pgm") && net(i).as_ref() == Some(&wire))
+        .collect();
+    match roms.as_slice() {
+        [one] => Ok(one.module.clone()),
+        [] => Err(format!("no program ROM instance in `{}` drives its `instruction` net `{wire}`", m.name)),
+        _ => Err(format!("several program ROMs in `{}` drive its `instruction` net `{wire}`", m.name)),
     }
 }
 

@@ -1,0 +1,63 @@
+// kcpsm6_iss.v: botsim's KCPSM6 for `botsim board --cpu iss` (not synthesizable).
+//
+// The same module name, parameters and ports as rtl/kcpsm6.v, with the core behind them
+// botsim's cycle-exact instruction-set simulator (kcpsm6/src/iss.rs) instead of RTL: only
+// the design around it is left to evaluate, cycle by cycle. The ISS holds the program of the ROM that
+// botsim found wired to this instance's `instruction` port; it checks every decoded word
+// against that port and reports the first difference (a ROM wired otherwise, or changed at
+// run time).
+//
+// One call per rising edge of `clk`: the inputs as they are before the edge (`in_port` is
+// the value an INPUT reads at the end of its strobe cycle) go in; the outputs of the next
+// cycle come back, registered here like the RTL core's flops and combinational reads.
+//   pins  = instruction | in_port << 18 | interrupt << 26 | sleep << 27 | reset << 28
+//   state = address | bram_enable << 12 | out_port << 13 | port_id << 21 |
+//           write_strobe << 29 | k_write_strobe << 30 | read_strobe << 31 | interrupt_ack << 32
+`timescale 1ns / 1ps
+module kcpsm6 #(
+    parameter [7:0] hwbuild = 8'h00,
+    parameter [11:0] interrupt_vector = 12'h3FF,
+    parameter integer scratch_pad_memory_size = 64
+) (
+    output wire [11:0] address,
+    input  wire [17:0] instruction,
+    output wire        bram_enable,
+    input  wire [ 7:0] in_port,
+    output wire [ 7:0] out_port,
+    output wire [ 7:0] port_id,
+    output wire        write_strobe,
+    output wire        k_write_strobe,
+    output wire        read_strobe,
+    input  wire        interrupt,
+    output wire        interrupt_ack,
+    input  wire        sleep,
+    input  wire        reset,
+    input  wire        clk
+);
+    import "DPI-C" function chandle botsim_iss_new(
+        input string path, input int hwbuild_byte, input int vector_address, input int spm_bytes
+    );
+    import "DPI-C" function longint botsim_iss_state(input chandle cpu);
+    import "DPI-C" function longint botsim_iss_tick(input chandle cpu, input longint pins);
+
+    chandle cpu;
+    reg [63:0] state;  // bits 63:33 are zero
+
+    initial begin
+        cpu = botsim_iss_new($sformatf("%m"), {24'd0, hwbuild}, {20'd0, interrupt_vector},
+                             scratch_pad_memory_size);
+        state = botsim_iss_state(cpu);
+    end
+
+    always @(posedge clk)
+        state <= botsim_iss_tick(cpu, {35'd0, reset, sleep, interrupt, in_port, instruction});
+
+    assign address        = state[11:0];
+    assign bram_enable    = state[12];
+    assign out_port       = state[20:13];
+    assign port_id        = state[28:21];
+    assign write_strobe   = state[29];
+    assign k_write_strobe = state[30];
+    assign read_strobe    = state[31];
+    assign interrupt_ack  = state[32];
+endmodule

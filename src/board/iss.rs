@@ -1,0 +1,320 @@
+//! `botsim board --cpu iss`: every KCPSM6 of a board design on the instruction-set
+//! simulator. The design is built with rtl/board/kcpsm6_iss.v in place of the RTL core; each
+//! of its instances asks the host for a model at power-up (`botsim_iss_new`, by its
+//! hierarchical name) and calls it once per rising edge of its clock (`botsim_iss_tick`).
+//! The host is the [`Host`] here, handed to the harness through `board_abi.h`'s `BoardHost`.
+//!
+//! The per-edge call is the only traffic: the inputs before the edge packed into one word,
+//! the outputs of the next cycle packed into another (the layouts are kcpsm6_iss.v's), no
+//! allocation, no lookup; the model pointer carries its own function table, so the harness
+//! reaches it without thread-local state.
+
+use std::ffi::{c_char, c_void, CStr};
+
+use kcpsm6::iss::{Bus, Config, Cpu, Phase, Pins, PortKind, ScratchPad};
+use kcpsm6::Image;
+
+/// The functions a model pointer starts with (`BoardCpuFns` in board_abi.h).
+#[repr(C)]
+struct CpuFns {
+    tick: unsafe extern "C" fn(*mut IssCpu, u64) -> u64,
+    state: unsafe extern "C" fn(*const IssCpu) -> u64,
+}
+
+static FNS: CpuFns = CpuFns { tick: tick_ffi, state: state_ffi };
+
+/// The bus of a pin-level core: `in_port` as the design drives it.
+#[derive(Default)]
+struct Pinned {
+    in_port: u8,
+}
+
+impl Bus for Pinned {
+    fn input(&mut self, _port: u8, _cycle: u64) -> u8 {
+        self.in_port
+    }
+    fn output(&mut self, _port: u8, _value: u8, _cycle: u64) {}
+    fn output_k(&mut self, _port: u8, _value: u8, _cycle: u64) {}
+}
+
+/// A decoded word that was not the one on the `instruction` port.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RomMismatch {
+    pub cycle: u64,
+    pub address: u16,
+    /// The program's word, and the word the design's ROM gave.
+    pub expected: u32,
+    pub found: u32,
+}
+
+/// One KCPSM6 instance's model.
+#[repr(C)]
+pub struct IssCpu {
+    fns: &'static CpuFns,
+    cpu: Cpu,
+    bus: Pinned,
+    mismatch: Option<RomMismatch>,
+    /// Every cycle's (pins, outputs), in a lock-step run.
+    record: Option<Vec<(u64, u64)>>,
+}
+
+impl IssCpu {
+    fn new(config: Config, program: &Image, record: bool) -> IssCpu {
+        IssCpu {
+            fns: &FNS,
+            cpu: Cpu::new(config, &program.words[..]),
+            bus: Pinned::default(),
+            mismatch: None,
+            record: record.then(Vec::new),
+        }
+    }
+
+    /// The outputs in the current cycle, packed as kcpsm6_iss.v unpacks them.
+    #[inline]
+    fn state(&self) -> u64 {
+        let c = &self.cpu;
+        let strobe = c.strobe();
+        c.pc() as u64
+            | (c.bram_enable() as u64) << 12
+            | (c.out_port() as u64) << 13
+            | (c.port_id() as u64) << 21
+            | ((strobe == Some(PortKind::Write)) as u64) << 29
+            | ((strobe == Some(PortKind::KWrite)) as u64) << 30
+            | ((strobe == Some(PortKind::Read)) as u64) << 31
+            | (c.interrupt_ack() as u64) << 32
+    }
+
+    /// One cycle with the inputs `pins` (kcpsm6_iss.v's packing); the next cycle's outputs.
+    #[inline]
+    fn tick(&mut self, pins: u64) -> u64 {
+        if self.record.is_some() {
+            let state = self.state();
+            if let Some(r) = &mut self.record {
+                r.push((pins, state));
+            }
+        }
+        let word = pins as u32 & 0x3FFFF;
+        if self.cpu.phase() == Phase::Decode && word != self.cpu.instruction() && self.mismatch.is_none() {
+            self.mismatch = Some(RomMismatch {
+                cycle: self.cpu.cycle(),
+                address: self.cpu.pc(),
+                expected: self.cpu.instruction(),
+                found: word,
+            });
+        }
+        self.bus.in_port = (pins >> 18) as u8;
+        let p = Pins { interrupt: pins >> 26 & 1 == 1, sleep: pins >> 27 & 1 == 1, reset: pins >> 28 & 1 == 1 };
+        self.cpu.tick(p, &mut self.bus);
+        self.state()
+    }
+}
+
+unsafe extern "C" fn tick_ffi(cpu: *mut IssCpu, pins: u64) -> u64 {
+    // SAFETY: the pointer is one `Host::create` made; the host outlives the model.
+    unsafe { (*cpu).tick(pins) }
+}
+
+unsafe extern "C" fn state_ffi(cpu: *const IssCpu) -> u64 {
+    // SAFETY: as for tick_ffi.
+    unsafe { (*cpu).state() }
+}
+
+/// The function a probe pointer starts with (`BoardProbeFns` in board_abi.h).
+#[repr(C)]
+struct ProbeFns {
+    record: unsafe extern "C" fn(*mut Probe, u64, u64, u64),
+}
+
+static PROBE_FNS: ProbeFns = ProbeFns { record: record_ffi };
+
+/// A probe on an RTL KCPSM6: every cycle's (pins, outputs) since the last [`Host::take`],
+/// and the time each ended.
+#[repr(C)]
+pub struct Probe {
+    fns: &'static ProbeFns,
+    cycles: Vec<(u64, u64)>,
+    times: Vec<u64>,
+}
+
+unsafe extern "C" fn record_ffi(probe: *mut Probe, pins: u64, state: u64, time_ps: u64) {
+    // SAFETY: the pointer is one `Host::probe` made; the host outlives the model.
+    let p = unsafe { &mut *probe };
+    p.cycles.push((pins, state));
+    p.times.push(time_ps);
+}
+
+/// One KCPSM6's recorded cycles: (pins, outputs) each, and, from a probe, the time each
+/// cycle ended.
+#[derive(Clone, Debug, Default)]
+pub struct Recorded {
+    pub path: String,
+    pub cycles: Vec<(u64, u64)>,
+    pub times: Vec<u64>,
+}
+
+/// The `BoardHost` of board_abi.h.
+#[repr(C)]
+pub struct RawHost {
+    ctx: *mut c_void,
+    cpu_new: unsafe extern "C" fn(*mut c_void, *const c_char, u32, u32, u32) -> *mut c_void,
+    probe_new: unsafe extern "C" fn(*mut c_void, *const c_char) -> *mut c_void,
+}
+
+/// The programs of a design's KCPSM6 instances, and their models once the design has made
+/// them. Keep it alive (and at the same address: it is boxed) as long as the model.
+pub struct Host {
+    /// (path from the top, as `Plan::cpus` gives it; program).
+    programs: Vec<(String, Image)>,
+    cpus: Vec<(String, Box<IssCpu>)>,
+    probes: Vec<(String, Box<Probe>)>,
+    /// Record every cycle's ports (a lock-step run).
+    recording: bool,
+    /// The first instance the host had no program for.
+    pub unknown: Option<String>,
+    raw: RawHost,
+}
+
+impl Host {
+    /// A host for the instances at `programs` (paths from the design's top); `recording`:
+    /// keep every cycle's ports for [`Host::take`] (a lock-step run).
+    pub fn new(programs: Vec<(String, Image)>, recording: bool) -> Box<Host> {
+        let mut h = Box::new(Host {
+            programs,
+            cpus: Vec::new(),
+            probes: Vec::new(),
+            recording,
+            unknown: None,
+            raw: RawHost { ctx: std::ptr::null_mut(), cpu_new: cpu_new_ffi, probe_new: probe_new_ffi },
+        });
+        h.raw.ctx = &mut *h as *mut Host as *mut c_void;
+        h
+    }
+
+    /// The pointer to hand to `board_new_hosted`.
+    pub fn raw(&self) -> *const RawHost {
+        &self.raw
+    }
+
+    /// The path from the design's top of the instance Verilator names `scope`
+    /// (`TOP.botsim_board.user.SYS.APPCPU`), if the host knows it.
+    fn known(&mut self, scope: &str) -> Option<usize> {
+        let path = scope.split_once(".user.").map_or(scope, |(_, p)| p);
+        let k = self.programs.iter().position(|(p, _)| p == path);
+        if k.is_none() {
+            self.unknown.get_or_insert_with(|| path.to_string());
+        }
+        k
+    }
+
+    /// The model for the instance Verilator names `scope`.
+    fn create(&mut self, scope: &str, config: Config) -> *mut IssCpu {
+        let Some(k) = self.known(scope) else { return std::ptr::null_mut() };
+        let (path, image) = &self.programs[k];
+        let mut cpu = Box::new(IssCpu::new(config, image, self.recording));
+        let ptr = &mut *cpu as *mut IssCpu;
+        self.cpus.push((path.clone(), cpu));
+        ptr
+    }
+
+    /// A probe for the RTL instance Verilator names `scope`.
+    fn probe(&mut self, scope: &str) -> *mut Probe {
+        let Some(k) = self.known(scope) else { return std::ptr::null_mut() };
+        let mut probe = Box::new(Probe { fns: &PROBE_FNS, cycles: Vec::new(), times: Vec::new() });
+        let ptr = &mut *probe as *mut Probe;
+        self.probes.push((self.programs[k].0.clone(), probe));
+        ptr
+    }
+
+    /// The ports recorded since the last call, per instance in the order of the host's
+    /// programs: every cycle's (pins, outputs), packed as kcpsm6_iss.v packs them.
+    pub fn take(&mut self) -> Vec<Recorded> {
+        let mut out: Vec<Recorded> = Vec::new();
+        for (p, c) in &mut self.cpus {
+            let cycles = c.record.as_mut().map(std::mem::take).unwrap_or_default();
+            out.push(Recorded { path: p.clone(), cycles, times: Vec::new() });
+        }
+        for (p, probe) in &mut self.probes {
+            let (cycles, times) = (std::mem::take(&mut probe.cycles), std::mem::take(&mut probe.times));
+            out.push(Recorded { path: p.clone(), cycles, times });
+        }
+        let order = |p: &String| self.programs.iter().position(|(q, _)| q == p);
+        out.sort_by_key(|r| order(&r.path));
+        out
+    }
+
+    /// The first ROM mismatch of any instance: (its path, what).
+    pub fn mismatch(&self) -> Option<(&str, RomMismatch)> {
+        self.cpus.iter().find_map(|(p, c)| c.mismatch.map(|m| (p.as_str(), m)))
+    }
+
+    /// The models, by path.
+    pub fn cpus(&self) -> impl Iterator<Item = (&str, &Cpu)> {
+        self.cpus.iter().map(|(p, c)| (p.as_str(), &c.cpu))
+    }
+}
+
+unsafe extern "C" fn probe_new_ffi(ctx: *mut c_void, path: *const c_char) -> *mut c_void {
+    // SAFETY: as for cpu_new_ffi.
+    let (host, path) = unsafe { (&mut *(ctx as *mut Host), CStr::from_ptr(path).to_string_lossy()) };
+    host.probe(&path) as *mut c_void
+}
+
+unsafe extern "C" fn cpu_new_ffi(
+    ctx: *mut c_void,
+    path: *const c_char,
+    hwbuild: u32,
+    vector: u32,
+    spm: u32,
+) -> *mut c_void {
+    // SAFETY: ctx is the Host that made the RawHost; path is a NUL-terminated string.
+    let (host, path) = unsafe { (&mut *(ctx as *mut Host), CStr::from_ptr(path).to_string_lossy()) };
+    let config = Config {
+        hwbuild: hwbuild as u8,
+        interrupt_vector: vector as u16 & 0xFFF,
+        scratch_pad_size: ScratchPad::from_bytes(spm as usize).unwrap_or(ScratchPad::B64),
+    };
+    host.create(&path, config) as *mut c_void
+}
+
+impl Host {
+    /// The host for `plan`'s KCPSM6 instances, each with the program of the ROM wired to it;
+    /// an instance whose ROM botsim cannot tell is an error (it can still run with the RTL core).
+    pub fn for_plan(
+        plan: &botsim_core::board::plan::Plan,
+        recording: bool,
+    ) -> Result<Box<Host>, botsim_core::board::BoardError> {
+        use botsim_core::board::BoardError;
+        let mut programs = Vec::new();
+        for site in &plan.cpus {
+            let rom = site.rom.as_ref().map_err(|why| {
+                BoardError::plain(format!(
+                    "{}: --cpu iss: cannot tell which program the KCPSM6 `{}` runs: {why} (run it with --cpu rtl)",
+                    site.at, site.path
+                ))
+            })?;
+            let Some(r) = plan.roms.iter().find(|r| &r.module == rom) else {
+                return Err(BoardError::plain(format!(
+                    "{}: --cpu iss: the KCPSM6 `{}` is fed by `{rom}`, which is not a program ROM botsim models (run it with --cpu rtl)",
+                    site.at, site.path
+                )));
+            };
+            programs.push((site.path.clone(), r.image.clone()));
+        }
+        Ok(Host::new(programs, recording))
+    }
+
+    /// What went wrong in a run, if anything: an instance with no model, or a decoded word
+    /// that the design's ROM did not give.
+    pub fn check(&self) -> Result<(), String> {
+        if let Some(p) = &self.unknown {
+            return Err(format!("--cpu iss: the design has a KCPSM6 at `{p}` that botsim did not find in its sources"));
+        }
+        if let Some((p, m)) = self.mismatch() {
+            return Err(format!(
+                "--cpu iss: the KCPSM6 `{p}` decoded {:05X} at address {:03X} in its cycle {}, but its ROM gave {:05X}: the ROM is not wired or loaded as botsim read it (run it with --cpu rtl)",
+                m.expected, m.address, m.cycle, m.found
+            ));
+        }
+        Ok(())
+    }
+}

@@ -234,7 +234,9 @@ fn rows(path: &Path) -> Vec<Vec<u64>> {
 
 /// The team firmware examples/common/linefollow.psm (the `line-follow` algorithm in KCPSM6
 /// assembly, loaded with --program into the example's ROM) drives the bot through the whole
-/// board; `botsim run --driver line-follow` is the reference.
+/// board; `botsim run --driver line-follow` is the reference. The board runs in lock-step:
+/// the all-RTL board and the board with both KCPSM6s on the ISS, compared pin for pin and
+/// port for port in every cycle.
 fn follow_through_the_board(map: Option<&Path>) {
     let dir = tempfile::tempdir().unwrap();
     let (reference, through_board) = (dir.path().join("run.csv"), dir.path().join("board.csv"));
@@ -263,6 +265,8 @@ fn follow_through_the_board(map: Option<&Path>) {
         &samples,
         "--trace-csv",
         through_board.to_str().unwrap(),
+        "--cpu",
+        "lockstep",
         "--json",
     ];
     if let Some(m) = &map_arg {
@@ -423,4 +427,120 @@ fn a_waveform_window_in_samples_holds_the_iteration_and_its_pulse_as_botsim_run_
     let (first, last, _) = vcd_span(&vcd);
     assert_eq!(first, cycle(9) * 10_000);
     assert_eq!(last, cycle(10) * 10_000 + 30_000);
+}
+
+/// A small deterministic generator for stimulus (xorshift64*).
+struct Rng(u64);
+
+impl Rng {
+    fn below(&mut self, n: u64) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 32) % n
+    }
+}
+
+/// A stimulus file of random presses of every button (the CPU reset among them: the team
+/// CPU, the bot and the interface restart) and switch changes over `ms` milliseconds.
+fn random_stimulus(seed: u64, ms: u64) -> String {
+    let mut rng = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
+    let names = ["btnC", "btnU", "btnD", "btnL", "btnR", "btnCpuReset"];
+    // One CPU reset for certain, somewhere in the middle; more may come at random.
+    let mut text = format!("{}us press btnCpuReset {}us\n", ms * 300 + rng.below(ms * 400), 5 + rng.below(200));
+    for _ in 0..14 {
+        let at_us = 1_200 + rng.below(ms * 1000 - 1_500);
+        if rng.below(3) == 0 {
+            text.push_str(&format!("{at_us}us switches {:04X}\n", rng.below(1 << 16)));
+        } else {
+            let held_us = 20 + rng.below(400);
+            text.push_str(&format!("{at_us}us press {} {held_us}us\n", names[rng.below(6) as usize]));
+        }
+    }
+    text
+}
+
+#[test]
+fn rtl_and_iss_boards_agree_pin_for_pin_under_random_buttons_switches_and_resets() {
+    let dir = tempfile::tempdir().unwrap();
+    for (design, seed) in [("examples/nexys4_proj2", 1), ("examples/nexys4_vga", 2), ("examples/nexys4_proj2", 3)] {
+        let stim = dir.path().join(format!("stim{seed}.txt"));
+        let text = random_stimulus(seed, 12);
+        assert!(text.contains("btnCpuReset") && text.contains("switches"), "seed {seed}: {text}");
+        std::fs::write(&stim, text).unwrap();
+        let o = example(
+            design,
+            &[
+                "--timing",
+                "fast",
+                "--seconds",
+                "0.012",
+                "--stimulus",
+                stim.to_str().unwrap(),
+                "--cpu",
+                "lockstep",
+                "--json",
+            ],
+        );
+        assert!(o.status.success(), "{design}, seed {seed}: {}", stderr(&o));
+        let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        assert!(summary["samples"].as_u64().unwrap() > 100, "{summary}");
+    }
+}
+
+#[test]
+fn iss_and_rtl_boards_write_identical_traces() {
+    let dir = tempfile::tempdir().unwrap();
+    let stim = dir.path().join("stim.txt");
+    std::fs::write(&stim, random_stimulus(7, 8)).unwrap();
+    let mut traces = Vec::new();
+    for cpu in ["rtl", "iss"] {
+        let csv = dir.path().join(format!("{cpu}.csv"));
+        let args = [
+            "--timing",
+            "fast",
+            "--seconds",
+            "0.008",
+            "--stimulus",
+            stim.to_str().unwrap(),
+            "--switches",
+            "0022",
+            "--cpu",
+            cpu,
+            "--trace-csv",
+            csv.to_str().unwrap(),
+            "-q",
+        ];
+        let o = example("examples/nexys4_proj2", &args);
+        assert!(o.status.success(), "{cpu}: {}", stderr(&o));
+        traces.push(std::fs::read_to_string(&csv).unwrap());
+    }
+    assert!(traces[0].lines().count() > 100);
+    assert_eq!(traces[0], traces[1]);
+}
+
+#[test]
+fn an_iss_cpu_whose_rom_does_not_give_it_the_program_is_one_error() {
+    let o = board(&[
+        "tests/board_designs/rom_unwired",
+        "--program",
+        "tests/board_designs/rom_unwired/prog.psm",
+        "--cpu",
+        "iss",
+        "--seconds",
+        "0.002",
+    ]);
+    let e = one_line_error(&o);
+    assert!(e.contains("the KCPSM6 `cpu` decoded 0105A at address 000"), "{e}");
+    assert!(e.contains("its ROM gave 00000"), "{e}");
+    // The same design on the RTL core runs (the CPU executes what its ROM gives).
+    let o = board(&[
+        "tests/board_designs/rom_unwired",
+        "--program",
+        "tests/board_designs/rom_unwired/prog.psm",
+        "--seconds",
+        "0.002",
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
 }

@@ -114,6 +114,13 @@ pub struct Args {
     /// clock, over --seconds of simulated time [default: 0.05], seven alternating rounds
     #[arg(long)]
     bench: bool,
+    /// Stop at the first sample that finds the bot at the end of a line (stopped on the line
+    /// with a wall straight ahead)
+    #[arg(long)]
+    stop_at_line_end: bool,
+    /// Build the design (or find it built) and stop: for CI caches and suites
+    #[arg(long)]
+    build_only: bool,
     /// Print the summary as JSON
     #[arg(long)]
     json: bool,
@@ -309,6 +316,9 @@ pub fn run(a: Args) -> Result<(), String> {
         None
     };
 
+    if a.build_only {
+        return Ok(());
+    }
     if a.bench {
         return bench(&built.library, &world, a.seconds.unwrap_or(0.05), a.json, &|| host(&plan, cpu));
     }
@@ -355,6 +365,7 @@ pub fn run(a: Args) -> Result<(), String> {
     let mut json = String::new();
     let mut buf = vec![RawEvent::default(); 4096];
     let mut last_led = 0u16;
+    let mut at_end = false;
     let finished = loop {
         if crate::cli::interrupted() {
             break None;
@@ -367,7 +378,11 @@ pub fn run(a: Args) -> Result<(), String> {
             (false, true, _, Some(Mark::Sample(s))) if vcd_close_at.is_none() => Some(s + 1),
             _ => None,
         };
-        let (stop, n) = model.run(until, window_limit.map_or(sample_limit, |w| w.min(sample_limit)), &mut buf)?;
+        let mut limit = window_limit.map_or(sample_limit, |w| w.min(sample_limit));
+        if a.stop_at_line_end {
+            limit = limit.min(snapshots.len() as u64 + 1);
+        }
+        let (stop, n) = model.run(until, limit, &mut buf)?;
         for e in buf[..n].iter().filter_map(Event::of) {
             match e {
                 Event::Display { time_ps, an, seg, dp } => {
@@ -383,6 +398,7 @@ pub fn run(a: Args) -> Result<(), String> {
                 }
                 Event::Sample { snapshot, motctl, .. } => {
                     json.push_str(&json_row(&snapshot, motctl));
+                    at_end = at_end || (a.stop_at_line_end && at_line_end(&snapshot));
                     snapshots.push(snapshot);
                 }
                 Event::Vga { time_ps, pins } => vga.pins(time_ps, pins),
@@ -397,9 +413,14 @@ pub fn run(a: Args) -> Result<(), String> {
                 frames_seen += 1;
             }
         }
+        if at_end {
+            break Some("line-end");
+        }
         match stop {
             Stop::BufferFull => continue,
             Stop::Samples if snapshots.len() as u64 >= sample_limit => break Some("samples"),
+            // A stop after one more sample, to look for the end of the line.
+            Stop::Samples if !window_limit.is_some_and(|w| snapshots.len() as u64 >= w) => continue,
             Stop::Samples => {
                 // A window mark in samples.
                 if let (false, Some(v)) = (vcd_open, &a.vcd) {
@@ -464,6 +485,9 @@ pub fn run(a: Args) -> Result<(), String> {
     let last_display = display.lines().last().map(|l| l.text.clone()).unwrap_or_default();
     let end = snapshots.last().map(|s| (s.regs.loc_x, s.regs.loc_y));
     let evals = model.main().evals();
+    // Moves the world refused (the destination was an obstruction): the samples with the event.
+    let blocked: Vec<u64> =
+        snapshots.windows(2).filter(|w| w[0].move_refused(&w[1], fw.threshold)).map(|w| w[0].sample).collect();
     if a.json {
         let v = serde_json::json!({
             "top": plan.top,
@@ -474,9 +498,10 @@ pub fn run(a: Args) -> Result<(), String> {
                 "loc_x": s.regs.loc_x, "loc_y": s.regs.loc_y, "sensors": s.regs.sensors,
                 "orientation": s.orientation().name(), "movement": s.movement().name(),
                 // Stopped on the line with a wall straight ahead: the end of a course.
-                "at_line_end": s.sensors().on_line() && s.sensors().prox_left() && s.sensors().prox_right()
-                    && s.movement() == botsim::Movement::Stopped,
+                "at_line_end": at_line_end(s),
             })),
+            "blocked_moves": blocked.len(),
+            "first_blocked_sample": blocked.first(),
             "display": last_display,
             "leds": last_led,
             "vga_frames": frames_seen,
@@ -496,6 +521,14 @@ pub fn run(a: Args) -> Result<(), String> {
         );
     }
     Ok(())
+}
+
+/// Stopped on the line with a wall straight ahead: the end of a course.
+fn at_line_end(s: &Snapshot) -> bool {
+    s.sensors().on_line()
+        && s.sensors().prox_left()
+        && s.sensors().prox_right()
+        && s.movement() == botsim::Movement::Stopped
 }
 
 /// Where a waveform window opens or closes: after a bot sample, or at a time (cycles of the

@@ -10,6 +10,7 @@ mod firmware;
 mod frame;
 mod map;
 mod run;
+mod suite;
 
 use clap::{Parser, Subcommand};
 
@@ -38,7 +39,8 @@ struct Cli {
 #[derive(Subcommand)]
 enum Command {
     Run(run::Args),
-    Board(board::Args),
+    Board(Box<board::Args>),
+    Suite(suite::Args),
     Frame(frame::Args),
     Map(map::Args),
     Firmware(firmware::Args),
@@ -59,7 +61,8 @@ pub fn main() -> i32 {
     };
     let result = match cli.command {
         Command::Run(a) => run::run(a),
-        Command::Board(a) => board::run(a),
+        Command::Board(a) => board::run(*a),
+        Command::Suite(a) => suite::run(a),
         Command::Frame(a) => frame::run(a),
         Command::Map(a) => map::run(a),
         Command::Firmware(a) => firmware::run(a),

@@ -110,8 +110,9 @@ pub struct Args {
     #[arg(long, value_enum, default_value = "rtl")]
     cpu: CpuArg,
     /// Measure instead of run: the board harness against a minimal C++ harness of the same
-    /// built design (100 MHz oscillator only, nothing recorded), in Mcycles/s of the 100 MHz
-    /// clock, over --seconds of simulated time [default: 0.05], seven alternating rounds
+    /// built design (100 MHz oscillator only, nothing recorded), or with --cpu iss the ISS
+    /// board against the all-RTL board; in Mcycles/s of the 100 MHz clock, over --seconds of
+    /// simulated time [default: 0.05], seven alternating rounds
     #[arg(long)]
     bench: bool,
     /// Stop at the first sample that finds the bot at the end of a line (stopped on the line
@@ -318,6 +319,11 @@ pub fn run(a: Args) -> Result<(), String> {
 
     if a.build_only {
         return Ok(());
+    }
+    if a.bench && cpu == CpuModel::Iss {
+        let rtl = build(&plan, &params, CpuModel::Rtl, a.quiet || a.json).map_err(|e| e.to_string())?;
+        let iss = &built.library;
+        return bench_iss(&rtl.library, iss, &world, a.seconds.unwrap_or(0.05), a.json, &|| host(&plan, cpu));
     }
     if a.bench {
         return bench(&built.library, &world, a.seconds.unwrap_or(0.05), a.json, &|| host(&plan, cpu));
@@ -560,9 +566,68 @@ fn load(library: &std::path::Path, world: &World, host: Option<Box<Host>>) -> Re
 /// Rounds of `--bench`.
 const ROUNDS: usize = 7;
 
+/// The board harness on a fresh model of `library`, the reset released from the start, for
+/// `cycles` of 100 MHz; its events decoded as a run decodes them. Mcycles/s.
+fn board_rate(library: &std::path::Path, world: &World, host: Option<Box<Host>>, cycles: u64) -> Result<f64, String> {
+    let mut m = load(library, world, host)?;
+    m.set_inputs(false, 0, 0);
+    let mut buf = vec![RawEvent::default(); 4096];
+    let mut display = Display::default();
+    let t = Instant::now();
+    loop {
+        let (stop, n) = m.run(cycles * 10_000, u64::MAX, &mut buf);
+        for e in buf[..n].iter().filter_map(Event::of) {
+            if let Event::Display { time_ps, an, seg, dp } = e {
+                display.pins(time_ps, an, seg, dp);
+            }
+        }
+        if stop != Stop::BufferFull {
+            break;
+        }
+    }
+    Ok(cycles as f64 / t.elapsed().as_secs_f64() / 1e6)
+}
+
+fn median(v: &mut [f64]) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// `--bench --cpu iss`: the ISS board against the all-RTL board of the same design,
+/// alternating rounds; the speed-up is the median of the rounds' ratios.
+fn bench_iss(
+    rtl: &std::path::Path,
+    iss: &std::path::Path,
+    world: &World,
+    seconds: f64,
+    json: bool,
+    host: &dyn Fn() -> Result<Option<Box<Host>>, String>,
+) -> Result<(), String> {
+    let cycles = (seconds * 1e8) as u64;
+    let (mut r, mut i, mut ratios) = (Vec::new(), Vec::new(), Vec::new());
+    for _ in 0..ROUNDS {
+        let a = board_rate(rtl, world, None, cycles)?;
+        let b = board_rate(iss, world, host()?, cycles)?;
+        (r.push(a), i.push(b), ratios.push(b / a));
+    }
+    let (r, i, x) = (median(&mut r), median(&mut i), median(&mut ratios));
+    if json {
+        println!(
+            "{}",
+            serde_json::json!({"iss_board_mcycles_per_s": i, "rtl_board_mcycles_per_s": r, "speedup": x, "cycles": cycles, "rounds": ROUNDS})
+        );
+    } else {
+        println!(
+            "ISS board {i:.2} Mcycles/s, all-RTL board {r:.2} Mcycles/s (medians): {x:.2} x (median of {ROUNDS} side-by-side rounds of {cycles} cycles of 100 MHz; {:.3} x the board's real time)",
+            i / 100.0
+        );
+    }
+    Ok(())
+}
+
 /// `--bench`: both harnesses on fresh models of the same library, the reset released from
-/// the start, alternating; the board harness's events are decoded as a run decodes them. The
-/// cost is the median of the rounds' ratios (each round measures both side by side).
+/// the start, alternating. The cost is the median of the rounds' ratios (each round
+/// measures both side by side).
 fn bench(
     library: &std::path::Path,
     world: &World,
@@ -572,38 +637,14 @@ fn bench(
 ) -> Result<(), String> {
     let cycles = (seconds * 1e8) as u64;
     let (mut board_rates, mut minimal_rates) = (Vec::new(), Vec::new());
-    let mut buf = vec![RawEvent::default(); 4096];
     for _ in 0..ROUNDS {
-        let mut m = load(library, world, host()?)?;
-        m.set_inputs(false, 0, 0);
-        let mut display = Display::default();
-        let mut samples = 0u64;
-        let t = Instant::now();
-        loop {
-            let (stop, n) = m.run(cycles * 10_000, u64::MAX, &mut buf);
-            for e in buf[..n].iter().filter_map(Event::of) {
-                match e {
-                    Event::Display { time_ps, an, seg, dp } => display.pins(time_ps, an, seg, dp),
-                    Event::Sample { .. } => samples += 1,
-                    _ => {}
-                }
-            }
-            if stop != Stop::BufferFull {
-                break;
-            }
-        }
-        board_rates.push(cycles as f64 / t.elapsed().as_secs_f64() / 1e6);
-        let _ = samples;
+        board_rates.push(board_rate(library, world, host()?, cycles)?);
         let mut m = load(library, world, host()?)?;
         m.set_inputs(false, 0, 0);
         let t = Instant::now();
         m.bench_minimal(cycles);
         minimal_rates.push(cycles as f64 / t.elapsed().as_secs_f64() / 1e6);
     }
-    let median = |v: &mut Vec<f64>| {
-        v.sort_by(f64::total_cmp);
-        v[v.len() / 2]
-    };
     let mut costs: Vec<f64> = minimal_rates.iter().zip(&board_rates).map(|(m, b)| m / b - 1.0).collect();
     let cost = median(&mut costs);
     let best = |v: &[f64]| v.iter().copied().fold(0.0, f64::max);

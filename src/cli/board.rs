@@ -608,7 +608,9 @@ fn bench_iss(
     for _ in 0..ROUNDS {
         let a = board_rate(rtl, world, None, cycles)?;
         let b = board_rate(iss, world, host()?, cycles)?;
-        (r.push(a), i.push(b), ratios.push(b / a));
+        r.push(a);
+        i.push(b);
+        ratios.push(b / a);
     }
     let (r, i, x) = (median(&mut r), median(&mut i), median(&mut ratios));
     if json {

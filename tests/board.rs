@@ -234,10 +234,10 @@ fn rows(path: &Path) -> Vec<Vec<u64>> {
 
 /// The team firmware examples/common/linefollow.psm (the `line-follow` algorithm in KCPSM6
 /// assembly, loaded with --program into the example's ROM) drives the bot through the whole
-/// board; `botsim run --driver line-follow` is the reference. The board runs in lock-step:
-/// the all-RTL board and the board with both KCPSM6s on the ISS, compared pin for pin and
-/// port for port in every cycle.
-fn follow_through_the_board(map: Option<&Path>) {
+/// board; `botsim run --driver line-follow` is the reference. The board runs with `cpu`:
+/// `lockstep` runs the all-RTL board and the board with both KCPSM6s on the ISS, compared
+/// pin for pin and port for port in every cycle.
+fn follow_through_the_board(map: Option<&Path>, cpu: &str) {
     let dir = tempfile::tempdir().unwrap();
     let (reference, through_board) = (dir.path().join("run.csv"), dir.path().join("board.csv"));
     let mut run_args = vec!["run", "--timing", "fast", "--compat", "botsim20", "--driver", "line-follow", "--json"];
@@ -266,7 +266,7 @@ fn follow_through_the_board(map: Option<&Path>) {
         "--trace-csv",
         through_board.to_str().unwrap(),
         "--cpu",
-        "lockstep",
+        cpu,
         "--json",
     ];
     if let Some(m) = &map_arg {
@@ -294,14 +294,15 @@ fn follow_through_the_board(map: Option<&Path>) {
 
 #[test]
 fn the_team_firmware_follows_the_line_of_the_builtin_course_through_the_board() {
-    follow_through_the_board(None);
+    follow_through_the_board(None, "lockstep");
 }
 
 #[test]
 fn the_team_firmware_follows_the_line_of_the_course_maps_through_the_board() {
     for name in ["world_map_part1", "world_map_lr", "world_map_loop"] {
         let Some(map) = common::reference_map(&format!("{name}.txt")) else { return };
-        follow_through_the_board(Some(&map));
+        // part1 in lock-step too; the others on the ISS board (proven equal above).
+        follow_through_the_board(Some(&map), if name == "world_map_part1" { "lockstep" } else { "iss" });
     }
 }
 
@@ -543,4 +544,75 @@ fn an_iss_cpu_whose_rom_does_not_give_it_the_program_is_one_error() {
         "-q",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
+}
+
+/// The trace lines of `file`: (pc, source file name and line, instruction text).
+fn trace_lines(file: &Path) -> Vec<(u16, String, String)> {
+    std::fs::read_to_string(file)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let f: Vec<&str> = l.split_whitespace().collect();
+            // cycle time pc where source instruction...
+            let pc = u16::from_str_radix(f[2], 16).unwrap();
+            let source = f[4].to_string();
+            let instruction = l[l.find(&source).unwrap() + source.len()..].trim_start();
+            let instruction = instruction.split("  ").next().unwrap().trim().to_string();
+            (pc, source, instruction)
+        })
+        .collect()
+}
+
+#[test]
+fn the_cpu_trace_names_the_source_lines_of_the_assemblers_listing() {
+    let dir = tempfile::tempdir().unwrap();
+    let t = dir.path().join("traces");
+    let o = example(
+        "examples/nexys4_proj2",
+        &[
+            "--program",
+            "examples/common/linefollow.psm",
+            "--timing",
+            "fast",
+            "--compat",
+            "botsim20",
+            "--samples",
+            "60",
+            "--cpu-trace",
+            t.to_str().unwrap(),
+            "--cpu-trace-from",
+            "1.2ms",
+            "--cpu-trace-to",
+            "1.4ms",
+            "-q",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    // The team's CPU against linefollow.psm's listing, the bot's against botsim's firmware.
+    let team = kcpsm6::asm::assemble_file(&root().join("examples/common/linefollow.psm"), &Default::default()).unwrap();
+    let fw = botsim::Firmware { timing: botsim::Timing::Fast, compat: botsim::Compat::BotSim20, ..Default::default() };
+    let bot = fw.program(0).unwrap();
+    for (cpu, program, name) in
+        [("SYS.APPCPU", &team, "linefollow.psm"), ("SYS.ROJOBOT.BOTSIMCPU", &bot, "bot_pgm.psm")]
+    {
+        let lines = trace_lines(&t.join(format!("{cpu}.trace.txt")));
+        assert!(lines.len() > 1000, "{cpu}: {} lines", lines.len());
+        let mut pcs = std::collections::BTreeSet::new();
+        for (pc, source, instruction) in &lines {
+            let listed = program.listing.iter().find(|l| l.address == Some(*pc) && l.word.is_some()).unwrap();
+            assert_eq!(source, &format!("{name}:{}", listed.loc.line), "{cpu} at {pc:03X}");
+            pcs.insert(*pc);
+            if instruction.starts_with("(interrupt") {
+                continue; // an interrupt entry: the instruction at pc was cancelled
+            }
+            // The instruction text assembles to the word at that address.
+            let word = kcpsm6::asm::assemble_str(&format!("ADDRESS {pc:03X}\n{instruction}\n")).unwrap().image.words
+                [*pc as usize];
+            assert_eq!(word, program.image.words[*pc as usize], "{cpu} at {pc:03X}: {instruction}");
+        }
+        assert!(pcs.len() > 20, "{cpu}: only {} addresses traced", pcs.len());
+        let profile = std::fs::read_to_string(t.join(format!("{cpu}.profile.txt"))).unwrap();
+        assert!(profile.lines().any(|l| l.starts_with("label")), "{profile}");
+    }
 }

@@ -22,7 +22,9 @@ pub mod iss;
 pub mod loader;
 pub mod output;
 pub mod readmemh;
+pub mod source;
 pub mod time;
+pub mod trace;
 
 pub use diag::{Diagnostic, Diagnostics, Loc};
 pub use image::Image;

@@ -38,6 +38,8 @@ typedef struct BoardProbeFns {
  * error). */
 typedef struct BoardHost {
     void* ctx;
-    void* (*cpu_new)(void* ctx, const char* path, uint32_t hwbuild, uint32_t vector, uint32_t scratch_pad);
+    /* `now`: the board's time in ps, the time of the edge being evaluated (for traces). */
+    void* (*cpu_new)(void* ctx, const char* path, uint32_t hwbuild, uint32_t vector, uint32_t scratch_pad,
+                     const uint64_t* now);
     void* (*probe_new)(void* ctx, const char* path);
 } BoardHost;

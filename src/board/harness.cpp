@@ -388,7 +388,7 @@ const BoardCpuFns* const no_cpu = &no_fns;  // what an instance gets when there 
 
 extern "C" void* botsim_iss_new(const char* path, int hwbuild, int vector, int scratch_pad) {
     Board* b = current;
-    void* cpu = b && b->host ? b->host->cpu_new(b->host->ctx, path, hwbuild, vector, scratch_pad) : nullptr;
+    void* cpu = b && b->host ? b->host->cpu_new(b->host->ctx, path, hwbuild, vector, scratch_pad, &b->now) : nullptr;
     if (cpu) return cpu;
     Verilated::threadContextp()->gotFinish(true);
     if (b && b->fatal.empty()) b->fatal = std::string("no instruction-set model for the KCPSM6 ") + path;
@@ -399,8 +399,11 @@ extern "C" long long botsim_iss_state(void* cpu) {
     return (long long)(*(const BoardCpuFns* const*)cpu)->state(cpu);
 }
 
+// Bit 63 of the state: the model hit a breakpoint; the run stops after this evaluation.
 extern "C" long long botsim_iss_tick(void* cpu, long long pins) {
-    return (long long)(*(const BoardCpuFns* const*)cpu)->tick(cpu, (uint64_t)pins);
+    uint64_t state = (*(const BoardCpuFns* const*)cpu)->tick(cpu, (uint64_t)pins);
+    if (state >> 63) Verilated::threadContextp()->gotFinish(true);
+    return (long long)(state & ~(1ull << 63));
 }
 
 // The lock-step build (rtl/board/kcpsm6_probe.v): every cycle's ports of each RTL KCPSM6.

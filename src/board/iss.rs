@@ -11,7 +11,13 @@
 
 use std::ffi::{c_char, c_void, CStr};
 
+use std::collections::BTreeMap;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
 use kcpsm6::iss::{Bus, Config, Cpu, Phase, Pins, PortKind, ScratchPad};
+use kcpsm6::source::SourceMap;
+use kcpsm6::trace::Tracer;
 use kcpsm6::Image;
 
 /// The functions a model pointer starts with (`BoardCpuFns` in board_abi.h).
@@ -56,6 +62,63 @@ pub struct IssCpu {
     mismatch: Option<RomMismatch>,
     /// Every cycle's (pins, outputs), in a lock-step run.
     record: Option<Vec<(u64, u64)>>,
+    /// The source-level trace and profile (`--cpu-trace`).
+    trace: Option<Box<CpuTrace>>,
+    /// Breakpoints, and the first one hit.
+    breaks: Option<Box<(Breaks, *const u64)>>,
+    hit: Option<Hit>,
+    path: String,
+}
+
+/// Where a run should stop, for one CPU: addresses, port writes (port, value or any).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Breaks {
+    pub pcs: Vec<(u16, String)>,
+    pub port_writes: Vec<(u8, Option<u8>, String)>,
+}
+
+/// A breakpoint that stopped the run: which CPU, what, and when.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Hit {
+    pub cpu: String,
+    /// The breakpoint as given.
+    pub what: String,
+    pub pc: u16,
+    /// The D cycle of the instruction (the CPU's own cycles), and the time its last cycle ended.
+    pub cycle: u64,
+    pub time_ps: u64,
+}
+
+/// The state bit that tells the harness a breakpoint was hit (kcpsm6_iss.v uses 32:0).
+const BREAK_BIT: u64 = 1 << 63;
+
+/// One CPU's `--cpu-trace` files, written under temporary names until [`Host::finish`].
+struct CpuTrace {
+    tracer: Tracer,
+    out: BufWriter<std::fs::File>,
+    tmp: PathBuf,
+    file: PathBuf,
+    profile: PathBuf,
+    /// The board's time (the harness's), and the window of times traced.
+    now: *const u64,
+    window: (u64, u64),
+    error: Option<std::io::Error>,
+}
+
+impl CpuTrace {
+    fn retired(&mut self, r: &kcpsm6::iss::Retired, end: u64) {
+        // SAFETY: `now` points into the board, which outlives its CPUs' models.
+        let t = unsafe { *self.now };
+        let write = (self.window.0..self.window.1).contains(&t);
+        let result = if write {
+            self.tracer.retired(r, end, Some(t), &mut self.out)
+        } else {
+            self.tracer.retired(r, end, Some(t), &mut std::io::sink())
+        };
+        if let Err(e) = result {
+            self.error.get_or_insert(e);
+        }
+    }
 }
 
 impl IssCpu {
@@ -66,7 +129,35 @@ impl IssCpu {
             bus: Pinned::default(),
             mismatch: None,
             record: record.then(Vec::new),
+            trace: None,
+            breaks: None,
+            hit: None,
+            path: String::new(),
         }
+    }
+
+    /// A breakpoint of this CPU that `r` hits.
+    fn check_breaks(&mut self, r: &kcpsm6::iss::Retired) -> bool {
+        let Some(b) = &self.breaks else { return false };
+        let (breaks, now) = (&b.0, b.1);
+        let what = if r.kind != kcpsm6::iss::RetireKind::Executed {
+            None
+        } else if let Some((_, w)) = breaks.pcs.iter().find(|(pc, _)| *pc == r.pc) {
+            Some(w.clone())
+        } else {
+            r.port.filter(|p| p.kind != PortKind::Read).and_then(|p| {
+                breaks
+                    .port_writes
+                    .iter()
+                    .find(|(port, value, _)| *port == p.port && value.map_or(true, |v| v == p.value))
+                    .map(|(_, _, w)| w.clone())
+            })
+        };
+        let Some(what) = what else { return false };
+        // SAFETY: `now` points into the board, which outlives its CPUs' models.
+        let time_ps = unsafe { *now };
+        self.hit.get_or_insert(Hit { cpu: self.path.clone(), what, pc: r.pc, cycle: r.cycle, time_ps });
+        true
     }
 
     /// The outputs in the current cycle, packed as kcpsm6_iss.v unpacks them.
@@ -104,8 +195,19 @@ impl IssCpu {
         }
         self.bus.in_port = (pins >> 18) as u8;
         let p = Pins { interrupt: pins >> 26 & 1 == 1, sleep: pins >> 27 & 1 == 1, reset: pins >> 28 & 1 == 1 };
-        self.cpu.tick(p, &mut self.bus);
-        self.state()
+        // Two copies of the inlined tick: the plain one builds no record.
+        if self.trace.is_none() && self.breaks.is_none() {
+            self.cpu.tick(p, &mut self.bus);
+            return self.state();
+        }
+        let mut hit = false;
+        if let Some(r) = self.cpu.tick(p, &mut self.bus) {
+            if let Some(t) = &mut self.trace {
+                t.retired(&r, self.cpu.cycle());
+            }
+            hit = self.check_breaks(&r);
+        }
+        self.state() | if hit { BREAK_BIT } else { 0 }
     }
 }
 
@@ -152,11 +254,19 @@ pub struct Recorded {
     pub times: Vec<u64>,
 }
 
+/// What `--cpu-trace` asks for: the folder, the window of board time traced (ps), and the
+/// source of each instance's program (by path; an instance without one shows disassembly).
+pub struct TraceRequest {
+    pub dir: PathBuf,
+    pub window: (u64, u64),
+    pub sources: BTreeMap<String, SourceMap>,
+}
+
 /// The `BoardHost` of board_abi.h.
 #[repr(C)]
 pub struct RawHost {
     ctx: *mut c_void,
-    cpu_new: unsafe extern "C" fn(*mut c_void, *const c_char, u32, u32, u32) -> *mut c_void,
+    cpu_new: unsafe extern "C" fn(*mut c_void, *const c_char, u32, u32, u32, *const u64) -> *mut c_void,
     probe_new: unsafe extern "C" fn(*mut c_void, *const c_char) -> *mut c_void,
 }
 
@@ -169,8 +279,13 @@ pub struct Host {
     probes: Vec<(String, Box<Probe>)>,
     /// Record every cycle's ports (a lock-step run).
     recording: bool,
+    trace: Option<TraceRequest>,
     /// The first instance the host had no program for.
     pub unknown: Option<String>,
+    /// Breakpoints by instance path.
+    breaks: BTreeMap<String, Breaks>,
+    /// The first trace file that could not be written.
+    trace_error: Option<String>,
     raw: RawHost,
 }
 
@@ -183,7 +298,10 @@ impl Host {
             cpus: Vec::new(),
             probes: Vec::new(),
             recording,
+            trace: None,
             unknown: None,
+            breaks: BTreeMap::new(),
+            trace_error: None,
             raw: RawHost { ctx: std::ptr::null_mut(), cpu_new: cpu_new_ffi, probe_new: probe_new_ffi },
         });
         h.raw.ctx = &mut *h as *mut Host as *mut c_void;
@@ -206,11 +324,52 @@ impl Host {
         k
     }
 
+    /// Stop the run at these breakpoints, by instance path (before the model is made).
+    pub fn break_at(&mut self, breaks: BTreeMap<String, Breaks>) {
+        self.breaks = breaks;
+    }
+
+    /// The first breakpoint hit, if any.
+    pub fn hit(&self) -> Option<&Hit> {
+        self.cpus.iter().filter_map(|(_, c)| c.hit.as_ref()).min_by_key(|h| h.time_ps)
+    }
+
+    /// Trace every instance's instructions and profile them (before the model is made).
+    pub fn trace(&mut self, request: TraceRequest) {
+        self.trace = Some(request);
+    }
+
     /// The model for the instance Verilator names `scope`.
-    fn create(&mut self, scope: &str, config: Config) -> *mut IssCpu {
+    fn create(&mut self, scope: &str, config: Config, now: *const u64) -> *mut IssCpu {
         let Some(k) = self.known(scope) else { return std::ptr::null_mut() };
         let (path, image) = &self.programs[k];
         let mut cpu = Box::new(IssCpu::new(config, image, self.recording));
+        cpu.path = path.clone();
+        if let Some(b) = self.breaks.get(path) {
+            cpu.breaks = Some(Box::new((b.clone(), now)));
+        }
+        if let Some(req) = &self.trace {
+            let file = req.dir.join(format!("{path}.trace.txt"));
+            let tmp = req.dir.join(format!(".{path}.trace.txt.part"));
+            match std::fs::File::create(&tmp) {
+                Ok(f) => {
+                    let map = req.sources.get(path).cloned().unwrap_or_default();
+                    cpu.trace = Some(Box::new(CpuTrace {
+                        tracer: Tracer::new(map, 0, u64::MAX),
+                        out: BufWriter::with_capacity(1 << 20, f),
+                        tmp,
+                        file,
+                        profile: req.dir.join(format!("{path}.profile.txt")),
+                        now,
+                        window: req.window,
+                        error: None,
+                    }));
+                }
+                Err(e) => {
+                    self.trace_error.get_or_insert(format!("{}: error: cannot write: {e}", tmp.display()));
+                }
+            }
+        }
         let ptr = &mut *cpu as *mut IssCpu;
         self.cpus.push((path.clone(), cpu));
         ptr
@@ -265,6 +424,7 @@ unsafe extern "C" fn cpu_new_ffi(
     hwbuild: u32,
     vector: u32,
     spm: u32,
+    now: *const u64,
 ) -> *mut c_void {
     // SAFETY: ctx is the Host that made the RawHost; path is a NUL-terminated string.
     let (host, path) = unsafe { (&mut *(ctx as *mut Host), CStr::from_ptr(path).to_string_lossy()) };
@@ -273,7 +433,7 @@ unsafe extern "C" fn cpu_new_ffi(
         interrupt_vector: vector as u16 & 0xFFF,
         scratch_pad_size: ScratchPad::from_bytes(spm as usize).unwrap_or(ScratchPad::B64),
     };
-    host.create(&path, config) as *mut c_void
+    host.create(&path, config, now) as *mut c_void
 }
 
 impl Host {
@@ -301,6 +461,28 @@ impl Host {
             programs.push((site.path.clone(), r.image.clone()));
         }
         Ok(Host::new(programs, recording))
+    }
+
+    /// Close the traces: every trace file under its name, and each CPU's profile beside it.
+    /// Returns the files written.
+    pub fn finish(&mut self) -> Result<Vec<PathBuf>, String> {
+        if let Some(e) = self.trace_error.take() {
+            return Err(e);
+        }
+        let mut written = Vec::new();
+        for (_, cpu) in &mut self.cpus {
+            let Some(mut t) = cpu.trace.take() else { continue };
+            let fail = |p: &Path, e: std::io::Error| format!("{}: error: cannot write: {e}", p.display());
+            if let Some(e) = t.error.take() {
+                let _ = std::fs::remove_file(&t.tmp);
+                return Err(fail(&t.file, e));
+            }
+            t.out.flush().map_err(|e| fail(&t.file, e))?;
+            std::fs::rename(&t.tmp, &t.file).map_err(|e| fail(&t.file, e))?;
+            crate::files::write_atomic(&t.profile, t.tracer.profile().as_bytes())?;
+            written.extend([t.file.clone(), t.profile.clone()]);
+        }
+        Ok(written)
     }
 
     /// What went wrong in a run, if anything: an instance with no model, or a decoded word

@@ -1,22 +1,25 @@
 //! `botsim board`: simulate a student's whole board design with the world in the loop.
 
-use std::collections::BTreeSet;
-use std::path::PathBuf;
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use botsim::board::build::{build, CpuModel};
-use botsim::board::iss::Host;
+use botsim::board::iss::{Breaks, Host, TraceRequest};
 use botsim::board::lockstep::Lockstep;
 use botsim::board::model::{BoardModel, Event, RawEvent, Stop};
 use botsim::files::{check_writable, write_atomic};
+use botsim::firmware::{SOURCE, SOURCE_PATH};
 use botsim::kcpsm6::loader;
+use botsim::kcpsm6::source::SourceMap;
 use botsim::render::{path_picture, PathStyle};
 use botsim::{Snapshot, World};
 use botsim_core::board::display::Display;
 use botsim_core::board::memcore::MemCore;
-use botsim_core::board::plan::{collect, Plan, Request, Source};
+use botsim_core::board::plan::{collect, Plan, Request, Rom, Source};
 use botsim_core::board::stimulus::{parse_press, parse_time, Stimulus};
 use botsim_core::board::vga::Capture;
+use botsim_core::board::wrapper;
 
 use crate::cli::args::FirmwareArgs;
 use crate::cli::run::{csv_row, json_row, CSV_HEADER};
@@ -30,7 +33,7 @@ use crate::cli::run::{csv_row, json_row, CSV_HEADER};
 /// program in its INIT strings, or the one you name with --program. The run prints what it
 /// replaced. The design is built once (Verilator, C++) and reused while the sources are
 /// unchanged.
-#[derive(clap::Args)]
+#[derive(clap::Args, Clone)]
 #[command(after_help = "Examples:
   botsim board my_project/ --map world_map_lr.coe --seconds 5 --display display.txt
   botsim board src/ --program src/proj2demo.psm --param SIMULATE=1 --samples 200 --trace-csv trace.csv
@@ -115,6 +118,28 @@ pub struct Args {
     /// simulated time [default: 0.05], seven alternating rounds
     #[arg(long)]
     bench: bool,
+    /// Write a source-level trace of every KCPSM6 (yours and the bot's) into this folder:
+    /// `<instance>.trace.txt`, one line per instruction (cycle, time, PC, label+offset, your
+    /// .psm file:line, the instruction, registers written, port accesses, flags), and
+    /// `<instance>.profile.txt`, the cycles spent under each label. Runs the CPUs on the ISS
+    #[arg(long, value_name = "DIR")]
+    cpu_trace: Option<PathBuf>,
+    /// With --cpu-trace: trace from this time on (2ms, 250us, 5000000c) [default: 0]
+    #[arg(long, value_name = "TIME", requires = "cpu_trace")]
+    cpu_trace_from: Option<String>,
+    /// With --cpu-trace: trace until this time [default: the end of the run]
+    #[arg(long, value_name = "TIME", requires = "cpu_trace")]
+    cpu_trace_to: Option<String>,
+    /// Stop the run at a breakpoint and say where: pc=03A, label=NAME or line=FILE.psm:N (in
+    /// the CPU whose program has it), port=0A or port=0A:18 (an OUTPUT of your CPU to the port,
+    /// of the value), bot=blocked, bot=off-line or bot=sensors:XX (at the first sample that
+    /// shows it). With --vcd or --cpu-trace, the run is repeated to the stop to write them over
+    /// the --break-window before it. Runs the CPUs on the ISS
+    #[arg(long = "break", value_name = "WHAT")]
+    breaks: Vec<String>,
+    /// With --break: how much before the stop the waveform and the trace cover [default: 1ms]
+    #[arg(long, value_name = "TIME", requires = "breaks")]
+    break_window: Option<String>,
     /// Stop at the first sample that finds the bot at the end of a line (stopped on the line
     /// with a wall straight ahead)
     #[arg(long)]
@@ -173,6 +198,21 @@ impl Sim {
             }
         }
     }
+    /// Close the --cpu-trace files (the ISS board's).
+    fn finish_traces(&mut self) -> Result<Vec<PathBuf>, String> {
+        let m = match self {
+            Sim::One(m) => m,
+            Sim::Pair(p) => &mut p.iss,
+        };
+        m.host_mut().map_or(Ok(Vec::new()), Host::finish)
+    }
+    /// The breakpoint that stopped a CPU.
+    fn hit(&self) -> Option<&botsim::board::iss::Hit> {
+        match self {
+            Sim::One(m) => m.host().and_then(Host::hit),
+            Sim::Pair(p) => p.iss.host().and_then(Host::hit),
+        }
+    }
     /// A model error of a --cpu iss or lockstep run.
     fn check(&self) -> Result<(), String> {
         match self {
@@ -183,6 +223,42 @@ impl Sim {
 }
 
 pub fn run(a: Args) -> Result<(), String> {
+    if a.breaks.is_empty() || (a.vcd.is_none() && a.cpu_trace.is_none()) {
+        return run_once(a).map(|_| ());
+    }
+    // First find the stop; then the same run, which is deterministic, to the stop with the
+    // waveform and the trace over the window before it.
+    let window = match &a.break_window {
+        Some(w) => parse_time(w).map_err(|e| format!("--break-window: {e}"))?,
+        None => 1_000_000_000,
+    };
+    let mut find = a.clone();
+    (find.vcd, find.cpu_trace, find.trace_from, find.trace_to) = (None, None, None, None);
+    let Some(stop) = run_once(find)? else {
+        return run_once(a).map(|_| ());
+    };
+    let mut again = a;
+    again.breaks.clear();
+    // Through the edge that stopped the first run (cycles of 100 MHz end on a whole cycle).
+    let end_cycle = stop / 10_000 + 1;
+    again.seconds = Some(end_cycle as f64 * 1e-8);
+    again.samples = None;
+    let from = format!("{}c", (stop.saturating_sub(window)) / 10_000);
+    if again.trace_from.is_none() && again.vcd.is_some() {
+        again.trace_from = Some(from.clone());
+    }
+    if again.cpu_trace_from.is_none() && again.cpu_trace.is_some() {
+        again.cpu_trace_from = Some(from);
+    }
+    again.quiet = true;
+    run_once(again).map(|_| ())
+}
+
+/// What a `--break` stopped: the time of the stop.
+type Stopped = Option<u64>;
+
+/// One run of the board; the time of the stop when a breakpoint stopped it.
+fn run_once(a: Args) -> Result<Stopped, String> {
     // Arguments first: every bad one is one line before anything is built.
     let mut stimulus = match &a.stimulus {
         Some(f) => {
@@ -280,20 +356,77 @@ pub fn run(a: Args) -> Result<(), String> {
     if !plan.unknown_pins.is_empty() {
         say(format!("  ports with no board pin (inputs held low, outputs open): {}", plan.unknown_pins.join(", ")));
     }
+    let trace_window = (
+        a.cpu_trace_from
+            .as_deref()
+            .map(parse_time)
+            .transpose()
+            .map_err(|e| format!("--cpu-trace-from: {e}"))?
+            .unwrap_or(0),
+        a.cpu_trace_to
+            .as_deref()
+            .map(parse_time)
+            .transpose()
+            .map_err(|e| format!("--cpu-trace-to: {e}"))?
+            .unwrap_or(u64::MAX),
+    );
+    if let Some(d) = &a.cpu_trace {
+        std::fs::create_dir_all(d).map_err(|e| format!("{}: error: cannot create the folder: {e}", d.display()))?;
+        check_writable(&d.join("cpu.trace.txt"))?;
+    }
     let cpu = match a.cpu {
+        // The trace comes from the ISS, which equals the RTL core at every port.
+        CpuArg::Rtl if a.cpu_trace.is_some() || !a.breaks.is_empty() => {
+            say("note: --cpu-trace and --break run the KCPSM6s on the ISS (--cpu iss: the same results, cycle for cycle)".into());
+            CpuModel::Iss
+        }
         CpuArg::Rtl => CpuModel::Rtl,
         CpuArg::Iss => CpuModel::Iss,
         CpuArg::Lockstep => CpuModel::RtlProbed,
+    };
+    // The source of each CPU's program: the .psm given with --program, botsim's firmware;
+    // a program from INIT strings has none (the trace shows its disassembly).
+    let sources = |plan: &Plan| -> BTreeMap<String, SourceMap> {
+        let mut out = BTreeMap::new();
+        for site in &plan.cpus {
+            let Ok(rom) = &site.rom else { continue };
+            let Some(r) = plan.roms.iter().find(|r| &r.module == rom) else { continue };
+            let map = if let Some(p) = a.program.iter().find(|p| p.display().to_string() == r.origin) {
+                match botsim::kcpsm6::asm::assemble_file(p, &Default::default()) {
+                    Ok(prog) => SourceMap::of(&prog),
+                    Err(_) => continue,
+                }
+            } else if rom == "bot_pgm" && r.origin.starts_with("botsim's firmware") {
+                match fw.program(0) {
+                    Ok(prog) => SourceMap::of_source(&prog, Path::new(SOURCE_PATH), SOURCE),
+                    Err(_) => continue,
+                }
+            } else {
+                continue;
+            };
+            out.insert(site.path.clone(), map);
+        }
+        out
     };
     let lockstep = a.cpu == CpuArg::Lockstep;
     if lockstep && a.bench {
         return Err("--bench measures one board: --cpu rtl or iss".into());
     }
+    let (cpu_breaks, bot_breaks) = breakpoints(&a.breaks, &plan, &sources(&plan))?;
     // The models' programs are known before anything is built.
     let host = |plan: &Plan, cpu: CpuModel| -> Result<Option<Box<Host>>, String> {
         match cpu {
             CpuModel::Rtl => Ok(None),
-            _ => Host::for_plan(plan, lockstep).map(Some).map_err(|e| e.to_string()),
+            _ => {
+                let mut h = Host::for_plan(plan, lockstep).map_err(|e| e.to_string())?;
+                if let (Some(dir), CpuModel::Iss) = (&a.cpu_trace, cpu) {
+                    h.trace(TraceRequest { dir: dir.clone(), window: trace_window, sources: sources(plan) });
+                }
+                if cpu == CpuModel::Iss {
+                    h.break_at(cpu_breaks.clone());
+                }
+                Ok(Some(h))
+            }
         }
     };
     host(&plan, cpu)?;
@@ -318,21 +451,28 @@ pub fn run(a: Args) -> Result<(), String> {
     };
 
     if a.build_only {
-        return Ok(());
+        return Ok(None);
     }
     if a.bench && cpu == CpuModel::Iss {
         let rtl = build(&plan, &params, CpuModel::Rtl, a.quiet || a.json).map_err(|e| e.to_string())?;
         let iss = &built.library;
-        return bench_iss(&rtl.library, iss, &world, a.seconds.unwrap_or(0.05), a.json, &|| host(&plan, cpu));
+        return bench_iss(&rtl.library, iss, &world, &plan.roms, a.seconds.unwrap_or(0.05), a.json, &|| {
+            host(&plan, cpu)
+        })
+        .map(|_| None);
     }
     if a.bench {
-        return bench(&built.library, &world, a.seconds.unwrap_or(0.05), a.json, &|| host(&plan, cpu));
+        return bench(&built.library, &world, &plan.roms, a.seconds.unwrap_or(0.05), a.json, &|| host(&plan, cpu))
+            .map(|_| None);
     }
 
     // Run.
-    let first = load(&built.library, &world, host(&plan, cpu)?)?;
+    let first = load(&built.library, &world, &plan.roms, host(&plan, cpu)?)?;
     let mut model = match &twin {
-        Some(b) => Sim::Pair(Box::new(Lockstep::new(first, load(&b.library, &world, host(&plan, CpuModel::Iss)?)?))),
+        Some(b) => {
+            let iss = load(&b.library, &world, &plan.roms, host(&plan, CpuModel::Iss)?)?;
+            Sim::Pair(Box::new(Lockstep::new(first, iss)))
+        }
         None => Sim::One(first),
     };
     // The waveform: open from the start, or at its --trace-from mark.
@@ -372,6 +512,7 @@ pub fn run(a: Args) -> Result<(), String> {
     let mut buf = vec![RawEvent::default(); 4096];
     let mut last_led = 0u16;
     let mut at_end = false;
+    let mut bot_stop: Option<(u64, String)> = None;
     let finished = loop {
         if crate::cli::interrupted() {
             break None;
@@ -385,7 +526,7 @@ pub fn run(a: Args) -> Result<(), String> {
             _ => None,
         };
         let mut limit = window_limit.map_or(sample_limit, |w| w.min(sample_limit));
-        if a.stop_at_line_end {
+        if a.stop_at_line_end || !bot_breaks.is_empty() {
             limit = limit.min(snapshots.len() as u64 + 1);
         }
         let (stop, n) = model.run(until, limit, &mut buf)?;
@@ -402,9 +543,19 @@ pub fn run(a: Args) -> Result<(), String> {
                     last_led = leds;
                     display_log.push_str(&format!("{:>12.3} ms  leds    {leds:016b}\n", time_ps as f64 / 1e9));
                 }
-                Event::Sample { snapshot, motctl, .. } => {
+                Event::Sample { time_ps, snapshot, motctl } => {
                     json.push_str(&json_row(&snapshot, motctl));
                     at_end = at_end || (a.stop_at_line_end && at_line_end(&snapshot));
+                    if bot_stop.is_none() {
+                        let before = snapshots.last();
+                        if let Some(b) = bot_breaks.iter().find(|b| b.hit(before, &snapshot, fw.threshold)) {
+                            bot_stop = Some((time_ps, format!(
+                                "stopped by --break {}: sample {} at {:.6} ms, the bot at ({}, {}) facing {}, {}, sensors {:02X}",
+                                b.text, snapshot.sample, time_ps as f64 / 1e9, snapshot.regs.loc_x, snapshot.regs.loc_y,
+                                snapshot.orientation().name(), snapshot.movement().name(), snapshot.regs.sensors
+                            )));
+                        }
+                    }
                     snapshots.push(snapshot);
                 }
                 Event::Vga { time_ps, pins } => vga.pins(time_ps, pins),
@@ -421,6 +572,9 @@ pub fn run(a: Args) -> Result<(), String> {
         }
         if at_end {
             break Some("line-end");
+        }
+        if bot_stop.is_some() {
+            break Some("break");
         }
         match stop {
             Stop::BufferFull => continue,
@@ -465,9 +619,29 @@ pub fn run(a: Args) -> Result<(), String> {
     let sim_ps = model.main().time_ps();
     display.settle(sim_ps);
     model.check()?;
-    if let Some(f) = model.main().fatal() {
+    let traces = model.finish_traces()?;
+    // A breakpoint in a CPU stops the model like $finish.
+    let cpu_stop = model.hit().map(|h| {
+        let (path, at) = (h.cpu.clone(), describe_pc(&sources(&plan), &h.cpu, h.pc));
+        (
+            h.time_ps,
+            format!(
+                "stopped by --break {}: {path} at {at} in its cycle {}, at {:.6} ms",
+                h.what,
+                h.cycle,
+                h.time_ps as f64 / 1e9
+            ),
+        )
+    });
+    let stopped = cpu_stop.or(bot_stop);
+    if let Some((_, why)) = &stopped {
+        if !a.json {
+            eprintln!("{why}");
+        }
+    } else if let Some(f) = model.main().fatal() {
         return Err(format!("the design stopped: {f}"));
     }
+    let finished = if stopped.is_some() { Some("break") } else { finished };
     model.main().close_vcd();
 
     // Outputs.
@@ -516,6 +690,8 @@ pub fn run(a: Args) -> Result<(), String> {
             "evaluations": evals,
             "wall_seconds": wall,
             "build_seconds": built.seconds,
+            "cpu_traces": traces,
+            "break": stopped.as_ref().map(|(t, why)| serde_json::json!({"time_ps": t, "what": why})),
         });
         println!("{v}");
     } else if !a.quiet {
@@ -525,8 +701,11 @@ pub fn run(a: Args) -> Result<(), String> {
             sim_ps as f64 / 1e12,
             snapshots.len()
         );
+        for t in &traces {
+            println!("  wrote {}", t.display());
+        }
     }
-    Ok(())
+    Ok(stopped.map(|(t, _)| t))
 }
 
 /// Stopped on the line with a wall straight ahead: the end of a course.
@@ -535,6 +714,117 @@ fn at_line_end(s: &Snapshot) -> bool {
         && s.sensors().prox_left()
         && s.sensors().prox_right()
         && s.movement() == botsim::Movement::Stopped
+}
+
+/// A `--break bot=...`: a condition on the bot's samples.
+struct BotBreak {
+    text: String,
+    kind: BotCondition,
+}
+
+enum BotCondition {
+    /// The world refused the move of the sample before.
+    Blocked,
+    /// No line sensor sees the line.
+    OffLine,
+    Sensors(u8),
+}
+
+impl BotBreak {
+    fn hit(&self, before: Option<&Snapshot>, s: &Snapshot, threshold: u8) -> bool {
+        match self.kind {
+            BotCondition::Blocked => before.is_some_and(|b| b.move_refused(s, threshold)),
+            BotCondition::OffLine => s.sensors().line_bits() == [true; 3],
+            BotCondition::Sensors(v) => s.regs.sensors == v,
+        }
+    }
+}
+
+/// The `--break`s: per CPU instance (addresses, port writes), and the bot conditions.
+fn breakpoints(
+    specs: &[String],
+    plan: &Plan,
+    sources: &BTreeMap<String, SourceMap>,
+) -> Result<(BTreeMap<String, Breaks>, Vec<BotBreak>), String> {
+    let bot_cpu = format!("{}.{}", plan.bot_path, botsim_core::board::plan::BOT_CPU_INSTANCE);
+    let team: Vec<&str> = plan.cpus.iter().map(|c| c.path.as_str()).filter(|p| *p != bot_cpu).collect();
+    let mut cpu: BTreeMap<String, Breaks> = BTreeMap::new();
+    let mut bot = Vec::new();
+    let hex = |v: &str, spec: &str| {
+        u8::from_str_radix(v, 16).map_err(|_| format!("--break {spec}: `{v}` is not a hexadecimal byte"))
+    };
+    for spec in specs {
+        let (kind, value) = spec
+            .split_once('=')
+            .ok_or_else(|| format!("--break {spec}: expected pc=, label=, line=, port= or bot="))?;
+        match kind {
+            "pc" => {
+                let pc = u16::from_str_radix(value, 16)
+                    .ok()
+                    .filter(|&p| p < 0x1000)
+                    .ok_or_else(|| format!("--break {spec}: expected a 3-digit hexadecimal address"))?;
+                for p in &team {
+                    cpu.entry(p.to_string()).or_default().pcs.push((pc, spec.clone()));
+                }
+            }
+            "label" | "line" => {
+                let mut found = false;
+                for (path, map) in sources {
+                    let at = if kind == "label" {
+                        map.label_address(value)
+                    } else {
+                        let (file, line) = value
+                            .rsplit_once(':')
+                            .and_then(|(f, l)| Some((f, l.parse().ok()?)))
+                            .ok_or_else(|| format!("--break {spec}: expected line=FILE:LINE"))?;
+                        map.line_address(file, line)
+                    };
+                    if let Some(pc) = at {
+                        cpu.entry(path.clone()).or_default().pcs.push((pc, spec.clone()));
+                        found = true;
+                    }
+                }
+                if !found {
+                    return Err(format!(
+                        "--break {spec}: no CPU's program has it (the source is known for programs given with --program and for the bot's firmware)"
+                    ));
+                }
+            }
+            "port" => {
+                let (port, v) = match value.split_once(':') {
+                    Some((p, v)) => (hex(p, spec)?, Some(hex(v, spec)?)),
+                    None => (hex(value, spec)?, None),
+                };
+                for p in &team {
+                    cpu.entry(p.to_string()).or_default().port_writes.push((port, v, spec.clone()));
+                }
+            }
+            "bot" => {
+                let kind = match value {
+                    "blocked" => BotCondition::Blocked,
+                    "off-line" => BotCondition::OffLine,
+                    v if v.starts_with("sensors:") => BotCondition::Sensors(hex(&v[8..], spec)?),
+                    _ => return Err(format!("--break {spec}: expected bot=blocked, bot=off-line or bot=sensors:XX")),
+                };
+                bot.push(BotBreak { text: spec.clone(), kind });
+            }
+            _ => return Err(format!("--break {spec}: expected pc=, label=, line=, port= or bot=")),
+        }
+    }
+    Ok((cpu, bot))
+}
+
+/// `00B wait (linefollow.psm:89)` for a CPU's address.
+fn describe_pc(sources: &BTreeMap<String, SourceMap>, cpu: &str, pc: u16) -> String {
+    match sources.get(cpu) {
+        Some(m) => {
+            let line = m.line(pc).map_or(String::new(), |l| {
+                format!(" ({}:{})", l.file.file_name().map(|n| n.to_string_lossy()).unwrap_or_default(), l.line)
+            });
+            format!("pc {pc:03X} {}{line}", m.describe(pc))
+        }
+        None => format!("pc {pc:03X}"),
+    }
 }
 
 /// Where a waveform window opens or closes: after a bot sample, or at a time (cycles of the
@@ -553,23 +843,43 @@ fn parse_mark(s: &str, name: &str) -> Result<Mark, String> {
     parse_time(s).map(Mark::Time).map_err(|e| format!("--{name}: {e} or a sample number"))
 }
 
-/// Create the model of a built design on `world` (the world file is read when the model is
-/// created, then removed).
-fn load(library: &std::path::Path, world: &World, host: Option<Box<Host>>) -> Result<BoardModel, String> {
-    let world_file = std::env::temp_dir().join(format!("botsim-world-{}.mem", std::process::id()));
-    std::fs::write(&world_file, world.to_mem()).map_err(|e| format!("{}: {e}", world_file.display()))?;
-    let model = BoardModel::load(library, &[format!("+botsim_world={}", world_file.display())], host);
-    let _ = std::fs::remove_file(&world_file);
+/// Create the model of a built design on `world` with the programs of `roms` (the files are
+/// read when the model is created, then removed).
+fn load(library: &Path, world: &World, roms: &[Rom], host: Option<Box<Host>>) -> Result<BoardModel, String> {
+    let dir = std::env::temp_dir();
+    let stem = format!("botsim-{}-{}", std::process::id(), LOADS.fetch_add(1, std::sync::atomic::Ordering::Relaxed));
+    let mut files = vec![(dir.join(format!("{stem}-world.mem")), world.to_mem(), "botsim_world".to_string())];
+    for r in roms {
+        files.push((dir.join(format!("{stem}-{}.mem", r.module)), r.image.to_mem(), wrapper::rom_plusarg(&r.module)));
+    }
+    let mut args = Vec::new();
+    for (path, text, arg) in &files {
+        std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))?;
+        args.push(format!("+{arg}={}", path.display()));
+    }
+    let model = BoardModel::load(library, &args, host);
+    for (path, _, _) in &files {
+        let _ = std::fs::remove_file(path);
+    }
     model.map_err(|e| e.to_string())
 }
+
+/// Models created by this process (their temporary files' names).
+static LOADS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
 
 /// Rounds of `--bench`.
 const ROUNDS: usize = 7;
 
 /// The board harness on a fresh model of `library`, the reset released from the start, for
 /// `cycles` of 100 MHz; its events decoded as a run decodes them. Mcycles/s.
-fn board_rate(library: &std::path::Path, world: &World, host: Option<Box<Host>>, cycles: u64) -> Result<f64, String> {
-    let mut m = load(library, world, host)?;
+fn board_rate(
+    library: &Path,
+    world: &World,
+    roms: &[Rom],
+    host: Option<Box<Host>>,
+    cycles: u64,
+) -> Result<f64, String> {
+    let mut m = load(library, world, roms, host)?;
     m.set_inputs(false, 0, 0);
     let mut buf = vec![RawEvent::default(); 4096];
     let mut display = Display::default();
@@ -596,9 +906,10 @@ fn median(v: &mut [f64]) -> f64 {
 /// `--bench --cpu iss`: the ISS board against the all-RTL board of the same design,
 /// alternating rounds; the speed-up is the median of the rounds' ratios.
 fn bench_iss(
-    rtl: &std::path::Path,
-    iss: &std::path::Path,
+    rtl: &Path,
+    iss: &Path,
     world: &World,
+    roms: &[Rom],
     seconds: f64,
     json: bool,
     host: &dyn Fn() -> Result<Option<Box<Host>>, String>,
@@ -606,8 +917,8 @@ fn bench_iss(
     let cycles = (seconds * 1e8) as u64;
     let (mut r, mut i, mut ratios) = (Vec::new(), Vec::new(), Vec::new());
     for _ in 0..ROUNDS {
-        let a = board_rate(rtl, world, None, cycles)?;
-        let b = board_rate(iss, world, host()?, cycles)?;
+        let a = board_rate(rtl, world, roms, None, cycles)?;
+        let b = board_rate(iss, world, roms, host()?, cycles)?;
         r.push(a);
         i.push(b);
         ratios.push(b / a);
@@ -631,8 +942,9 @@ fn bench_iss(
 /// the start, alternating. The cost is the median of the rounds' ratios (each round
 /// measures both side by side).
 fn bench(
-    library: &std::path::Path,
+    library: &Path,
     world: &World,
+    roms: &[Rom],
     seconds: f64,
     json: bool,
     host: &dyn Fn() -> Result<Option<Box<Host>>, String>,
@@ -640,8 +952,8 @@ fn bench(
     let cycles = (seconds * 1e8) as u64;
     let (mut board_rates, mut minimal_rates) = (Vec::new(), Vec::new());
     for _ in 0..ROUNDS {
-        board_rates.push(board_rate(library, world, host()?, cycles)?);
-        let mut m = load(library, world, host()?)?;
+        board_rates.push(board_rate(library, world, roms, host()?, cycles)?);
+        let mut m = load(library, world, roms, host()?)?;
         m.set_inputs(false, 0, 0);
         let t = Instant::now();
         m.bench_minimal(cycles);

@@ -162,12 +162,29 @@ pub fn board_top(plan: &Plan, params: &[(String, String)]) -> String {
     )
 }
 
-/// The behavioural ROMs of the plan: (module name, Verilog).
+/// The behavioural ROMs of the plan: (module name, Verilog). Their words are not in the
+/// Verilog: each ROM reads them when the model starts from the file named by the run's
+/// [`rom_plusarg`], so one build of a design runs any firmware.
 pub fn roms(plan: &Plan) -> Vec<(String, String)> {
-    plan.roms
-        .iter()
-        .map(|r| (r.module.clone(), verilog_rom(&r.image, &r.module, &r.origin, RomSize::K4, None)))
-        .collect()
+    plan.roms.iter().map(|r| (r.module.clone(), loaded_rom(&r.module))).collect()
+}
+
+/// The plusarg that names the file (`Image::to_hex`) a ROM module reads its words from.
+pub fn rom_plusarg(module: &str) -> String {
+    format!("botsim_rom_{module}")
+}
+
+/// A KCPSM6 program ROM (4K x 18, one clock per read while `enable` is high, the interface of
+/// the Xilinx templates: `kcpsm6::output::verilog_rom`'s module) whose words come from the
+/// file that `+botsim_rom_<module>=FILE` names; all zero without one.
+fn loaded_rom(module: &str) -> String {
+    let empty = verilog_rom(&kcpsm6::Image::zeroed(), module, "the run's +botsim_rom file", RomSize::K4, None);
+    let load = format!(
+        "        if ($value$plusargs(\"{}=%s\", rom_file)) $readmemh(rom_file, rom);\n    end\n",
+        rom_plusarg(module)
+    );
+    let (head, tail) = empty.split_once("    end\n").expect("verilog_rom's initial block");
+    format!("{}{load}{tail}", head.replace("    integer i;\n", "    integer i;\n    reg [8*4096-1:0] rom_file;\n"))
 }
 
 /// A stub: the module with every port it is connected by, as a 1-bit input, and no logic.

@@ -107,7 +107,8 @@ fn write(dir: &Path, name: &str, text: &str) -> String {
 fn one_line_error(o: &Output) -> String {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(o));
     let e = stderr(o);
-    let errors: Vec<&str> = e.lines().filter(|l| !l.starts_with("botsim board:") && !l.starts_with("  ")).collect();
+    let errors: Vec<&str> =
+        e.lines().filter(|l| !["botsim board:", "  ", "warning:", "note:"].iter().any(|p| l.starts_with(p))).collect();
     assert_eq!(errors.len(), 1, "{e}");
     errors[0].to_string()
 }
@@ -615,4 +616,43 @@ fn the_cpu_trace_names_the_source_lines_of_the_assemblers_listing() {
         let profile = std::fs::read_to_string(t.join(format!("{cpu}.profile.txt"))).unwrap();
         assert!(profile.lines().any(|l| l.starts_with("label")), "{profile}");
     }
+}
+
+#[test]
+fn a_breakpoint_stops_at_the_instruction_and_the_sample_the_full_run_records() {
+    let dir = tempfile::tempdir().unwrap();
+    let (t, csv) = (dir.path().join("t"), dir.path().join("full.csv"));
+    let base = ["--program", "examples/common/linefollow.psm", "--timing", "fast", "--compat", "botsim20"];
+    let with = |extra: &[&str]| {
+        let mut v: Vec<&str> = base.to_vec();
+        v.extend_from_slice(extra);
+        example("examples/nexys4_proj2", &v)
+    };
+    // The full run: every instruction of the team CPU and every sample.
+    let o = with(&["--samples", "400", "--cpu-trace", t.to_str().unwrap(), "--trace-csv", csv.to_str().unwrap(), "-q"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let trace = std::fs::read_to_string(t.join("SYS.APPCPU.trace.txt")).unwrap();
+    let first_isr = trace.lines().skip(1).find(|l| l.split_whitespace().nth(3) == Some("isr")).unwrap();
+    let f: Vec<&str> = first_isr.split_whitespace().collect();
+
+    // The breakpoint at the label: the same instruction, cycle and time.
+    let o = with(&["--samples", "400", "--break", "label=isr", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let what = s["break"]["what"].as_str().unwrap();
+    assert_eq!(s["stopped_by"], "break");
+    assert!(what.contains(&format!("SYS.APPCPU at pc {} isr (linefollow.psm:", f[2])), "{what}");
+    assert!(what.contains(&format!("in its cycle {},", f[0])), "{what} / {first_isr}");
+    assert!(what.ends_with(&format!("at {} ms", f[1])), "{what} / {first_isr}");
+
+    // The bot off the line: the first sample of the full run with no line sensor on the line.
+    let want = rows(&csv).into_iter().find(|r| r[5] & 7 == 7).expect("the follower loses the line at a corner");
+    let o = with(&["--samples", "400", "--break", "bot=off-line", "--json"]);
+    let s: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(s["samples"].as_u64().unwrap(), want[0] + 1, "{s}");
+    assert!(s["break"]["what"].as_str().unwrap().contains(&format!("sample {} ", want[0])), "{s}");
+
+    // A label no program has is one error.
+    let e = one_line_error(&with(&["--break", "label=nowhere"]));
+    assert!(e.starts_with("--break label=nowhere: no CPU's program has it"), "{e}");
 }

@@ -287,4 +287,27 @@ module kcpsm6 #(
             {carry, zero} <= {carry_q, zero_q};
     end
 
+`ifdef BOTSIM_DEBUG
+    // ---- debug signals (botsim board --vcd builds only) ----------------------------------------
+    // The names of Xilinx's KCPSM6 simulation model, for waveforms: the word on `instruction`
+    // as text (botsim's disassembler, through the simulation host), the status (bank, Z, C,
+    // interrupt enable, then Reset, Sleep or Intrp for an interrupt entry) and the active
+    // bank's registers. The scratch pad is the `scratch_pad` array.
+    import "DPI-C" function void botsim_disasm(input int word, output bit [159:0] text);
+    reg  [1:160] kcpsm6_opcode;
+    always @(instruction) botsim_disasm({14'd0, instruction}, kcpsm6_opcode);
+    wire [1:128] kcpsm6_status = {bank ? "B" : "A", zero ? ", Z" : ",NZ", carry ? ", C" : ",NC",
+                                  interrupt_enable ? ",IE" : ",ID",
+                                  internal_reset || !run ? ",Reset" : t_state == T_IDLE ? ",Sleep" :
+                                  active_interrupt ? ",Intrp" : "      "};
+    wire [7:0] sim_s0 = registers[{bank, 4'h0}], sim_s1 = registers[{bank, 4'h1}];
+    wire [7:0] sim_s2 = registers[{bank, 4'h2}], sim_s3 = registers[{bank, 4'h3}];
+    wire [7:0] sim_s4 = registers[{bank, 4'h4}], sim_s5 = registers[{bank, 4'h5}];
+    wire [7:0] sim_s6 = registers[{bank, 4'h6}], sim_s7 = registers[{bank, 4'h7}];
+    wire [7:0] sim_s8 = registers[{bank, 4'h8}], sim_s9 = registers[{bank, 4'h9}];
+    wire [7:0] sim_sA = registers[{bank, 4'hA}], sim_sB = registers[{bank, 4'hB}];
+    wire [7:0] sim_sC = registers[{bank, 4'hC}], sim_sD = registers[{bank, 4'hD}];
+    wire [7:0] sim_sE = registers[{bank, 4'hE}], sim_sF = registers[{bank, 4'hF}];
+`endif
+
 endmodule

@@ -656,3 +656,95 @@ fn a_breakpoint_stops_at_the_instruction_and_the_sample_the_full_run_records() {
     let e = one_line_error(&with(&["--break", "label=nowhere"]));
     assert!(e.starts_with("--break label=nowhere: no CPU's program has it"), "{e}");
 }
+
+/// A vector's value as a number (up to 64 bits) and as ASCII text (VCD drops leading zeros:
+/// the text is a whole number of characters).
+fn vector(v: &vcd::Vector) -> (u64, String) {
+    let bits: Vec<bool> = v.into_iter().map(|b| b == vcd::Value::V1).collect();
+    let n = bits.iter().fold(0u64, |a, b| a << 1 | *b as u64);
+    let mut text = String::new();
+    let pad = (8 - bits.len() % 8) % 8;
+    let all: Vec<bool> = std::iter::repeat(false).take(pad).chain(bits).collect();
+    for c in all.chunks(8) {
+        text.push(c.iter().fold(0u8, |a, b| a << 1 | *b as u8) as char);
+    }
+    (n, text)
+}
+
+/// In a board waveform, every KCPSM6's `kcpsm6_opcode` is the disassembly of the word on its
+/// `instruction` port at every time stamp; returns how many changes were checked per CPU.
+fn check_debug_signals(vcd_path: &Path, cpus: &[&[&str]]) -> Vec<usize> {
+    let f = std::fs::File::open(vcd_path).unwrap();
+    let mut parser = vcd::Parser::new(std::io::BufReader::new(f));
+    let header = parser.parse_header().unwrap();
+    let code = |scope: &[&str], name: &str| {
+        let mut path: Vec<&str> = scope.to_vec();
+        path.push(name);
+        header.find_var(&path).unwrap_or_else(|| panic!("{path:?} in the waveform")).code
+    };
+    let ids: Vec<_> =
+        cpus.iter().map(|s| (code(s, "instruction"), code(s, "kcpsm6_opcode"), code(s, "kcpsm6_status"))).collect();
+    let mut words = vec![0u32; cpus.len()];
+    let mut texts = vec![String::new(); cpus.len()];
+    let mut checked = vec![0; cpus.len()];
+    let mut status0 = vec![None; cpus.len()];
+    let check = |words: &[u32], texts: &[String], checked: &mut [usize]| {
+        for i in 0..words.len() {
+            let want = kcpsm6::disasm::disassemble_word(words[i]);
+            assert_eq!(texts[i].trim_end(), want, "CPU {:?}: word {:05X}", cpus[i], words[i]);
+            checked[i] += 1;
+        }
+    };
+    let mut started = false;
+    for cmd in parser {
+        match cmd.unwrap() {
+            vcd::Command::Timestamp(_) => {
+                if started {
+                    check(&words, &texts, &mut checked);
+                }
+                started = true;
+            }
+            vcd::Command::ChangeVector(c, v) => {
+                for (i, (instr, text, status)) in ids.iter().enumerate() {
+                    if c == *instr {
+                        words[i] = vector(&v).0 as u32;
+                    } else if c == *text {
+                        texts[i] = vector(&v).1;
+                    } else if c == *status && status0[i].is_none() {
+                        status0[i] = Some(vector(&v).1);
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    for s in status0 {
+        assert_eq!(s.as_deref(), Some("A,NZ,NC,ID,Reset"), "the status at power-up");
+    }
+    checked
+}
+
+#[test]
+fn waveforms_show_each_cpus_instruction_as_the_disassembler_writes_it() {
+    let dir = tempfile::tempdir().unwrap();
+    for cpu in ["rtl", "iss"] {
+        let vcd = dir.path().join(format!("{cpu}.vcd"));
+        let o = example(
+            "examples/nexys4_proj2",
+            &["--timing", "fast", "--seconds", "0.0013", "--vcd", vcd.to_str().unwrap(), "--cpu", cpu, "-q"],
+        );
+        assert!(o.status.success(), "{cpu}: {}", stderr(&o));
+        let team: &[&str] = &["TOP", "botsim_board", "user", "SYS", "APPCPU"];
+        let bot: &[&str] = &["TOP", "botsim_board", "user", "SYS", "ROJOBOT", "BOTSIMCPU"];
+        let checked = check_debug_signals(&vcd, &[team, bot]);
+        assert!(checked.iter().all(|&n| n > 1000), "{cpu}: {checked:?}");
+        // The save file beside it names the groups and the signals.
+        let gtkw = std::fs::read_to_string(vcd.with_extension("gtkw")).unwrap();
+        assert!(gtkw.contains(&format!("[dumpfile] \"{}\"", vcd.display())), "{gtkw}");
+        for s in
+            ["TOP.botsim_board.user.SYS.APPCPU.kcpsm6_opcode[1:160]", "TOP.botsim_board.bot_locx[7:0]", "-SYS.APPCPU"]
+        {
+            assert!(gtkw.lines().any(|l| l == s), "{s} in {gtkw}");
+        }
+    }
+}

@@ -49,8 +49,45 @@ module kcpsm6 #(
         state = botsim_iss_state(cpu);
     end
 
+`ifndef BOTSIM_DEBUG
     always @(posedge clk)
         state <= botsim_iss_tick(cpu, {35'd0, reset, sleep, interrupt, in_port, instruction});
+`else
+    // Debug signals (botsim board --vcd builds), with the names and the format of
+    // rtl/kcpsm6.v's: the text of the word on `instruction`, the status, the active bank's
+    // registers, all from the model after each edge.
+    import "DPI-C" function void botsim_disasm(input int word, output bit [159:0] text);
+    import "DPI-C" function void botsim_iss_debug(input chandle cpu, output bit [127:0] regs, output int flags);
+    reg  [1:160] kcpsm6_opcode;
+    reg  [127:0] active_registers;
+    reg  [31:0]  flags;  // bank, zero, carry, interrupt enable, reset, sleep, interrupt entry
+    reg  [63:0]  next_state;
+    reg  [127:0] next_registers;
+    reg  [31:0]  next_flags;
+    initial begin
+        active_registers = 128'd0;
+        flags = 32'h10;
+    end
+    always @(instruction) botsim_disasm({14'd0, instruction}, kcpsm6_opcode);
+    always @(posedge clk) begin
+        next_state = botsim_iss_tick(cpu, {35'd0, reset, sleep, interrupt, in_port, instruction});
+        botsim_iss_debug(cpu, next_registers, next_flags);
+        state <= next_state;
+        active_registers <= next_registers;
+        flags <= next_flags;
+    end
+    wire [1:128] kcpsm6_status = {flags[0] ? "B" : "A", flags[1] ? ", Z" : ",NZ", flags[2] ? ", C" : ",NC",
+                                  flags[3] ? ",IE" : ",ID",
+                                  flags[4] ? ",Reset" : flags[5] ? ",Sleep" : flags[6] ? ",Intrp" : "      "};
+    wire [7:0] sim_s0 = active_registers[7:0],     sim_s1 = active_registers[15:8];
+    wire [7:0] sim_s2 = active_registers[23:16],   sim_s3 = active_registers[31:24];
+    wire [7:0] sim_s4 = active_registers[39:32],   sim_s5 = active_registers[47:40];
+    wire [7:0] sim_s6 = active_registers[55:48],   sim_s7 = active_registers[63:56];
+    wire [7:0] sim_s8 = active_registers[71:64],   sim_s9 = active_registers[79:72];
+    wire [7:0] sim_sA = active_registers[87:80],   sim_sB = active_registers[95:88];
+    wire [7:0] sim_sC = active_registers[103:96],  sim_sD = active_registers[111:104];
+    wire [7:0] sim_sE = active_registers[119:112], sim_sF = active_registers[127:120];
+`endif
 
     assign address        = state[11:0];
     assign bram_enable    = state[12];

@@ -24,6 +24,9 @@ typedef struct BoardEvent {
 typedef struct BoardCpuFns {
     uint64_t (*tick)(void* cpu, uint64_t pins);
     uint64_t (*state)(const void* cpu);
+    /* Debug builds: the active bank's s0..sF (s0 in the low byte of regs[0]) and the flags
+     * bank | zero << 1 | carry << 2 | ie << 3 | reset << 4 | sleep << 5 | entry << 6. */
+    void (*debug)(const void* cpu, uint32_t* regs, uint32_t* flags);
 } BoardCpuFns;
 
 /* A probe on one RTL KCPSM6's ports (the lock-step build), which begins with a pointer to
@@ -42,4 +45,6 @@ typedef struct BoardHost {
     void* (*cpu_new)(void* ctx, const char* path, uint32_t hwbuild, uint32_t vector, uint32_t scratch_pad,
                      const uint64_t* now);
     void* (*probe_new)(void* ctx, const char* path);
+    /* Debug builds: the disassembly of `word`, 20 characters padded with spaces. */
+    void (*disasm)(uint32_t word, char* text);
 } BoardHost;

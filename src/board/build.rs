@@ -146,9 +146,21 @@ fn files(plan: &Plan, params: &[(String, String)], cpu: CpuModel) -> Files {
     Files { generated, user, defines }
 }
 
-/// Build (or find in the cache) the library for `plan` with `cpu` for its KCPSM6s.
-pub fn build(plan: &Plan, params: &[(String, String)], cpu: CpuModel, quiet: bool) -> Result<Built, BoardError> {
-    let f = files(plan, params, cpu);
+/// Build (or find in the cache) the library for `plan` with `cpu` for its KCPSM6s; `debug`:
+/// with the KCPSM6 debug signals for waveforms (`kcpsm6_opcode`, `kcpsm6_status`,
+/// `sim_s0`..`sim_sF`, the scratch pad), a build of its own so that runs without a waveform
+/// do not compute them.
+pub fn build(
+    plan: &Plan,
+    params: &[(String, String)],
+    cpu: CpuModel,
+    debug: bool,
+    quiet: bool,
+) -> Result<Built, BoardError> {
+    let mut f = files(plan, params, cpu);
+    if debug {
+        f.defines.push("BOTSIM_DEBUG".into());
+    }
     let mut h = DefaultHasher::new();
     env!("CARGO_PKG_VERSION").hash(&mut h);
     HARNESS.hash(&mut h);
@@ -220,6 +232,10 @@ pub fn build(plan: &Plan, params: &[(String, String)], cpu: CpuModel, quiet: boo
         .arg(jobs.to_string())
         .args(["--prefix", "Vboard", "--top-module", wrapper::TOP, "--Mdir", "obj", "-o", "libboard.so"])
         .args(VERILATOR_FLAGS);
+    if debug {
+        // The register file and the scratch pad (up to 256 bytes) in the waveform.
+        cmd.args(["--trace-max-array", "256"]);
+    }
     for d in &f.defines {
         cmd.arg(format!("+define+{d}"));
     }

@@ -11,6 +11,7 @@
 #include "verilated.h"
 #include "verilated_syms.h"
 #include "verilated_vcd_c.h"
+#include "svdpi.h"
 
 #include <cstdint>
 #include <cstring>
@@ -382,7 +383,11 @@ void board_bench_minimal(Board* b, uint64_t cycles) {
 namespace {
 uint64_t no_tick(void*, uint64_t) { return 0; }
 uint64_t no_state(const void*) { return 0; }
-const BoardCpuFns no_fns = {no_tick, no_state};
+void no_debug(const void*, uint32_t* regs, uint32_t* flags) {
+    for (int i = 0; i < 4; i++) regs[i] = 0;
+    *flags = 0;
+}
+const BoardCpuFns no_fns = {no_tick, no_state, no_debug};
 const BoardCpuFns* const no_cpu = &no_fns;  // what an instance gets when there is no model
 }  // namespace
 
@@ -404,6 +409,23 @@ extern "C" long long botsim_iss_tick(void* cpu, long long pins) {
     uint64_t state = (*(const BoardCpuFns* const*)cpu)->tick(cpu, (uint64_t)pins);
     if (state >> 63) Verilated::threadContextp()->gotFinish(true);
     return (long long)(state & ~(1ull << 63));
+}
+
+// Debug builds (--vcd): the text of an instruction word, packed for `output bit [159:0]`
+// with the first character in the top byte, as Verilog holds a string.
+extern "C" void botsim_disasm(int word, svBitVecVal* text) {
+    char s[20];
+    for (char& c : s) c = ' ';
+    Board* b = current;
+    if (b && b->host && b->host->disasm) b->host->disasm((uint32_t)word, s);
+    for (int w = 0; w < 5; w++) text[w] = 0;
+    for (int i = 0; i < 20; i++) text[(159 - 8 * i) / 32] |= (uint32_t)(uint8_t)s[i] << ((152 - 8 * i) % 32);
+}
+
+extern "C" void botsim_iss_debug(void* cpu, svBitVecVal* regs, int* flags) {
+    uint32_t f = 0;
+    (*(const BoardCpuFns* const*)cpu)->debug(cpu, regs, &f);
+    *flags = (int)f;
 }
 
 // The lock-step build (rtl/board/kcpsm6_probe.v): every cycle's ports of each RTL KCPSM6.

@@ -25,9 +25,38 @@ use kcpsm6::Image;
 struct CpuFns {
     tick: unsafe extern "C" fn(*mut IssCpu, u64) -> u64,
     state: unsafe extern "C" fn(*const IssCpu) -> u64,
+    debug: unsafe extern "C" fn(*const IssCpu, *mut u32, *mut u32),
 }
 
-static FNS: CpuFns = CpuFns { tick: tick_ffi, state: state_ffi };
+static FNS: CpuFns = CpuFns { tick: tick_ffi, state: state_ffi, debug: debug_ffi };
+
+unsafe extern "C" fn debug_ffi(cpu: *const IssCpu, regs: *mut u32, flags: *mut u32) {
+    // SAFETY: the model pointer is one `Host::create` made; regs holds four words.
+    let (c, regs) = unsafe { (&(*cpu).cpu, std::slice::from_raw_parts_mut(regs, 4)) };
+    for (w, word) in regs.iter_mut().enumerate() {
+        *word = (0..4).map(|b| (c.reg(c.bank(), (4 * w + b) as u8) as u32) << (8 * b)).sum();
+    }
+    let f = c.bank() as u32
+        | (c.zero() as u32) << 1
+        | (c.carry() as u32) << 2
+        | (c.interrupt_enabled() as u32) << 3
+        | ((c.in_reset() || !c.running()) as u32) << 4
+        | ((c.phase() == Phase::Idle) as u32) << 5
+        | (c.interrupt_entry() as u32) << 6;
+    // SAFETY: flags is one word.
+    unsafe { *flags = f };
+}
+
+/// The disassembly of `word` into 20 characters, padded with spaces (the longest,
+/// `LOAD&RETURN sF, FF`, has 18).
+unsafe extern "C" fn disasm_ffi(word: u32, text: *mut u8) {
+    let s = kcpsm6::disasm::disassemble_word(word & 0x3FFFF);
+    // SAFETY: the harness passes 20 bytes.
+    let out = unsafe { std::slice::from_raw_parts_mut(text, 20) };
+    for (i, b) in out.iter_mut().enumerate() {
+        *b = s.as_bytes().get(i).copied().unwrap_or(b' ');
+    }
+}
 
 /// The bus of a pin-level core: `in_port` as the design drives it.
 #[derive(Default)]
@@ -268,6 +297,7 @@ pub struct RawHost {
     ctx: *mut c_void,
     cpu_new: unsafe extern "C" fn(*mut c_void, *const c_char, u32, u32, u32, *const u64) -> *mut c_void,
     probe_new: unsafe extern "C" fn(*mut c_void, *const c_char) -> *mut c_void,
+    disasm: unsafe extern "C" fn(u32, *mut u8),
 }
 
 /// The programs of a design's KCPSM6 instances, and their models once the design has made
@@ -302,7 +332,12 @@ impl Host {
             unknown: None,
             breaks: BTreeMap::new(),
             trace_error: None,
-            raw: RawHost { ctx: std::ptr::null_mut(), cpu_new: cpu_new_ffi, probe_new: probe_new_ffi },
+            raw: RawHost {
+                ctx: std::ptr::null_mut(),
+                cpu_new: cpu_new_ffi,
+                probe_new: probe_new_ffi,
+                disasm: disasm_ffi,
+            },
         });
         h.raw.ctx = &mut *h as *mut Host as *mut c_void;
         h

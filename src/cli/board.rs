@@ -416,7 +416,8 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     // The models' programs are known before anything is built.
     let host = |plan: &Plan, cpu: CpuModel| -> Result<Option<Box<Host>>, String> {
         match cpu {
-            CpuModel::Rtl => Ok(None),
+            // The RTL board's host only writes debug text.
+            CpuModel::Rtl => Ok(Some(Host::new(Vec::new(), false))),
             _ => {
                 let mut h = Host::for_plan(plan, lockstep).map_err(|e| e.to_string())?;
                 if let (Some(dir), CpuModel::Iss) = (&a.cpu_trace, cpu) {
@@ -430,7 +431,8 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         }
     };
     host(&plan, cpu)?;
-    let built = build(&plan, &params, cpu, a.quiet || a.json).map_err(|e| e.to_string())?;
+    let debug = a.vcd.is_some();
+    let built = build(&plan, &params, cpu, debug, a.quiet || a.json).map_err(|e| e.to_string())?;
     match built.seconds {
         Some(s) => say(format!("  built in {s:.1} s ({})", built.library.display())),
         None => say(format!("  reused the build in {}", built.library.parent().unwrap_or(&built.library).display())),
@@ -440,7 +442,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     }
 
     let twin = if lockstep {
-        let b = build(&plan, &params, CpuModel::Iss, a.quiet || a.json).map_err(|e| e.to_string())?;
+        let b = build(&plan, &params, CpuModel::Iss, false, a.quiet || a.json).map_err(|e| e.to_string())?;
         match b.seconds {
             Some(s) => say(format!("  built the ISS board in {s:.1} s")),
             None => say("  reused the ISS board's build".into()),
@@ -454,7 +456,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         return Ok(None);
     }
     if a.bench && cpu == CpuModel::Iss {
-        let rtl = build(&plan, &params, CpuModel::Rtl, a.quiet || a.json).map_err(|e| e.to_string())?;
+        let rtl = build(&plan, &params, CpuModel::Rtl, false, a.quiet || a.json).map_err(|e| e.to_string())?;
         let iss = &built.library;
         return bench_iss(&rtl.library, iss, &world, &plan.roms, a.seconds.unwrap_or(0.05), a.json, &|| {
             host(&plan, cpu)
@@ -643,6 +645,9 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     }
     let finished = if stopped.is_some() { Some("break") } else { finished };
     model.main().close_vcd();
+    if let Some(v) = &a.vcd {
+        write_save_file(v, &plan, &sources(&plan), cpu == CpuModel::RtlProbed)?;
+    }
 
     // Outputs.
     if let Some(p) = &a.trace_csv {
@@ -714,6 +719,97 @@ fn at_line_end(s: &Snapshot) -> bool {
         && s.sensors().prox_left()
         && s.sensors().prox_right()
         && s.movement() == botsim::Movement::Stopped
+}
+
+/// The GTKWave save file beside a waveform (`w.vcd` -> `w.gtkw`), with its translate filters:
+/// the board pins, the bot's registers (BotInfo as heading and movement, MotCtl as movement)
+/// and every KCPSM6 (its address as `label+offset` where the program's source is known, the
+/// instruction text, the status, the registers, the port bus).
+fn write_save_file(vcd: &Path, plan: &Plan, sources: &BTreeMap<String, SourceMap>, probed: bool) -> Result<(), String> {
+    use botsim::regs::{MotCtl, Registers};
+    use botsim_core::board::gtkw::{filter_text, Format, SaveFile};
+    let top = "TOP.botsim_board";
+    let side = |suffix: &str| {
+        let name = vcd.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+        vcd.with_file_name(format!("{name}.{suffix}"))
+    };
+    let mut s = SaveFile::new(&std::path::absolute(vcd).unwrap_or_else(|_| vcd.to_path_buf()));
+    let sig = |n: &str, f: Format| (format!("{top}.{n}"), f, None);
+    s.group(
+        "Board pins",
+        vec![
+            sig("clk", Format::Binary),
+            sig("reset_pressed", Format::Binary),
+            sig("btn[4:0]", Format::Binary),
+            sig("sw[15:0]", Format::Hex),
+            sig("led[15:0]", Format::Binary),
+            sig("an[7:0]", Format::Binary),
+            sig("seg[6:0]", Format::Binary),
+            sig("dp", Format::Binary),
+            sig("vga_r[3:0]", Format::Hex),
+            sig("vga_g[3:0]", Format::Hex),
+            sig("vga_b[3:0]", Format::Hex),
+            sig("hsync", Format::Binary),
+            sig("vsync", Format::Binary),
+        ],
+    );
+    let info_file = side("botinfo.txt");
+    let info = filter_text(
+        (0..256u32).map(|v| {
+            let r = Registers { bot_info: v as u8, ..Registers::default() };
+            (v, format!("{}_{}", r.orientation().name(), r.movement().name()))
+        }),
+        2,
+    );
+    write_atomic(&info_file, info.as_bytes())?;
+    let motctl_file = side("motctl.txt");
+    write_atomic(
+        &motctl_file,
+        filter_text((0..256u32).map(|v| (v, MotCtl(v as u8).movement().name().to_string())), 2).as_bytes(),
+    )?;
+    let (fi, fm) = (s.filter(&info_file), s.filter(&motctl_file));
+    s.group(
+        "Bot registers",
+        vec![
+            sig("bot_upd", Format::Binary),
+            sig("bot_locx[7:0]", Format::Decimal),
+            sig("bot_locy[7:0]", Format::Decimal),
+            (format!("{top}.bot_info[7:0]"), Format::Hex, Some(fi)),
+            sig("bot_sensors[7:0]", Format::Binary),
+            sig("bot_lmdist[7:0]", Format::Decimal),
+            sig("bot_rmdist[7:0]", Format::Decimal),
+            (format!("{top}.bot_motctl[7:0]"), Format::Hex, Some(fm)),
+        ],
+    );
+    for site in &plan.cpus {
+        let at = format!("{top}.user.{}", site.path);
+        let debug = if probed { format!("{at}.core") } else { at.clone() };
+        let labels = match sources.get(&site.path) {
+            Some(map) => {
+                let file = side(&format!("{}.labels.txt", site.path));
+                write_atomic(&file, filter_text((0..4096u32).map(|a| (a, map.describe(a as u16))), 3).as_bytes())?;
+                Some(s.filter(&file))
+            }
+            None => None,
+        };
+        let mut v = vec![
+            (format!("{at}.address[11:0]"), Format::Hex, labels),
+            (format!("{debug}.kcpsm6_opcode[1:160]"), Format::Ascii, None),
+            (format!("{debug}.kcpsm6_status[1:128]"), Format::Ascii, None),
+            (format!("{at}.instruction[17:0]"), Format::Hex, None),
+        ];
+        for r in 0..16 {
+            v.push((format!("{debug}.sim_s{r:X}[7:0]"), Format::Hex, None));
+        }
+        for p in ["port_id[7:0]", "out_port[7:0]", "in_port[7:0]"] {
+            v.push((format!("{at}.{p}"), Format::Hex, None));
+        }
+        for p in ["write_strobe", "k_write_strobe", "read_strobe", "interrupt", "interrupt_ack", "sleep", "reset"] {
+            v.push((format!("{at}.{p}"), Format::Binary, None));
+        }
+        s.group(&site.path, v);
+    }
+    write_atomic(&vcd.with_extension("gtkw"), s.text().as_bytes())
 }
 
 /// A `--break bot=...`: a condition on the bot's samples.
@@ -917,7 +1013,7 @@ fn bench_iss(
     let cycles = (seconds * 1e8) as u64;
     let (mut r, mut i, mut ratios) = (Vec::new(), Vec::new(), Vec::new());
     for _ in 0..ROUNDS {
-        let a = board_rate(rtl, world, roms, None, cycles)?;
+        let a = board_rate(rtl, world, roms, Some(Host::new(Vec::new(), false)), cycles)?;
         let b = board_rate(iss, world, roms, host()?, cycles)?;
         r.push(a);
         i.push(b);

@@ -5,6 +5,7 @@
 //! and runs the plan (`botsim::board`).
 
 pub mod display;
+pub mod gtkw;
 pub mod memcore;
 pub mod pins;
 pub mod plan;

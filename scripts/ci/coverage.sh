@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
-# RTL coverage of the testbench: builds the models with Verilator line and toggle coverage (a
-# separate target dir), runs the RTL tests, merges the per-model files and prints line and
+# RTL coverage of the testbench: builds the models with Verilator line and toggle coverage (in
+# the main target dir, so the dependencies built for the tests are reused: only botsim and its
+# models are rebuilt, and again by the next build without coverage), runs the RTL tests, merges the per-model files and prints line and
 # toggle coverage per RTL module. With --check, fails when a module is under its floor
 # (scripts/ci/coverage_floors.txt).
 # Usage: scripts/ci/coverage.sh [--check]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-out=target/coverage/dat
+out=target/coverage-dat
 rm -rf "$out"
 mkdir -p "$out"
-export BOTSIM_COVERAGE=1 CARGO_TARGET_DIR=target/coverage BOTSIM_COVERAGE_DIR=$PWD/$out
+export BOTSIM_COVERAGE=1 BOTSIM_COVERAGE_DIR=$PWD/$out
 cargo test --workspace --release -q --test cpu_lockstep --test cpu_timing --test bot_spec --test scoreboard --test line_follow \
   > "$out/tests.log" 2>&1 || { tail -30 "$out/tests.log"; exit 1; }
 verilator_coverage --write "$out/merged.dat" "$out"/cov-*.dat

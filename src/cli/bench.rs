@@ -32,6 +32,27 @@ fn rtl(cycles: u64) -> Result<f64, String> {
     Ok(rate(cycles, t.elapsed().as_secs_f64()))
 }
 
+/// The bot's RTL under botsim's loop and under Verilator's minimal loop, fresh models in
+/// alternating rounds: (botsim's rate, the minimal loop's, the median of the rounds' cost).
+fn rtl_against_minimal(cycles: u64, rounds: usize) -> Result<(f64, f64, f64), String> {
+    let (mut ours, mut minimal, mut costs) = (Vec::new(), Vec::new(), Vec::new());
+    for _ in 0..rounds {
+        let a = rtl(cycles)?;
+        let mut bot = RtlBot::builder().motors(MotCtl::FORWARD).build().map_err(|e| e.to_string())?;
+        let t = Instant::now();
+        bot.bench_minimal(cycles);
+        let b = rate(cycles, t.elapsed().as_secs_f64());
+        ours.push(a);
+        minimal.push(b);
+        costs.push(b / a - 1.0);
+    }
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        v[v.len() / 2]
+    };
+    Ok((median(&mut ours), median(&mut minimal), median(&mut costs)))
+}
+
 fn rtl_vcd(cycles: u64, dir: &Path) -> Result<f64, String> {
     let path = dir.join("bench.vcd");
     let fw = Firmware { timing: Timing::Fast, ..Firmware::default() };
@@ -82,18 +103,20 @@ pub fn run(args: Args) -> Result<(), String> {
     std::fs::create_dir_all(&dir).map_err(|e| format!("{}: error: {e}", dir.display()))?;
     let scale = if args.quick { 1 } else { 5 };
     let result = (|| {
-        let rtl = rtl(4_000_000 * scale)?;
+        let (rtl, minimal, cost) = rtl_against_minimal(1_000_000 * scale, 7)?;
         let vcd = rtl_vcd(60_000 * scale, &dir)?;
         let iss = iss(20 * scale)?;
         let icarus = icarus(5 * scale as u32);
-        Ok::<_, String>((rtl, vcd, iss, icarus))
+        Ok::<_, String>((rtl, minimal, cost, vcd, iss, icarus))
     })();
     let _ = std::fs::remove_dir_all(&dir);
-    let (rtl, vcd, iss, icarus) = result?;
+    let (rtl, minimal, cost, vcd, iss, icarus) = result?;
     let real_time = 100.0; // the board's 100 MHz
     if args.json {
         let v = serde_json::json!({
             "rtl_mcycles_per_s": rtl,
+            "rtl_minimal_harness_mcycles_per_s": minimal,
+            "rtl_harness_cost": cost,
             "rtl_vcd_mcycles_per_s": vcd,
             "iss_mcycles_per_s": iss,
             "icarus_mcycles_per_s": icarus,
@@ -109,10 +132,15 @@ pub fn run(args: Args) -> Result<(), String> {
         println!("{name:<34} {r:>12.2} {:>14.3} {vs:>12}", r / real_time);
     };
     row("RTL (Verilator, trace off)", rtl);
+    row("RTL, Verilator's minimal loop", minimal);
     row("RTL writing a full VCD", vcd);
     row("ISS backend (fast path)", iss);
     if let Some(i) = icarus {
         row("Icarus Verilog 11 (same RTL)", i);
     }
+    println!(
+        "botsim's RTL loop costs {:+.1} % against the minimal loop (median of 7 side-by-side rounds)",
+        cost * 100.0
+    );
     Ok(())
 }

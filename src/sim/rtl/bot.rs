@@ -232,6 +232,14 @@ impl RtlBot {
         Ok(())
     }
 
+    /// `cycles` cycles of Verilator's minimal loop on this model (clock low, evaluate, clock
+    /// high, evaluate; nothing checked, dumped or recorded): the reference `botsim bench`
+    /// measures [`RtlBot::run`] against, side by side.
+    pub fn bench_minimal(&mut self, cycles: u64) {
+        // SAFETY: live model.
+        unsafe { ffi::bot_sim_bench_minimal(self.sim.as_ptr(), cycles) }
+    }
+
     /// The next cycle to simulate (cycle 0 is the first after configuration).
     pub fn cycle(&self) -> u64 {
         // SAFETY: live model.

@@ -158,6 +158,21 @@ uint64_t bot_sim_run(BotSim* b, uint64_t cycles) {
 
 uint64_t bot_sim_cycle(const BotSim* b) { return b->sim.cycle; }
 
+void bot_sim_bench_minimal(BotSim* b, uint64_t cycles) {
+    b->sim.enter();
+    Vbot* top = b->sim.top;
+    VerilatedContext* ctx = b->sim.ctx;
+    for (uint64_t i = 0; i < cycles; i++) {
+        top->clk = 0;
+        top->eval();
+        ctx->timeInc(HALF_PERIOD_PS);
+        top->clk = 1;
+        top->eval();
+        ctx->timeInc(HALF_PERIOD_PS);
+    }
+    b->sim.cycle += cycles;
+}
+
 size_t bot_sim_take_fatal(BotSim* b, char* buf, size_t len) { return b->sim.take_fatal(buf, len); }
 
 int bot_sim_cpu_in_reset(const BotSim* b, uint16_t* pc) {

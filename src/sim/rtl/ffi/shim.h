@@ -129,6 +129,9 @@ uint64_t bot_sim_run(BotSim* sim, uint64_t cycles);
 int bot_sim_run_recording(BotSim* sim, uint64_t budget, int stop_on_update, uint64_t* cycle, BotRegs* regs,
                           BotPortEvent* events, size_t cap, size_t* count);
 uint64_t bot_sim_cycle(const BotSim* sim);
+/* `cycles` cycles of Verilator's minimal loop (clock low, eval, clock high, eval; nothing
+ * checked, dumped or recorded): the reference `botsim bench` measures bot_sim_run against. */
+void bot_sim_bench_minimal(BotSim* sim, uint64_t cycles);
 /* The message of the fatal runtime error that stopped this model (a failed VCD write, say):
  * at most len - 1 bytes of it, NUL-terminated, into `buf` (nothing when len is 0); returns its
  * whole length, 0 if none. Clears it. */

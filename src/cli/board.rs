@@ -735,24 +735,23 @@ fn write_save_file(vcd: &Path, plan: &Plan, sources: &BTreeMap<String, SourceMap
     };
     let mut s = SaveFile::new(&std::path::absolute(vcd).unwrap_or_else(|_| vcd.to_path_buf()));
     let sig = |n: &str, f: Format| (format!("{top}.{n}"), f, None);
-    s.group(
-        "Board pins",
-        vec![
-            sig("clk", Format::Binary),
-            sig("reset_pressed", Format::Binary),
-            sig("btn[4:0]", Format::Binary),
-            sig("sw[15:0]", Format::Hex),
-            sig("led[15:0]", Format::Binary),
-            sig("an[7:0]", Format::Binary),
-            sig("seg[6:0]", Format::Binary),
-            sig("dp", Format::Binary),
-            sig("vga_r[3:0]", Format::Hex),
-            sig("vga_g[3:0]", Format::Hex),
-            sig("vga_b[3:0]", Format::Hex),
-            sig("hsync", Format::Binary),
-            sig("vsync", Format::Binary),
-        ],
-    );
+    // The wrapper's board pins (wrapper.rs), each in the radix it reads best in.
+    const PINS: [(&str, Format); 13] = [
+        ("clk", Format::Binary),
+        ("reset_pressed", Format::Binary),
+        ("btn[4:0]", Format::Binary),
+        ("sw[15:0]", Format::Hex),
+        ("led[15:0]", Format::Binary),
+        ("an[7:0]", Format::Binary),
+        ("seg[6:0]", Format::Binary),
+        ("dp", Format::Binary),
+        ("vga_r[3:0]", Format::Hex),
+        ("vga_g[3:0]", Format::Hex),
+        ("vga_b[3:0]", Format::Hex),
+        ("hsync", Format::Binary),
+        ("vsync", Format::Binary),
+    ];
+    s.group("Board pins", PINS.iter().map(|(n, f)| sig(n, *f)).collect());
     let info_file = side("botinfo.txt");
     let info = filter_text(
         (0..256u32).map(|v| {

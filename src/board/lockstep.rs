@@ -173,5 +173,4 @@ fn show(e: Option<&Event>) -> String {
         }
         Some(Event::Vga { pins, .. }) => format!("VGA pins {pins:04X}"),
     }
-    .to_string()
 }

@@ -412,7 +412,9 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     if lockstep && a.bench {
         return Err("--bench measures one board: --cpu rtl or iss".into());
     }
-    let (cpu_breaks, bot_breaks) = breakpoints(&a.breaks, &plan, &sources(&plan))?;
+    // Assembled once: the breakpoints, the traces, the stop message and the save file use it.
+    let maps = sources(&plan);
+    let (cpu_breaks, bot_breaks) = breakpoints(&a.breaks, &plan, &maps)?;
     // The models' programs are known before anything is built.
     let host = |plan: &Plan, cpu: CpuModel| -> Result<Option<Box<Host>>, String> {
         match cpu {
@@ -421,7 +423,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
             _ => {
                 let mut h = Host::for_plan(plan, lockstep).map_err(|e| e.to_string())?;
                 if let (Some(dir), CpuModel::Iss) = (&a.cpu_trace, cpu) {
-                    h.trace(TraceRequest { dir: dir.clone(), window: trace_window, sources: sources(plan) });
+                    h.trace(TraceRequest { dir: dir.clone(), window: trace_window, sources: maps.clone() });
                 }
                 if cpu == CpuModel::Iss {
                     h.break_at(cpu_breaks.clone());
@@ -624,7 +626,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     let traces = model.finish_traces()?;
     // A breakpoint in a CPU stops the model like $finish.
     let cpu_stop = model.hit().map(|h| {
-        let (path, at) = (h.cpu.clone(), describe_pc(&sources(&plan), &h.cpu, h.pc));
+        let (path, at) = (h.cpu.clone(), describe_pc(&maps, &h.cpu, h.pc));
         (
             h.time_ps,
             format!(
@@ -646,7 +648,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     let finished = if stopped.is_some() { Some("break") } else { finished };
     model.main().close_vcd();
     if let Some(v) = &a.vcd {
-        write_save_file(v, &plan, &sources(&plan), cpu == CpuModel::RtlProbed)?;
+        write_save_file(v, &plan, &maps, cpu == CpuModel::RtlProbed)?;
     }
 
     // Outputs.

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what botsim needs on a fresh Debian machine (bookworm): Verilator 5.006 to build the
 # RTL model, libclang for bindgen, Icarus Verilog + Yosys for the CI gate, python3 for its
-# coverage report.
+# coverage report, GTKWave and a virtual X server (Xvfb) for the test that opens a board
+# waveform's save file in GTKWave.
 # Safe to run twice: it only installs what is missing.
 set -euo pipefail
 
@@ -14,6 +15,8 @@ command -v g++       >/dev/null 2>&1 || need+=(g++)
 command -v make      >/dev/null 2>&1 || need+=(make)
 command -v bc        >/dev/null 2>&1 || need+=(bc)
 command -v python3   >/dev/null 2>&1 || need+=(python3)
+command -v gtkwave   >/dev/null 2>&1 || need+=(gtkwave)
+command -v xvfb-run  >/dev/null 2>&1 || need+=(xvfb xauth)
 
 if [ ${#need[@]} -gt 0 ]; then
   echo "setup: installing ${need[*]}"

@@ -748,3 +748,78 @@ fn waveforms_show_each_cpus_instruction_as_the_disassembler_writes_it() {
         }
     }
 }
+
+/// GTKWave (under a virtual X display) run on a save file with a Tcl script; what the script
+/// printed. None when GTKWave or xvfb-run is not installed, unless BOTSIM_REQUIRE_TOOLS is
+/// set (CI, where scripts/setup.sh installs them): then that is a failure.
+fn gtkwave_script(save_file: &Path, script: &str) -> Option<String> {
+    let have = |tool: &str| {
+        Command::new("sh").args(["-c", &format!("command -v {tool}")]).output().is_ok_and(|o| o.status.success())
+    };
+    let missing: Vec<&str> = ["gtkwave", "xvfb-run"].into_iter().filter(|t| !have(t)).collect();
+    if !missing.is_empty() {
+        assert!(std::env::var_os("BOTSIM_REQUIRE_TOOLS").is_none(), "{missing:?} not installed: run scripts/setup.sh");
+        eprintln!("skipped: {missing:?} not installed");
+        return None;
+    }
+    let tcl = save_file.with_extension("tcl");
+    std::fs::write(&tcl, format!("{script}\ngtkwave::/File/Quit\n")).unwrap();
+    let o = Command::new("xvfb-run").args(["-a", "gtkwave", "-S"]).arg(&tcl).arg(save_file).output().unwrap();
+    assert!(o.status.success(), "gtkwave: {}", stderr(&o));
+    Some(String::from_utf8_lossy(&o.stdout).into_owned())
+}
+
+#[test]
+fn the_save_file_opens_in_gtkwave_on_the_breakpoint_with_labels_and_decoded_registers() {
+    let dir = tempfile::tempdir().unwrap();
+    let vcd = dir.path().join("w.vcd");
+    let o = example(
+        "examples/nexys4_proj2",
+        &[
+            "--program",
+            "examples/common/linefollow.psm",
+            "--timing",
+            "fast",
+            "--break",
+            "label=isr",
+            "--break-window",
+            "20us",
+            "--vcd",
+            vcd.to_str().unwrap(),
+            "--json",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let stop = s["break"]["time_ps"].as_u64().unwrap();
+    let gtkw = vcd.with_extension("gtkw");
+    let listed = std::fs::read_to_string(&gtkw).unwrap().lines().filter(|l| l.starts_with("TOP.")).count();
+    let cpu = "TOP.botsim_board.user.SYS.APPCPU";
+    let script = [
+        "puts \"signals [llength [gtkwave::getDisplayedSignals]]\"".to_string(),
+        "puts \"view [gtkwave::getWindowStartTime] [gtkwave::getWindowEndTime]\"".to_string(),
+        "puts \"marker [gtkwave::getMarker]\"".to_string(),
+        format!("puts \"address [gtkwave::getTraceValueAtMarkerFromName {{{cpu}.address[11:0]}}]\""),
+        format!("puts \"instruction [gtkwave::getTraceValueAtMarkerFromName {{{cpu}.instruction[17:0]}}]\""),
+        format!("puts \"opcode [gtkwave::getTraceValueAtMarkerFromName {{{cpu}.kcpsm6_opcode[1:160]}}]\""),
+        "puts \"info [gtkwave::getTraceValueAtMarkerFromName {TOP.botsim_board.bot_info[7:0]}]\"".to_string(),
+    ]
+    .join("\n");
+    let Some(out) = gtkwave_script(&gtkw, &script) else { return };
+    let said = |key: &str| {
+        let line = out.lines().find(|l| l.starts_with(&format!("{key} "))).unwrap_or_else(|| panic!("{key} in {out}"));
+        line[key.len() + 1..].trim_end().to_string()
+    };
+    // Every signal of the save file is found in the waveform and shown.
+    assert_eq!(said("signals").parse::<usize>().unwrap(), listed, "{out}");
+    // The window opens on the instructions before the stop, with the marker on the stop.
+    assert_eq!(said("marker").parse::<u64>().unwrap(), stop, "{out}");
+    let view: Vec<u64> = said("view").split(' ').map(|v| v.parse().unwrap()).collect();
+    assert!(view[0] < stop && stop < view[1] && view[1] - view[0] < 1_000_000, "{out}");
+    // The translate filters: the address as its label, BotInfo as heading and movement; the
+    // instruction's text is the disassembler's.
+    assert!(said("address").starts_with("isr"), "{out}");
+    assert!(said("info").contains('_'), "{out}");
+    let word = u32::from_str_radix(&said("instruction"), 16).unwrap();
+    assert_eq!(said("opcode").trim_end(), kcpsm6::disasm::disassemble_word(word), "{out}");
+}

@@ -107,6 +107,8 @@ pub struct BoardModel {
     ptr: *mut Opaque,
     /// The KCPSM6 models of a `--cpu iss` build (freed after the model).
     host: Option<Box<Host>>,
+    /// The waveform's start and, once closed, its end (ps).
+    vcd_span: Option<(u64, Option<u64>)>,
     // Dropped last: the functions above live in it.
     _lib: libloading::Library,
 }
@@ -156,7 +158,7 @@ impl BoardModel {
         if ptr.is_null() {
             return Err(BoardError::at(path, 0, 0, "the built design could not be created"));
         }
-        Ok(BoardModel { api, ptr, host, _lib: lib })
+        Ok(BoardModel { api, ptr, host, vcd_span: None, _lib: lib })
     }
 
     /// The KCPSM6 models (or probes), for a `--cpu iss` or lock-step build.
@@ -239,6 +241,12 @@ impl BoardModel {
         unsafe { (self.api.bench_minimal)(self.ptr, cycles) }
     }
 
+    /// The time span of the waveform written so far (from its opening to its closing or to
+    /// now), if one was opened.
+    pub fn vcd_span(&self) -> Option<(u64, u64)> {
+        self.vcd_span.map(|(a, b)| (a, b.unwrap_or_else(|| self.time_ps())))
+    }
+
     /// Start a waveform of the whole design.
     pub fn open_vcd(&mut self, path: &Path) -> Result<(), BoardError> {
         let c = CString::new(path.as_os_str().as_encoded_bytes())
@@ -247,11 +255,16 @@ impl BoardModel {
         if unsafe { (self.api.open_vcd)(self.ptr, c.as_ptr()) } == 0 {
             return Err(BoardError::at(path, 0, 0, "cannot open the waveform file"));
         }
+        self.vcd_span = Some((self.time_ps(), None));
         Ok(())
     }
 
     /// Stop the waveform (flushes and closes the file).
     pub fn close_vcd(&mut self) {
+        let now = self.time_ps();
+        if let Some((_, end @ None)) = &mut self.vcd_span {
+            *end = Some(now);
+        }
         // SAFETY: ptr is live.
         unsafe { (self.api.close_vcd)(self.ptr) }
     }

@@ -15,6 +15,7 @@ use botsim::kcpsm6::source::SourceMap;
 use botsim::render::{path_picture, PathStyle};
 use botsim::{Snapshot, World};
 use botsim_core::board::display::Display;
+use botsim_core::board::gtkw::View;
 use botsim_core::board::memcore::MemCore;
 use botsim_core::board::plan::{collect, Plan, Request, Rom, Source};
 use botsim_core::board::stimulus::{parse_press, parse_time, Stimulus};
@@ -140,6 +141,13 @@ pub struct Args {
     /// With --break: how much before the stop the waveform and the trace cover [default: 1ms]
     #[arg(long, value_name = "TIME", requires = "breaks")]
     break_window: Option<String>,
+    /// Where a first run stopped (its time and the message), for the second run that writes
+    /// the waveform and the traces to it (not an option).
+    #[arg(skip)]
+    stopped_at: Option<(u64, String)>,
+    /// This run only finds where a breakpoint stops: it says nothing (not an option).
+    #[arg(skip)]
+    finding: bool,
     /// Stop at the first sample that finds the bot at the end of a line (stopped on the line
     /// with a wall straight ahead)
     #[arg(long)]
@@ -234,13 +242,17 @@ pub fn run(a: Args) -> Result<(), String> {
     };
     let mut find = a.clone();
     (find.vcd, find.cpu_trace, find.trace_from, find.trace_to) = (None, None, None, None);
-    let Some(stop) = run_once(find)? else {
+    find.finding = true;
+    let Some((stop, why)) = run_once(find)? else {
         return run_once(a).map(|_| ());
     };
     let mut again = a;
     again.breaks.clear();
-    // Through the edge that stopped the first run (cycles of 100 MHz end on a whole cycle).
-    let end_cycle = stop / 10_000 + 1;
+    again.stopped_at = Some((stop, why));
+    // Through the edge that stopped the first run and two instructions more, so the waveform
+    // shows the stop inside it (cycles of 100 MHz end on a whole cycle).
+    const AFTER_STOP_CYCLES: u64 = 4;
+    let end_cycle = stop / 10_000 + 1 + AFTER_STOP_CYCLES;
     again.seconds = Some(end_cycle as f64 * 1e-8);
     again.samples = None;
     let from = format!("{}c", (stop.saturating_sub(window)) / 10_000);
@@ -250,12 +262,11 @@ pub fn run(a: Args) -> Result<(), String> {
     if again.cpu_trace_from.is_none() && again.cpu_trace.is_some() {
         again.cpu_trace_from = Some(from);
     }
-    again.quiet = true;
     run_once(again).map(|_| ())
 }
 
-/// What a `--break` stopped: the time of the stop.
-type Stopped = Option<u64>;
+/// What a `--break` stopped: the time of the stop and what it says.
+type Stopped = Option<(u64, String)>;
 
 /// One run of the board; the time of the stop when a breakpoint stopped it.
 fn run_once(a: Args) -> Result<Stopped, String> {
@@ -637,9 +648,9 @@ fn run_once(a: Args) -> Result<Stopped, String> {
             ),
         )
     });
-    let stopped = cpu_stop.or(bot_stop);
+    let stopped = cpu_stop.or(bot_stop).or(a.stopped_at.clone());
     if let Some((_, why)) = &stopped {
-        if !a.json {
+        if !a.json && !a.finding {
             eprintln!("{why}");
         }
     } else if let Some(f) = model.main().fatal() {
@@ -647,8 +658,9 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     }
     let finished = if stopped.is_some() { Some("break") } else { finished };
     model.main().close_vcd();
-    if let Some(v) = &a.vcd {
-        write_save_file(v, &plan, &maps, cpu == CpuModel::RtlProbed)?;
+    if let (Some(v), Some((start, end))) = (&a.vcd, model.main().vcd_span()) {
+        let view = save_file_view(start, end, stopped.as_ref().map(|(t, _)| *t));
+        write_save_file(v, &plan, &maps, cpu == CpuModel::RtlProbed, view)?;
     }
 
     // Outputs.
@@ -675,7 +687,9 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     // Moves the world refused (the destination was an obstruction): the samples with the event.
     let blocked: Vec<u64> =
         snapshots.windows(2).filter(|w| w[0].move_refused(&w[1], fw.threshold)).map(|w| w[0].sample).collect();
-    if a.json {
+    if a.finding {
+        // The run that writes the waveform and the traces says it all.
+    } else if a.json {
         let v = serde_json::json!({
             "top": plan.top,
             "simulated_seconds": sim_ps as f64 / 1e12,
@@ -712,7 +726,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
             println!("  wrote {}", t.display());
         }
     }
-    Ok(stopped.map(|(t, _)| t))
+    Ok(stopped)
 }
 
 /// Stopped on the line with a wall straight ahead: the end of a course.
@@ -723,11 +737,33 @@ fn at_line_end(s: &Snapshot) -> bool {
         && s.movement() == botsim::Movement::Stopped
 }
 
+/// What the save file opens on: the whole waveform, or after a breakpoint the last
+/// instructions before the stop (about ten of a 100 MHz KCPSM6, wide enough for their text)
+/// with the marker on the stop.
+fn save_file_view(start_ps: u64, end_ps: u64, stop_ps: Option<u64>) -> View {
+    const BEFORE_STOP_PS: u64 = 200_000;
+    const AFTER_STOP_PS: u64 = 40_000;
+    match stop_ps {
+        Some(t) if (start_ps..=end_ps).contains(&t) => View {
+            start_ps: t.saturating_sub(BEFORE_STOP_PS).max(start_ps),
+            end_ps: (t + AFTER_STOP_PS).min(end_ps),
+            marker_ps: Some(t),
+        },
+        _ => View { start_ps, end_ps: end_ps.max(start_ps + 1), marker_ps: None },
+    }
+}
+
 /// The GTKWave save file beside a waveform (`w.vcd` -> `w.gtkw`), with its translate filters:
 /// the board pins, the bot's registers (BotInfo as heading and movement, MotCtl as movement)
 /// and every KCPSM6 (its address as `label+offset` where the program's source is known, the
 /// instruction text, the status, the registers, the port bus).
-fn write_save_file(vcd: &Path, plan: &Plan, sources: &BTreeMap<String, SourceMap>, probed: bool) -> Result<(), String> {
+fn write_save_file(
+    vcd: &Path,
+    plan: &Plan,
+    sources: &BTreeMap<String, SourceMap>,
+    probed: bool,
+    view: View,
+) -> Result<(), String> {
     use botsim::regs::{MotCtl, Registers};
     use botsim_core::board::gtkw::{filter_text, Format, SaveFile};
     let top = "TOP.botsim_board";
@@ -736,6 +772,7 @@ fn write_save_file(vcd: &Path, plan: &Plan, sources: &BTreeMap<String, SourceMap
         vcd.with_file_name(format!("{name}.{suffix}"))
     };
     let mut s = SaveFile::new(&std::path::absolute(vcd).unwrap_or_else(|_| vcd.to_path_buf()));
+    s.view(view);
     let sig = |n: &str, f: Format| (format!("{top}.{n}"), f, None);
     // The wrapper's board pins (wrapper.rs), each in the radix it reads best in.
     const PINS: [(&str, Format); 13] = [

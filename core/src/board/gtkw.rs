@@ -4,12 +4,15 @@
 //! as `label+offset`.
 //!
 //! ```
-//! use botsim_core::board::gtkw::{Format, SaveFile};
+//! use botsim_core::board::gtkw::{Format, SaveFile, View};
 //! let mut s = SaveFile::new("w.vcd".as_ref());
+//! // 1,024 ps per 200-pixel frame, 1,000 pixels: GTKWave's zoom -10.
+//! s.view(View { start_ps: 0, end_ps: 5_120, marker_ps: Some(500) });
 //! let f = s.filter("w.labels.txt".as_ref());
 //! s.group("Board pins", vec![("TOP.botsim_board.led[15:0]".into(), Format::Binary, None)]);
 //! s.group("SYS.APPCPU", vec![("TOP.botsim_board.user.SYS.APPCPU.address[11:0]".into(), Format::Hex, Some(f))]);
 //! let text = s.text();
+//! assert!(text.contains("[timestart] 0\n*-10.000000 500 -1 -1"));
 //! assert!(text.contains("@800200\n-Board pins\n@28\nTOP.botsim_board.led[15:0]\n@1000200\n-Board pins\n"));
 //! assert!(text.contains("^1 w.labels.txt\n@2022\nTOP.botsim_board.user.SYS.APPCPU.address[11:0]\n"));
 //! ```
@@ -49,11 +52,43 @@ pub struct SaveFile {
     dump: PathBuf,
     filters: Vec<PathBuf>,
     groups: Vec<(String, Vec<Signal>)>,
+    view: Option<View>,
+}
+
+/// What the waveform window shows when it opens: `start_ps` to `end_ps` across the wave
+/// pane, the primary marker at `marker_ps`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct View {
+    pub start_ps: u64,
+    pub end_ps: u64,
+    pub marker_ps: Option<u64>,
+}
+
+/// The window's size in the save file, and a width a little more than its wave pane's (the
+/// window less the hierarchy and signal panes: about 940 pixels): the zoom puts the view's
+/// span across this width, so the pane shows no time past the view's end (GTKWave goes back
+/// to the start of the dump when the pane would reach past the dump's end).
+const WINDOW: (u32, u32) = (1600, 1000);
+const WAVE_PANE_PX: f64 = 1000.0;
+
+impl View {
+    /// GTKWave's zoom: a frame of 200 pixels is 2^-zoom time units (picoseconds in botsim's
+    /// waveforms; GTKWave's `calczoom`).
+    fn zoom(&self) -> f64 {
+        const PIXELS_PER_FRAME: f64 = 200.0;
+        let span = self.end_ps.saturating_sub(self.start_ps).max(1) as f64;
+        -(span / WAVE_PANE_PX * PIXELS_PER_FRAME).log2()
+    }
 }
 
 impl SaveFile {
     pub fn new(dump: &Path) -> SaveFile {
-        SaveFile { dump: dump.to_path_buf(), filters: Vec::new(), groups: Vec::new() }
+        SaveFile { dump: dump.to_path_buf(), filters: Vec::new(), groups: Vec::new(), view: None }
+    }
+
+    /// Open on `view` (without one GTKWave starts at time 0, a picosecond per pixel).
+    pub fn view(&mut self, view: View) {
+        self.view = Some(view);
     }
 
     /// A translate filter file (lines `VALUE TEXT`, the value in the signal's radix); its index.
@@ -68,7 +103,13 @@ impl SaveFile {
 
     /// The save file's text.
     pub fn text(&self) -> String {
-        let mut s = format!("[*] written by botsim board\n[dumpfile] \"{}\"\n[timestart] 0\n", self.dump.display());
+        let mut s = format!("[*] written by botsim board\n[dumpfile] \"{}\"\n", self.dump.display());
+        s.push_str(&format!("[size] {} {}\n[pos] -1 -1\n", WINDOW.0, WINDOW.1));
+        if let Some(v) = &self.view {
+            // The zoom, the primary marker (-1: none), then the 26 named markers, unset.
+            let marker = v.marker_ps.map_or("-1".to_string(), |m| m.to_string());
+            s.push_str(&format!("[timestart] {}\n*{:.6} {marker}{}\n", v.start_ps, v.zoom(), " -1".repeat(26)));
+        }
         s.push_str("[sst_width] 260\n[signals_width] 360\n[sst_expanded] 1\n");
         for (name, signals) in &self.groups {
             s.push_str(&format!("@800200\n-{name}\n"));

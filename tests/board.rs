@@ -597,25 +597,43 @@ fn the_cpu_trace_names_the_source_lines_of_the_assemblers_listing() {
     for (cpu, program, name) in
         [("SYS.APPCPU", &team, "linefollow.psm"), ("SYS.ROJOBOT.BOTSIMCPU", &bot, "bot_pgm.psm")]
     {
-        let lines = trace_lines(&t.join(format!("{cpu}.trace.txt")));
-        assert!(lines.len() > 1000, "{cpu}: {} lines", lines.len());
-        let mut pcs = std::collections::BTreeSet::new();
-        for (pc, source, instruction) in &lines {
-            let listed = program.listing.iter().find(|l| l.address == Some(*pc) && l.word.is_some()).unwrap();
-            assert_eq!(source, &format!("{name}:{}", listed.loc.line), "{cpu} at {pc:03X}");
-            pcs.insert(*pc);
-            if instruction.starts_with("(interrupt") {
-                continue; // an interrupt entry: the instruction at pc was cancelled
-            }
-            // The instruction text assembles to the word at that address.
-            let word = kcpsm6::asm::assemble_str(&format!("ADDRESS {pc:03X}\n{instruction}\n")).unwrap().image.words
-                [*pc as usize];
-            assert_eq!(word, program.image.words[*pc as usize], "{cpu} at {pc:03X}: {instruction}");
-        }
-        assert!(pcs.len() > 20, "{cpu}: only {} addresses traced", pcs.len());
-        let profile = std::fs::read_to_string(t.join(format!("{cpu}.profile.txt"))).unwrap();
-        assert!(profile.lines().any(|l| l.starts_with("label")), "{profile}");
+        check_trace_against_listing(&t, cpu, program, name, 1000);
     }
+
+    // Without --program the team's ROM runs its INIT strings, and the .psm beside the ROM's
+    // .v (examples/common/proj2demo.psm), which assembles to them, is its source.
+    let t = dir.path().join("own");
+    let o = example(
+        "examples/nexys4_proj2",
+        &["--timing", "fast", "--seconds", "0.0012", "--cpu-trace", t.to_str().unwrap(), "-q"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let own = kcpsm6::asm::assemble_file(&root().join("examples/common/proj2demo.psm"), &Default::default()).unwrap();
+    check_trace_against_listing(&t, "SYS.APPCPU", &own, "proj2demo.psm", 100);
+}
+
+/// Every line of `cpu`'s trace in `dir` names the source line the assembler's listing of
+/// `program` (from the file `name`) gives for its address, and its instruction text
+/// assembles to the word there.
+fn check_trace_against_listing(dir: &Path, cpu: &str, program: &kcpsm6::asm::Program, name: &str, at_least: usize) {
+    let lines = trace_lines(&dir.join(format!("{cpu}.trace.txt")));
+    assert!(lines.len() > at_least, "{cpu}: {} lines", lines.len());
+    let mut pcs = std::collections::BTreeSet::new();
+    for (pc, source, instruction) in &lines {
+        let listed = program.listing.iter().find(|l| l.address == Some(*pc) && l.word.is_some()).unwrap();
+        assert_eq!(source, &format!("{name}:{}", listed.loc.line), "{cpu} at {pc:03X}");
+        pcs.insert(*pc);
+        if instruction.starts_with("(interrupt") {
+            continue; // an interrupt entry: the instruction at pc was cancelled
+        }
+        // The instruction text assembles to the word at that address.
+        let word =
+            kcpsm6::asm::assemble_str(&format!("ADDRESS {pc:03X}\n{instruction}\n")).unwrap().image.words[*pc as usize];
+        assert_eq!(word, program.image.words[*pc as usize], "{cpu} at {pc:03X}: {instruction}");
+    }
+    assert!(pcs.len() > 10, "{cpu}: only {} addresses traced", pcs.len());
+    let profile = std::fs::read_to_string(dir.join(format!("{cpu}.profile.txt"))).unwrap();
+    assert!(profile.lines().any(|l| l.starts_with("label")), "{profile}");
 }
 
 #[test]

@@ -395,14 +395,14 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         CpuArg::Iss => CpuModel::Iss,
         CpuArg::Lockstep => CpuModel::RtlProbed,
     };
-    // The source of each CPU's program: the .psm given with --program, botsim's firmware;
-    // a program from INIT strings has none (the trace shows its disassembly).
+    // The source of each CPU's program: the .psm given with --program or found beside its
+    // ROM (the plan knows), botsim's firmware; otherwise none (the trace shows disassembly).
     let sources = |plan: &Plan| -> BTreeMap<String, SourceMap> {
         let mut out = BTreeMap::new();
         for site in &plan.cpus {
             let Ok(rom) = &site.rom else { continue };
             let Some(r) = plan.roms.iter().find(|r| &r.module == rom) else { continue };
-            let map = if let Some(p) = a.program.iter().find(|p| p.display().to_string() == r.origin) {
+            let map = if let Some(p) = &r.source {
                 match botsim::kcpsm6::asm::assemble_file(p, &Default::default()) {
                     Ok(prog) => SourceMap::of(&prog),
                     Err(_) => continue,

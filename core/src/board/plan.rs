@@ -181,6 +181,10 @@ pub struct Rom {
     pub module: String,
     pub image: Image,
     pub origin: String,
+    /// The assembly source of the program, when known: the `.psm` named with `--program`, or
+    /// the one beside the ROM's `.v` (`<module>.psm`, as the KCPSM6 assembler writes them)
+    /// when it assembles to the ROM's INIT strings. Traces and breakpoints show its lines.
+    pub source: Option<PathBuf>,
 }
 
 /// The instance name of the KCPSM6 inside botsim's `bot` (rtl/bot.v), and of its ROM.
@@ -451,7 +455,8 @@ impl Plan {
             let own_text = &src.text[m.span.clone()];
             let padded = format!("{}{own_text}", "\n".repeat(m.line.saturating_sub(1) as usize));
             let from_init = Image::parse_verilog(&src.path, &padded);
-            let (image, origin) = match (named, from_init) {
+            let psm = |p: &Path| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("psm")).then(|| p.to_path_buf());
+            let (image, origin, source) = match (named, from_init) {
                 (Some(k), Ok(init)) => {
                     programs[k].2 = true;
                     if let Some(a) = first_difference(&programs[k].1, &init) {
@@ -462,13 +467,16 @@ impl Plan {
                             programs[k].0.display()
                         ));
                     }
-                    (programs[k].1.clone(), programs[k].0.display().to_string())
+                    (programs[k].1.clone(), programs[k].0.display().to_string(), psm(&programs[k].0))
                 }
                 (Some(k), Err(_)) => {
                     programs[k].2 = true;
-                    (programs[k].1.clone(), programs[k].0.display().to_string())
+                    (programs[k].1.clone(), programs[k].0.display().to_string(), psm(&programs[k].0))
                 }
-                (None, Ok(init)) => (init, format!("its own contents ({at})")),
+                (None, Ok(init)) => {
+                    let source = source_beside(&src.path, &m.name, &init, &mut warnings);
+                    (init, format!("its own contents ({at})"), source)
+                }
                 (None, Err(e)) => {
                     return Err(BoardError::plain(format!(
                         "{at}: the program ROM `{}` holds no program ({}); name its .psm with --program",
@@ -481,7 +489,7 @@ impl Plan {
                 from: at,
                 with: format!("a behavioural ROM holding the program from {origin}"),
             });
-            roms.push(Rom { module: m.name.clone(), image, origin });
+            roms.push(Rom { module: m.name.clone(), image, origin, source });
         }
         if !roms.iter().any(|r| r.module == "bot_pgm") {
             let why = if req.force_own_firmware {
@@ -490,7 +498,12 @@ impl Plan {
                 "botsim's firmware (the sources have no bot_pgm)"
             };
             replaced.push(Replacement { module: "bot_pgm".into(), from: String::new(), with: why.into() });
-            roms.push(Rom { module: "bot_pgm".into(), image: req.bot_firmware.clone(), origin: why.into() });
+            roms.push(Rom {
+                module: "bot_pgm".into(),
+                image: req.bot_firmware.clone(),
+                origin: why.into(),
+                source: None,
+            });
         }
         if let Some((p, _, _)) = programs.iter().find(|(_, _, used)| !used) {
             return Err(BoardError::plain(format!(
@@ -608,6 +621,32 @@ fn connected_mask(inst: &Instance, outs: &[&str]) -> u8 {
     mask
 }
 
+/// The `.psm` a ROM's INIT strings were assembled from: `<module>.psm` beside the ROM's file,
+/// if it assembles to the same words (otherwise a warning says why its lines are not shown).
+fn source_beside(rom_file: &Path, module: &str, init: &Image, warnings: &mut Vec<String>) -> Option<PathBuf> {
+    let psm = rom_file.with_file_name(format!("{module}.psm"));
+    if !psm.is_file() {
+        return None;
+    }
+    match kcpsm6::asm::assemble_file(&psm, &Default::default()) {
+        Ok(p) => match first_difference(&p.image, init) {
+            None => Some(psm),
+            Some(a) => {
+                warnings.push(format!(
+                    "{} differs from the INIT strings of `{module}` ({}) from address {a:03X}: traces show the ROM's disassembly (assemble it again, or name it with --program)",
+                    psm.display(),
+                    rom_file.display()
+                ));
+                None
+            }
+        },
+        Err(e) => {
+            warnings.push(format!("{}: not used for the trace of `{module}`: {e}", psm.display()));
+            None
+        }
+    }
+}
+
 fn first_difference(a: &Image, b: &Image) -> Option<usize> {
     a.words.iter().zip(b.words.iter()).position(|(x, y)| x != y)
 }
@@ -662,6 +701,43 @@ mod tests {
             src("top.v", "module t(input clk);\n  bot b(.clk(clk));\n  debounce db (.clk(clk), .q());\nendmodule\n");
         let p = Plan::new(&[top], vec![], &Request { stubs: vec!["debounce".into()], ..request() }).unwrap();
         assert_eq!(p.stubs, [("debounce".to_string(), vec!["clk".to_string(), "q".to_string()])]);
+    }
+
+    #[test]
+    fn a_roms_source_is_the_psm_beside_it_when_it_assembles_to_its_init_strings() {
+        let dir = tempfile::tempdir().unwrap();
+        let psm = dir.path().join("prog.psm");
+        let plan_with = |text: &str| {
+            std::fs::write(&psm, text).unwrap();
+            let p = kcpsm6::asm::assemble_file(&psm, &Default::default()).unwrap();
+            // The ROM as the assembler writes it, from the first version of the program.
+            let rom_file = dir.path().join("prog.v");
+            if !rom_file.exists() {
+                let v = kcpsm6::output::verilog_rom(&p.image, "prog", "prog.psm", kcpsm6::asm::RomSize::K1, None);
+                std::fs::write(&rom_file, v).unwrap();
+            }
+            let rom_text = std::fs::read_to_string(&rom_file).unwrap();
+            let top = src(
+                "top.v",
+                "module t(input clk);\n wire [11:0] a; wire [17:0] i; wire e;\n\
+                 kcpsm6 cpu (.address(a), .instruction(i), .bram_enable(e), .clk(clk));\n\
+                 prog rom (.address(a), .instruction(i), .enable(e), .clk(clk));\n bot b(.clk(clk));\nendmodule\n",
+            );
+            let rom = Source { path: rom_file, text: rom_text.clone(), modules: scan::scan(&rom_text) };
+            Plan::new(&[top, rom], vec![], &request()).unwrap()
+        };
+        let p = plan_with("start: LOAD s0, 01\n       JUMP start\n");
+        let rom = p.roms.iter().find(|r| r.module == "prog").unwrap();
+        assert_eq!(rom.source.as_deref(), Some(psm.as_path()));
+        assert!(p.warnings.is_empty(), "{:?}", p.warnings);
+        // Edited since it was assembled: not the ROM's source, and a warning says so.
+        let p = plan_with("start: LOAD s0, 02\n       JUMP start\n");
+        assert_eq!(p.roms.iter().find(|r| r.module == "prog").unwrap().source, None);
+        assert!(
+            p.warnings.iter().any(|w| w.contains("prog.psm differs from the INIT strings of `prog`")),
+            "{:?}",
+            p.warnings
+        );
     }
 
     #[test]

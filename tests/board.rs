@@ -841,3 +841,66 @@ fn the_save_file_opens_in_gtkwave_on_the_breakpoint_with_labels_and_decoded_regi
     let word = u32::from_str_radix(&said("instruction"), 16).unwrap();
     assert_eq!(said("opcode").trim_end(), kcpsm6::disasm::disassemble_word(word), "{out}");
 }
+
+#[test]
+fn a_bot_condition_writes_the_firmwares_answer_to_that_sample() {
+    let dir = tempfile::tempdir().unwrap();
+    let (vcd, t, csv) = (dir.path().join("w.vcd"), dir.path().join("t"), dir.path().join("t.csv"));
+    let o = example(
+        "examples/nexys4_proj2",
+        &[
+            "--program",
+            "examples/common/linefollow.psm",
+            "--timing",
+            "fast",
+            "--compat",
+            "botsim20",
+            "--samples",
+            "400",
+            "--break",
+            "bot=off-line",
+            "--break-window",
+            "20us",
+            "--vcd",
+            vcd.to_str().unwrap(),
+            "--cpu-trace",
+            t.to_str().unwrap(),
+            "--trace-csv",
+            csv.to_str().unwrap(),
+            "--json",
+        ],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let stop = s["break"]["time_ps"].as_u64().unwrap();
+    // The other outputs end at the stop: the sample that stopped it is the last row, with
+    // no line sensor on the line.
+    let what = s["break"]["what"].as_str().unwrap();
+    let sample: u64 = what.split("sample ").nth(1).and_then(|r| r.split(' ').next()).unwrap().parse().unwrap();
+    let rows = rows(&csv);
+    assert_eq!(rows.len() as u64, s["samples"].as_u64().unwrap(), "{s}");
+    assert_eq!(rows.last().unwrap()[0], sample, "{what}");
+    assert_eq!(rows.last().unwrap()[5] & 7, 7, "{rows:?}");
+    // The team CPU's trace goes on past it: the interrupt of that sample and the firmware
+    // reading the registers it brought.
+    let trace = std::fs::read_to_string(t.join("SYS.APPCPU.trace.txt")).unwrap();
+    let after: Vec<&str> = trace
+        .lines()
+        .skip(1)
+        .filter(|l| l.split_whitespace().nth(1).is_some_and(|ms| ms.parse::<f64>().unwrap() * 1e9 > stop as f64))
+        .collect();
+    let isr =
+        after.iter().position(|l| l.split_whitespace().nth(3) == Some("isr")).expect("the interrupt after the sample");
+    assert!(after[isr..].iter().any(|l| l.contains("IN 0D=07")), "the sensors read after the interrupt");
+    // The waveform opens on the sample, the view running on from it.
+    let Some(out) = gtkwave_script(
+        &vcd.with_extension("gtkw"),
+        "puts \"view [gtkwave::getWindowStartTime] [gtkwave::getWindowEndTime] [gtkwave::getMarker]\"",
+    ) else {
+        return;
+    };
+    let line = out.lines().find(|l| l.starts_with("view ")).unwrap();
+    let v: Vec<u64> = line[5..].split(' ').map(|x| x.trim().parse().unwrap()).collect();
+    assert_eq!(v[2], stop, "{out}");
+    assert!(v[0] < stop && stop - v[0] <= 40_000 && v[1] > stop + 100_000, "{out}");
+}

@@ -35,6 +35,13 @@ pub enum Event {
     Vga { time_ps: u64, pins: u16 },
 }
 
+impl RawEvent {
+    /// When the board showed it.
+    pub fn time_ps(&self) -> u64 {
+        self.time_ps
+    }
+}
+
 impl Event {
     /// Decode a record (the packing is harness.cpp's `record` calls).
     pub fn of(e: &RawEvent) -> Option<Event> {

@@ -141,10 +141,10 @@ pub struct Args {
     /// With --break: how much before the stop the waveform and the trace cover [default: 1ms]
     #[arg(long, value_name = "TIME", requires = "breaks")]
     break_window: Option<String>,
-    /// Where a first run stopped (its time and the message), for the second run that writes
-    /// the waveform and the traces to it (not an option).
+    /// Where a first run stopped, for the second run that writes the waveform and the traces
+    /// to it (not an option).
     #[arg(skip)]
-    stopped_at: Option<(u64, String)>,
+    stopped_at: Option<BreakStop>,
     /// This run only finds where a breakpoint stops: it says nothing (not an option).
     #[arg(skip)]
     finding: bool,
@@ -243,16 +243,19 @@ pub fn run(a: Args) -> Result<(), String> {
     let mut find = a.clone();
     (find.vcd, find.cpu_trace, find.trace_from, find.trace_to) = (None, None, None, None);
     find.finding = true;
-    let Some((stop, why)) = run_once(find)? else {
+    let Some(found) = run_once(find)? else {
         return run_once(a).map(|_| ());
     };
+    let stop = found.time_ps;
+    // On past the stop: through the edge that stopped a CPU and two instructions more, so the
+    // waveform shows the stop inside it; after a bot condition, long enough for the firmware's
+    // answer to that sample (its interrupt, its decision, its motor command). The outputs
+    // other than the waveform and the CPU traces still end at the stop.
+    let after = if found.bot { BOT_BREAK_AFTER_PS } else { CPU_BREAK_AFTER_PS };
     let mut again = a;
     again.breaks.clear();
-    again.stopped_at = Some((stop, why));
-    // Through the edge that stopped the first run and two instructions more, so the waveform
-    // shows the stop inside it (cycles of 100 MHz end on a whole cycle).
-    const AFTER_STOP_CYCLES: u64 = 4;
-    let end_cycle = stop / 10_000 + 1 + AFTER_STOP_CYCLES;
+    again.stopped_at = Some(found);
+    let end_cycle = (stop + after) / 10_000 + 1;
     again.seconds = Some(end_cycle as f64 * 1e-8);
     again.samples = None;
     let from = format!("{}c", (stop.saturating_sub(window)) / 10_000);
@@ -265,8 +268,22 @@ pub fn run(a: Args) -> Result<(), String> {
     run_once(again).map(|_| ())
 }
 
-/// What a `--break` stopped: the time of the stop and what it says.
-type Stopped = Option<(u64, String)>;
+/// Where a `--break` stopped a run.
+#[derive(Clone, Debug)]
+struct BreakStop {
+    time_ps: u64,
+    /// What it says ("stopped by --break ...").
+    message: String,
+    /// A bot condition (at a sample), not a CPU's breakpoint.
+    bot: bool,
+}
+
+/// What a `--break` stopped.
+type Stopped = Option<BreakStop>;
+
+/// How far a waveform and CPU trace written for a breakpoint go on past the stop.
+const CPU_BREAK_AFTER_PS: u64 = 40_000;
+const BOT_BREAK_AFTER_PS: u64 = 100_000_000;
 
 /// One run of the board; the time of the stop when a breakpoint stopped it.
 fn run_once(a: Args) -> Result<Stopped, String> {
@@ -527,7 +544,9 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     let mut buf = vec![RawEvent::default(); 4096];
     let mut last_led = 0u16;
     let mut at_end = false;
-    let mut bot_stop: Option<(u64, String)> = None;
+    let mut bot_stop: Option<BreakStop> = None;
+    // A run repeated to a stop writes its other outputs up to the stop only.
+    let past_stop = |t: u64| a.stopped_at.as_ref().is_some_and(|s| t > s.time_ps);
     let finished = loop {
         if crate::cli::interrupted() {
             break None;
@@ -545,7 +564,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
             limit = limit.min(snapshots.len() as u64 + 1);
         }
         let (stop, n) = model.run(until, limit, &mut buf)?;
-        for e in buf[..n].iter().filter_map(Event::of) {
+        for e in buf[..n].iter().filter(|r| !past_stop(r.time_ps())).filter_map(Event::of) {
             match e {
                 Event::Display { time_ps, an, seg, dp } => {
                     let before = display.lines().len();
@@ -564,11 +583,11 @@ fn run_once(a: Args) -> Result<Stopped, String> {
                     if bot_stop.is_none() {
                         let before = snapshots.last();
                         if let Some(b) = bot_breaks.iter().find(|b| b.hit(before, &snapshot, fw.threshold)) {
-                            bot_stop = Some((time_ps, format!(
+                            bot_stop = Some(BreakStop { time_ps, bot: true, message: format!(
                                 "stopped by --break {}: sample {} at {:.6} ms, the bot at ({}, {}) facing {}, {}, sensors {:02X}",
                                 b.text, snapshot.sample, time_ps as f64 / 1e9, snapshot.regs.loc_x, snapshot.regs.loc_y,
                                 snapshot.orientation().name(), snapshot.movement().name(), snapshot.regs.sensors
-                            )));
+                            )});
                         }
                     }
                     snapshots.push(snapshot);
@@ -638,20 +657,21 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     // A breakpoint in a CPU stops the model like $finish.
     let cpu_stop = model.hit().map(|h| {
         let (path, at) = (h.cpu.clone(), describe_pc(&maps, &h.cpu, h.pc));
-        (
-            h.time_ps,
-            format!(
+        BreakStop {
+            time_ps: h.time_ps,
+            bot: false,
+            message: format!(
                 "stopped by --break {}: {path} at {at} in its cycle {}, at {:.6} ms",
                 h.what,
                 h.cycle,
                 h.time_ps as f64 / 1e9
             ),
-        )
+        }
     });
     let stopped = cpu_stop.or(bot_stop).or(a.stopped_at.clone());
-    if let Some((_, why)) = &stopped {
+    if let Some(s) = &stopped {
         if !a.json && !a.finding {
-            eprintln!("{why}");
+            eprintln!("{}", s.message);
         }
     } else if let Some(f) = model.main().fatal() {
         return Err(format!("the design stopped: {f}"));
@@ -659,7 +679,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     let finished = if stopped.is_some() { Some("break") } else { finished };
     model.main().close_vcd();
     if let (Some(v), Some((start, end))) = (&a.vcd, model.main().vcd_span()) {
-        let view = save_file_view(start, end, stopped.as_ref().map(|(t, _)| *t));
+        let view = save_file_view(start, end, stopped.as_ref());
         write_save_file(v, &plan, &maps, cpu == CpuModel::RtlProbed, view)?;
     }
 
@@ -712,7 +732,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
             "wall_seconds": wall,
             "build_seconds": built.seconds,
             "cpu_traces": traces,
-            "break": stopped.as_ref().map(|(t, why)| serde_json::json!({"time_ps": t, "what": why})),
+            "break": stopped.as_ref().map(|s| serde_json::json!({"time_ps": s.time_ps, "what": s.message})),
         });
         println!("{v}");
     } else if !a.quiet {
@@ -737,18 +757,20 @@ fn at_line_end(s: &Snapshot) -> bool {
         && s.movement() == botsim::Movement::Stopped
 }
 
-/// What the save file opens on: the whole waveform, or after a breakpoint the last
-/// instructions before the stop (about ten of a 100 MHz KCPSM6, wide enough for their text)
-/// with the marker on the stop.
-fn save_file_view(start_ps: u64, end_ps: u64, stop_ps: Option<u64>) -> View {
-    const BEFORE_STOP_PS: u64 = 200_000;
-    const AFTER_STOP_PS: u64 = 40_000;
-    match stop_ps {
-        Some(t) if (start_ps..=end_ps).contains(&t) => View {
-            start_ps: t.saturating_sub(BEFORE_STOP_PS).max(start_ps),
-            end_ps: (t + AFTER_STOP_PS).min(end_ps),
-            marker_ps: Some(t),
-        },
+/// What the save file opens on: the whole waveform, or after a breakpoint about twelve
+/// instructions of a 100 MHz KCPSM6 (wide enough for their text) with the marker on the
+/// stop: those before a CPU's stop, those after a bot condition's sample (the firmware's
+/// answer to it begins there).
+fn save_file_view(start_ps: u64, end_ps: u64, stop: Option<&BreakStop>) -> View {
+    const SPAN_PS: u64 = 240_000;
+    const MARGIN_PS: u64 = 40_000;
+    match stop {
+        Some(s) if (start_ps..=end_ps).contains(&s.time_ps) => {
+            let t = s.time_ps;
+            let from = if s.bot { t.saturating_sub(MARGIN_PS) } else { (t + MARGIN_PS).saturating_sub(SPAN_PS) };
+            let from = from.max(start_ps);
+            View { start_ps: from, end_ps: (from + SPAN_PS).min(end_ps), marker_ps: Some(t) }
+        }
         _ => View { start_ps, end_ps: end_ps.max(start_ps + 1), marker_ps: None },
     }
 }

@@ -238,7 +238,7 @@ fn rows(path: &Path) -> Vec<Vec<u64>> {
 /// board; `botsim run --driver line-follow` is the reference. The board runs with `cpu`:
 /// `lockstep` runs the all-RTL board and the board with both KCPSM6s on the ISS, compared
 /// pin for pin and port for port in every cycle.
-fn follow_through_the_board(map: Option<&Path>, cpu: &str) {
+fn follow_through_the_board(map: Option<&Path>, cpu: &str, bot: &str) {
     let dir = tempfile::tempdir().unwrap();
     let (reference, through_board) = (dir.path().join("run.csv"), dir.path().join("board.csv"));
     let mut run_args = vec!["run", "--timing", "fast", "--compat", "botsim20", "--driver", "line-follow", "--json"];
@@ -268,6 +268,8 @@ fn follow_through_the_board(map: Option<&Path>, cpu: &str) {
         through_board.to_str().unwrap(),
         "--cpu",
         cpu,
+        "--bot",
+        bot,
         "--json",
     ];
     if let Some(m) = &map_arg {
@@ -295,15 +297,16 @@ fn follow_through_the_board(map: Option<&Path>, cpu: &str) {
 
 #[test]
 fn the_team_firmware_follows_the_line_of_the_builtin_course_through_the_board() {
-    follow_through_the_board(None, "lockstep");
+    follow_through_the_board(None, "lockstep", "rtl");
 }
 
 #[test]
 fn the_team_firmware_follows_the_line_of_the_course_maps_through_the_board() {
     for name in ["world_map_part1", "world_map_lr", "world_map_loop"] {
         let Some(map) = common::reference_map(&format!("{name}.txt")) else { return };
-        // part1 in lock-step too; the others on the ISS board (proven equal above).
-        follow_through_the_board(Some(&map), if name == "world_map_part1" { "lockstep" } else { "iss" });
+        // part1 in lock-step too, with the bot's model on the ISS board; the others on the
+        // ISS board with the bot's model (both proven equal to the RTL).
+        follow_through_the_board(Some(&map), if name == "world_map_part1" { "lockstep" } else { "iss" }, "model");
     }
 }
 
@@ -465,7 +468,15 @@ fn random_stimulus(seed: u64, ms: u64) -> String {
 #[test]
 fn rtl_and_iss_boards_agree_pin_for_pin_under_random_buttons_switches_and_resets() {
     let dir = tempfile::tempdir().unwrap();
-    for (design, seed) in [("examples/nexys4_proj2", 1), ("examples/nexys4_vga", 2), ("examples/nexys4_proj2", 3)] {
+    // With --bot model the ISS board's bot is botsim's model (every change of its outputs is
+    // compared too); the VGA design reads the map through the video port.
+    for (design, seed, bot) in [
+        ("examples/nexys4_proj2", 1, "rtl"),
+        ("examples/nexys4_vga", 2, "rtl"),
+        ("examples/nexys4_proj2", 3, "rtl"),
+        ("examples/nexys4_proj2", 4, "model"),
+        ("examples/nexys4_vga", 5, "model"),
+    ] {
         let stim = dir.path().join(format!("stim{seed}.txt"));
         let text = random_stimulus(seed, 12);
         assert!(text.contains("btnCpuReset") && text.contains("switches"), "seed {seed}: {text}");
@@ -481,10 +492,12 @@ fn rtl_and_iss_boards_agree_pin_for_pin_under_random_buttons_switches_and_resets
                 stim.to_str().unwrap(),
                 "--cpu",
                 "lockstep",
+                "--bot",
+                bot,
                 "--json",
             ],
         );
-        assert!(o.status.success(), "{design}, seed {seed}: {}", stderr(&o));
+        assert!(o.status.success(), "{design}, seed {seed}, --bot {bot}: {}", stderr(&o));
         let summary: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
         assert!(summary["samples"].as_u64().unwrap() > 100, "{summary}");
     }

@@ -4,13 +4,15 @@
 
 typedef struct Board Board;
 
-enum { BOARD_EVENT_DISPLAY = 1, BOARD_EVENT_LEDS = 2, BOARD_EVENT_SAMPLE = 3, BOARD_EVENT_VGA = 4 };
+enum { BOARD_EVENT_DISPLAY = 1, BOARD_EVENT_LEDS = 2, BOARD_EVENT_SAMPLE = 3, BOARD_EVENT_VGA = 4, BOARD_EVENT_BOT = 5 };
 enum { BOARD_UNTIL = 0, BOARD_BUFFER_FULL = 1, BOARD_SAMPLES = 2, BOARD_FINISHED = 3 };
 
 /* One thing the board showed. DISPLAY: a = an | seg << 8 | dp << 15. LEDS: a = led.
  * SAMPLE: a = sample index, b = LocX | LocY << 8 | BotInfo << 16 | Sensors << 24 |
  * LMDist << 32 | RMDist << 40 | MotCtl << 48, c = the bot's clock cycles since power-up.
- * VGA (when board_record_vga is on): a = r << 8 | g << 4 | b | hsync << 12 | vsync << 13. */
+ * VGA (when board_record_vga is on): a = r << 8 | g << 4 | b | hsync << 12 | vsync << 13.
+ * BOT (when board_record_bot is on): any of the bot's outputs changed; a = upd_sysregs,
+ * b = LocX | LocY << 8 | BotInfo << 16 | Sensors << 24 | LMDist << 32 | RMDist << 40. */
 typedef struct BoardEvent {
     uint64_t time_ps;
     uint32_t kind;
@@ -36,6 +38,14 @@ typedef struct BoardProbeFns {
     void (*record)(void* probe, uint64_t pins, uint64_t state, uint64_t time_ps);
 } BoardProbeFns;
 
+/* botsim board --bot model: the host's model of the bot (rtl/board/bot_model.v) begins with a
+ * pointer to its function: one rising edge, pins = MotCtl_in | reset << 8, returning
+ * LocX | LocY << 8 | BotInfo << 16 | Sensors << 24 | LMDist << 32 | RMDist << 40 |
+ * upd_sysregs << 48. */
+typedef struct BoardBotFns {
+    uint64_t (*edge)(void* bot, uint32_t pins);
+} BoardBotFns;
+
 /* What a design built for --cpu iss or lockstep asks of its host: a model (or a probe) for
  * the instance whose hierarchical name is `path`, or null (the run then stops with a fatal
  * error). */
@@ -45,6 +55,8 @@ typedef struct BoardHost {
     void* (*cpu_new)(void* ctx, const char* path, uint32_t hwbuild, uint32_t vector, uint32_t scratch_pad,
                      const uint64_t* now);
     void* (*probe_new)(void* ctx, const char* path);
+    /* --bot model: the model of the bot instance `path`, or null. */
+    void* (*bot_new)(void* ctx, const char* path);
     /* Debug builds: the disassembly of `word`, 20 characters padded with spaces. */
     void (*disasm)(uint32_t word, char* text);
 } BoardHost;

@@ -19,6 +19,7 @@ const ABI: &str = include_str!("board_abi.h");
 const XILINX: &str = include_str!("../../rtl/board/xilinx.v");
 const CLKGEN: &str = include_str!("../../rtl/board/botsim_clkgen.v");
 const KCPSM6_ISS: &str = include_str!("../../rtl/board/kcpsm6_iss.v");
+const BOT_MODEL: &str = include_str!("../../rtl/board/bot_model.v");
 const KCPSM6_PROBE: &str = include_str!("../../rtl/board/kcpsm6_probe.v");
 
 /// What stands in for every KCPSM6 of the design.
@@ -31,6 +32,16 @@ pub enum CpuModel {
     /// The RTL core with a probe on its ports (rtl/board/kcpsm6_probe.v): the lock-step's
     /// RTL side.
     RtlProbed,
+}
+
+/// What stands for the course's `bot` in a build.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BotKind {
+    /// botsim's RTL (rtl/bot.v: its KCPSM6 as the build's CPUs are, world_if, map).
+    Rtl,
+    /// botsim's model of the bot behind the same ports (rtl/board/bot_model.v: the firmware
+    /// on the ISS with Rust models of world_if and the map, called once per clock edge).
+    Model,
 }
 
 /// botsim's own RTL, by file name.
@@ -100,7 +111,7 @@ struct Files {
     defines: Vec<String>,
 }
 
-fn files(plan: &Plan, params: &[(String, String)], cpu: CpuModel) -> Files {
+fn files(plan: &Plan, params: &[(String, String)], cpu: CpuModel, bot: BotKind) -> Files {
     let mut generated = vec![
         ("botsim_board.v".to_string(), wrapper::board_top(plan, params)),
         ("xilinx.v".to_string(), XILINX.to_string()),
@@ -109,6 +120,7 @@ fn files(plan: &Plan, params: &[(String, String)], cpu: CpuModel) -> Files {
     for (_, file) in OWN_MODULES {
         let text = match (file, cpu) {
             ("kcpsm6.v", CpuModel::Iss) => KCPSM6_ISS.to_string(),
+            ("bot.v", _) if bot == BotKind::Model => BOT_MODEL.to_string(),
             ("kcpsm6.v", CpuModel::RtlProbed) => {
                 generated.push(("botsim_kcpsm6_probe.v".into(), KCPSM6_PROBE.into()));
                 own_rtl(file).replacen("module kcpsm6 #(", "module kcpsm6_rtl #(", 1)
@@ -154,10 +166,11 @@ pub fn build(
     plan: &Plan,
     params: &[(String, String)],
     cpu: CpuModel,
+    bot: BotKind,
     debug: bool,
     quiet: bool,
 ) -> Result<Built, BoardError> {
-    let mut f = files(plan, params, cpu);
+    let mut f = files(plan, params, cpu, bot);
     if debug {
         f.defines.push("BOTSIM_DEBUG".into());
     }

@@ -103,6 +103,8 @@ struct Board {
     uint16_t last_led = 0;
     bool vga = false;  // record the VGA pins (only when frames are asked for)
     uint16_t last_vga = 0x3000;
+    bool bot = false;  // record every change of the bot's outputs (lock-step runs)
+    uint64_t last_bot = 0;
     bool last_upd = false;
     uint64_t samples = 0;
     std::string fatal;
@@ -211,6 +213,7 @@ void board_set_inputs(Board* b, uint32_t reset_pressed, uint32_t buttons, uint32
 }
 
 void board_record_vga(Board* b, int on) { b->vga = on != 0; }
+void board_record_bot(Board* b, int on) { b->bot = on != 0; }
 
 uint64_t board_time_ps(Board* b) { return b->now; }
 uint64_t board_evals(Board* b) { return b->evals; }
@@ -234,6 +237,7 @@ namespace {
 struct Shown {
     uint8_t an, seg, dp;
     uint16_t led, vga;
+    uint64_t bot;
     bool upd;
     uint64_t samples, evals;
 };
@@ -246,11 +250,11 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
     Vboard* top = b->top;
     const size_t nc = b->clocks.size();
     Clock* clocks = b->clocks.data();
-    const bool vga = b->vga;
-    Shown s{b->last_an, b->last_seg, b->last_dp, b->last_led, b->last_vga, b->last_upd, b->samples, b->evals};
+    const bool vga = b->vga, watch_bot = b->bot;
+    Shown s{b->last_an, b->last_seg, b->last_dp, b->last_led, b->last_vga, b->last_bot, b->last_upd, b->samples, b->evals};
     uint32_t why = BOARD_BUFFER_FULL;
-    // Room for one evaluation's records (at most 4) must remain.
-    while (*n + 4 <= cap) {
+    // Room for one evaluation's records (at most 5) must remain.
+    while (*n + 5 <= cap) {
         uint64_t t;
         if (kOneClock) {
             t = clocks[0].next_t;
@@ -319,6 +323,15 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
             s.led = top->led;
             record(buf, n, t, BOARD_EVENT_LEDS, top->led, 0, 0);
         }
+        if (watch_bot) {
+            uint64_t v = (uint64_t)top->bot_locx | (uint64_t)top->bot_locy << 8 | (uint64_t)top->bot_info << 16 |
+                         (uint64_t)top->bot_sensors << 24 | (uint64_t)top->bot_lmdist << 32 |
+                         (uint64_t)top->bot_rmdist << 40 | (uint64_t)top->bot_upd << 48;
+            if (v != s.bot) {
+                s.bot = v;
+                record(buf, n, t, BOARD_EVENT_BOT, (uint32_t)(v >> 48), v & 0xFFFFFFFFFFFFull, 0);
+            }
+        }
         bool upd = top->bot_upd;
         if (upd != s.upd) {
             s.upd = upd;
@@ -340,6 +353,7 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
     b->last_dp = s.dp;
     b->last_led = s.led;
     b->last_vga = s.vga;
+    b->last_bot = s.bot;
     b->last_upd = s.upd;
     b->samples = s.samples;
     b->evals = s.evals;
@@ -398,6 +412,26 @@ extern "C" void* botsim_iss_new(const char* path, int hwbuild, int vector, int s
     Verilated::threadContextp()->gotFinish(true);
     if (b && b->fatal.empty()) b->fatal = std::string("no instruction-set model for the KCPSM6 ") + path;
     return (void*)&no_cpu;
+}
+
+// --bot model (rtl/board/bot_model.v): the bot is the host's model, one call per rising edge.
+namespace {
+uint64_t no_edge(void*, uint32_t) { return 0; }
+const BoardBotFns no_bot_fns = {no_edge};
+const BoardBotFns* const no_bot = &no_bot_fns;
+}  // namespace
+
+extern "C" void* botsim_bot_new(const char* path) {
+    Board* b = current;
+    void* bot = b && b->host && b->host->bot_new ? b->host->bot_new(b->host->ctx, path) : nullptr;
+    if (bot) return bot;
+    Verilated::threadContextp()->gotFinish(true);
+    if (b && b->fatal.empty()) b->fatal = std::string("no model for the bot ") + path;
+    return (void*)&no_bot;
+}
+
+extern "C" long long botsim_bot_edge(void* bot, int pins) {
+    return (long long)(*(const BoardBotFns* const*)bot)->edge(bot, (uint32_t)pins);
 }
 
 extern "C" long long botsim_iss_state(void* cpu) {

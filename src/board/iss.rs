@@ -20,6 +20,9 @@ use kcpsm6::source::SourceMap;
 use kcpsm6::trace::Tracer;
 use kcpsm6::Image;
 
+use botsim_core::sim::iss::IssBot;
+use botsim_core::World;
+
 /// The functions a model pointer starts with (`BoardCpuFns` in board_abi.h).
 #[repr(C)]
 struct CpuFns {
@@ -297,7 +300,36 @@ pub struct RawHost {
     ctx: *mut c_void,
     cpu_new: unsafe extern "C" fn(*mut c_void, *const c_char, u32, u32, u32, *const u64) -> *mut c_void,
     probe_new: unsafe extern "C" fn(*mut c_void, *const c_char) -> *mut c_void,
+    bot_new: unsafe extern "C" fn(*mut c_void, *const c_char) -> *mut c_void,
     disasm: unsafe extern "C" fn(u32, *mut u8),
+}
+
+/// The function a bot model's pointer starts with (`BoardBotFns` in board_abi.h).
+#[repr(C)]
+struct BotFns {
+    edge: unsafe extern "C" fn(*mut BotModel, u32) -> u64,
+}
+
+static BOT_FNS: BotFns = BotFns { edge: edge_ffi };
+
+/// The bot of a `--bot model` build: botsim's bot on the ISS with Rust models of world_if
+/// and the map ([`IssBot::edge`]).
+#[repr(C)]
+pub struct BotModel {
+    fns: &'static BotFns,
+    pub bot: IssBot,
+}
+
+unsafe extern "C" fn edge_ffi(model: *mut BotModel, pins: u32) -> u64 {
+    // SAFETY: the pointer is one `Host::bot` made; the harness calls from one thread.
+    let m = unsafe { &mut *model };
+    m.bot.edge(pins >> 8 & 1 == 1, pins as u8).0
+}
+
+unsafe extern "C" fn bot_new_ffi(ctx: *mut c_void, path: *const c_char) -> *mut c_void {
+    // SAFETY: as for cpu_new_ffi.
+    let (host, path) = unsafe { (&mut *(ctx as *mut Host), CStr::from_ptr(path).to_string_lossy()) };
+    host.bot(&path) as *mut c_void
 }
 
 /// The programs of a design's KCPSM6 instances, and their models once the design has made
@@ -316,6 +348,11 @@ pub struct Host {
     breaks: BTreeMap<String, Breaks>,
     /// The first trace file that could not be written.
     trace_error: Option<String>,
+    /// `--bot model`: the bot's firmware and world, and the model once made.
+    bot_spec: Option<(Image, World)>,
+    /// Boxed: the design holds pointers to them while the vector grows.
+    #[allow(clippy::vec_box)]
+    bots: Vec<Box<BotModel>>,
     raw: RawHost,
 }
 
@@ -332,10 +369,13 @@ impl Host {
             unknown: None,
             breaks: BTreeMap::new(),
             trace_error: None,
+            bot_spec: None,
+            bots: Vec::new(),
             raw: RawHost {
                 ctx: std::ptr::null_mut(),
                 cpu_new: cpu_new_ffi,
                 probe_new: probe_new_ffi,
+                bot_new: bot_new_ffi,
                 disasm: disasm_ffi,
             },
         });
@@ -357,6 +397,36 @@ impl Host {
             self.unknown.get_or_insert_with(|| path.to_string());
         }
         k
+    }
+
+    /// `--bot model`: the bot runs `firmware` in `world` (before the model is made).
+    pub fn model_bot(&mut self, firmware: Image, world: World) {
+        self.bot_spec = Some((firmware, world));
+    }
+
+    /// The model for the bot instance Verilator names `scope` (null without
+    /// [`Host::model_bot`], or for a firmware the bot's 1K ROM cannot hold).
+    fn bot(&mut self, scope: &str) -> *mut BotModel {
+        let Some((image, world)) = &self.bot_spec else {
+            let path = scope.split_once(".user.").map_or(scope, |(_, p)| p);
+            self.unknown.get_or_insert_with(|| path.to_string());
+            return std::ptr::null_mut();
+        };
+        let Ok(bot) = IssBot::new(image, world.clone()) else { return std::ptr::null_mut() };
+        let mut m = Box::new(BotModel { fns: &BOT_FNS, bot });
+        let ptr = &mut *m as *mut BotModel;
+        self.bots.push(m);
+        ptr
+    }
+
+    /// True when the bot is a model ([`Host::model_bot`]).
+    pub fn models_bot(&self) -> bool {
+        self.bot_spec.is_some()
+    }
+
+    /// The bot models made (one per `bot` instance).
+    pub fn bots(&mut self) -> impl Iterator<Item = &mut BotModel> {
+        self.bots.iter_mut().map(|b| &mut **b)
     }
 
     /// Stop the run at these breakpoints, by instance path (before the model is made).

@@ -33,6 +33,9 @@ pub enum Event {
     /// The VGA pins changed (recorded only after [`BoardModel::record_vga`]):
     /// `r << 8 | g << 4 | b | hsync << 12 | vsync << 13`.
     Vga { time_ps: u64, pins: u16 },
+    /// Any of the bot's outputs changed (recorded only after [`BoardModel::record_bot`]):
+    /// upd_sysregs, and the registers packed as in `Sample` (LocX in the low byte).
+    Bot { time_ps: u64, upd: bool, regs: u64 },
 }
 
 impl RawEvent {
@@ -66,6 +69,7 @@ impl Event {
                 }
             }
             4 => Event::Vga { time_ps: t, pins: e.a as u16 },
+            5 => Event::Bot { time_ps: t, upd: e.a & 1 == 1, regs: e.b },
             _ => return None,
         })
     }
@@ -99,6 +103,7 @@ struct Api {
     close_vcd: unsafe extern "C" fn(*mut Opaque),
     set_inputs: unsafe extern "C" fn(*mut Opaque, u32, u32, u32),
     record_vga: unsafe extern "C" fn(*mut Opaque, c_int),
+    record_bot: unsafe extern "C" fn(*mut Opaque, c_int),
     run: unsafe extern "C" fn(*mut Opaque, u64, u64, *mut RawEvent, u32, *mut u32) -> u32,
     time_ps: unsafe extern "C" fn(*mut Opaque) -> u64,
     evals: unsafe extern "C" fn(*mut Opaque) -> u64,
@@ -145,6 +150,7 @@ impl BoardModel {
             close_vcd: sym!(b"board_close_vcd"),
             set_inputs: sym!(b"board_set_inputs"),
             record_vga: sym!(b"board_record_vga"),
+            record_bot: sym!(b"board_record_bot"),
             run: sym!(b"board_run"),
             time_ps: sym!(b"board_time_ps"),
             evals: sym!(b"board_evals"),
@@ -181,6 +187,12 @@ impl BoardModel {
     pub fn set_inputs(&mut self, reset_pressed: bool, buttons: u8, switches: u16) {
         // SAFETY: ptr is live until drop.
         unsafe { (self.api.set_inputs)(self.ptr, reset_pressed as u32, buttons as u32, switches as u32) }
+    }
+
+    /// Record every change of the bot's outputs from now on (a lock-step run compares them).
+    pub fn record_bot(&mut self, on: bool) {
+        // SAFETY: ptr is live.
+        unsafe { (self.api.record_bot)(self.ptr, on as c_int) }
     }
 
     /// Record every change of the VGA pins from now on (for frame capture; it costs a

@@ -4,7 +4,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use botsim::board::build::{build, CpuModel};
+use botsim::board::build::{build, BotKind, CpuModel};
 use botsim::board::iss::{Breaks, Host, TraceRequest};
 use botsim::board::lockstep::Lockstep;
 use botsim::board::model::{BoardModel, Event, RawEvent, Stop};
@@ -113,6 +113,12 @@ pub struct Args {
     /// ports: only the rest of the design is evaluated by Verilator; same results, faster)
     #[arg(long, value_enum, default_value = "rtl")]
     cpu: CpuArg,
+    /// What stands for the bot: rtl (botsim's bot.v: its KCPSM6 as --cpu says, world_if and
+    /// the map under Verilator) or model (the same firmware on the instruction-set simulator
+    /// with Rust models of world_if and the map, behind the same ports: same results). With
+    /// --cpu lockstep, the ISS board's bot
+    #[arg(long, value_enum, default_value = "rtl")]
+    bot: BotArg,
     /// Measure instead of run: the board harness against a minimal C++ harness of the same
     /// built design (100 MHz oscillator only, nothing recorded), or with --cpu iss the ISS
     /// board against the all-RTL board; in Mcycles/s of the 100 MHz clock, over --seconds of
@@ -169,6 +175,13 @@ enum CpuArg {
     Rtl,
     Iss,
     Lockstep,
+}
+
+/// `--bot`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum BotArg {
+    Rtl,
+    Model,
 }
 
 /// The board being run: one model, or the RTL and ISS boards in lock-step.
@@ -444,10 +457,16 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     let maps = sources(&plan);
     let (cpu_breaks, bot_breaks) = breakpoints(&a.breaks, &plan, &maps)?;
     // The models' programs are known before anything is built.
-    let host = |plan: &Plan, cpu: CpuModel| -> Result<Option<Box<Host>>, String> {
-        match cpu {
+    let bot = match a.bot {
+        BotArg::Model => BotKind::Model,
+        BotArg::Rtl => BotKind::Rtl,
+    };
+    // The lock-step's RTL board is all RTL; --bot applies to its ISS board.
+    let main_bot = if lockstep { BotKind::Rtl } else { bot };
+    let host = |plan: &Plan, cpu: CpuModel, bot: BotKind| -> Result<Option<Box<Host>>, String> {
+        let mut h = match cpu {
             // The RTL board's host only writes debug text.
-            CpuModel::Rtl => Ok(Some(Host::new(Vec::new(), false))),
+            CpuModel::Rtl => Host::new(Vec::new(), false),
             _ => {
                 let mut h = Host::for_plan(plan, lockstep).map_err(|e| e.to_string())?;
                 if let (Some(dir), CpuModel::Iss) = (&a.cpu_trace, cpu) {
@@ -456,13 +475,18 @@ fn run_once(a: Args) -> Result<Stopped, String> {
                 if cpu == CpuModel::Iss {
                     h.break_at(cpu_breaks.clone());
                 }
-                Ok(Some(h))
+                h
             }
+        };
+        // The bot's firmware: the plan always has a bot_pgm (the user's, or botsim's).
+        if let (BotKind::Model, Some(r)) = (bot, plan.roms.iter().find(|r| r.module == "bot_pgm")) {
+            h.model_bot(r.image.clone(), world.clone());
         }
+        Ok(Some(h))
     };
-    host(&plan, cpu)?;
+    host(&plan, cpu, main_bot)?;
     let debug = a.vcd.is_some();
-    let built = build(&plan, &params, cpu, debug, a.quiet || a.json).map_err(|e| e.to_string())?;
+    let built = build(&plan, &params, cpu, main_bot, debug, a.quiet || a.json).map_err(|e| e.to_string())?;
     match built.seconds {
         Some(s) => say(format!("  built in {s:.1} s ({})", built.library.display())),
         None => say(format!("  reused the build in {}", built.library.parent().unwrap_or(&built.library).display())),
@@ -472,7 +496,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     }
 
     let twin = if lockstep {
-        let b = build(&plan, &params, CpuModel::Iss, false, a.quiet || a.json).map_err(|e| e.to_string())?;
+        let b = build(&plan, &params, CpuModel::Iss, bot, false, a.quiet || a.json).map_err(|e| e.to_string())?;
         match b.seconds {
             Some(s) => say(format!("  built the ISS board in {s:.1} s")),
             None => say("  reused the ISS board's build".into()),
@@ -486,23 +510,26 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         return Ok(None);
     }
     if a.bench && cpu == CpuModel::Iss {
-        let rtl = build(&plan, &params, CpuModel::Rtl, false, a.quiet || a.json).map_err(|e| e.to_string())?;
+        let rtl =
+            build(&plan, &params, CpuModel::Rtl, BotKind::Rtl, false, a.quiet || a.json).map_err(|e| e.to_string())?;
         let iss = &built.library;
         return bench_iss(&rtl.library, iss, &world, &plan.roms, a.seconds.unwrap_or(0.05), a.json, &|| {
-            host(&plan, cpu)
+            host(&plan, cpu, main_bot)
         })
         .map(|_| None);
     }
     if a.bench {
-        return bench(&built.library, &world, &plan.roms, a.seconds.unwrap_or(0.05), a.json, &|| host(&plan, cpu))
-            .map(|_| None);
+        return bench(&built.library, &world, &plan.roms, a.seconds.unwrap_or(0.05), a.json, &|| {
+            host(&plan, cpu, main_bot)
+        })
+        .map(|_| None);
     }
 
     // Run.
-    let first = load(&built.library, &world, &plan.roms, host(&plan, cpu)?)?;
+    let first = load(&built.library, &world, &plan.roms, host(&plan, cpu, main_bot)?)?;
     let mut model = match &twin {
         Some(b) => {
-            let iss = load(&b.library, &world, &plan.roms, host(&plan, CpuModel::Iss)?)?;
+            let iss = load(&b.library, &world, &plan.roms, host(&plan, CpuModel::Iss, bot)?)?;
             Sim::Pair(Box::new(Lockstep::new(first, iss)))
         }
         None => Sim::One(first),
@@ -593,6 +620,8 @@ fn run_once(a: Args) -> Result<Stopped, String> {
                     snapshots.push(snapshot);
                 }
                 Event::Vga { time_ps, pins } => vga.pins(time_ps, pins),
+                // Recorded for the lock-step's comparison only.
+                Event::Bot { .. } => {}
             }
         }
         if let Some(dir) = &a.frames {

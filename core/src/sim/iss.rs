@@ -78,6 +78,8 @@ struct WorldIf {
     pulse: Option<u64>,
     /// Every port access, when recording (lock-step runs).
     events: Option<Vec<PortEvent>>,
+    /// The cycle of the first write since it was cleared ([`IssBot::next_write`]).
+    written: Option<u64>,
 }
 
 impl WorldIf {
@@ -116,6 +118,7 @@ impl Bus for WorldIf {
 
     fn output(&mut self, port: u8, value: u8, cycle: u64) {
         self.record(cycle, PortKind::Write, port, value);
+        self.written.get_or_insert(cycle);
         self.write(port, value, cycle);
     }
 
@@ -125,6 +128,32 @@ impl Bus for WorldIf {
 }
 
 impl WorldIf {
+    /// world_if's reset at an edge: the holding and visible registers, the toggles and
+    /// upd_sysregs clear (the map address registers do not).
+    fn reset(&mut self) {
+        self.holding = [0; 7];
+        self.visible = Registers::default();
+        (self.load_sys, self.load_dist, self.upd) = (false, false, false);
+    }
+
+    /// A copy to run ahead on (no recording).
+    fn probe(&self) -> WorldIf {
+        WorldIf {
+            world: self.world.clone(),
+            motctl: self.motctl,
+            map_x: self.map_x,
+            map_y: self.map_y,
+            holding: self.holding,
+            visible: self.visible,
+            load_sys: self.load_sys,
+            load_dist: self.load_dist,
+            upd: self.upd,
+            pulse: None,
+            events: None,
+            written: None,
+        }
+    }
+
     /// in_port during `cycle`.
     fn read(&self, port: u8, cycle: u64) -> u8 {
         // The read mux registered at the end of cycle - 1.
@@ -160,6 +189,12 @@ impl WorldIf {
     }
 }
 
+/// The outputs of `bot` in a board (`--bot model`): LocX | LocY << 8 | BotInfo << 16 |
+/// Sensors << 24 | LMDist << 32 | RMDist << 40 | upd_sysregs << 48, as
+/// rtl/board/bot_model.v unpacks them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct BotPins(pub u64);
+
 /// A BotSim whose CPU is the ISS.
 pub struct IssBot {
     cpu: Cpu,
@@ -188,6 +223,7 @@ impl IssBot {
                 upd: false,
                 pulse: None,
                 events: None,
+                written: None,
             },
             next_sample: 0,
             budget: Timing::Hw.update_budget(),
@@ -242,6 +278,60 @@ impl IssBot {
             return Ok(s);
         }
         Err(Error::no_update(budget, self.cpu.cycle(), self.cpu_at()))
+    }
+
+    /// One rising edge of the bot's clock inside a board design (`--bot model`):
+    /// `reset` and `motctl` as they were in the cycle the edge ends; returns what world_if
+    /// holds after it, packed as [`BotPins`]. Equal to rtl/bot.v at every edge (the board's
+    /// lock-step compares them).
+    pub fn edge(&mut self, reset: bool, motctl: u8) -> BotPins {
+        let c = self.cpu.cycle();
+        if self.bus.motctl.value_at(c) != motctl {
+            self.bus.motctl.write(motctl, c.saturating_sub(1));
+        }
+        // The visible registers copy the holding registers at this edge with the values of
+        // the cycle it ends, before that cycle's writes land.
+        self.bus.catch_up();
+        self.cpu.tick(kcpsm6::iss::Pins { reset, ..Default::default() }, &mut self.bus);
+        if reset {
+            self.bus.reset();
+        }
+        self.bus.pulse = None;
+        self.pins()
+    }
+
+    /// What world_if holds now.
+    pub fn pins(&self) -> BotPins {
+        let v = &self.bus.visible;
+        BotPins(
+            u64::from_le_bytes([v.loc_x, v.loc_y, v.bot_info, v.sensors, v.lm_dist, v.rm_dist, 0, 0])
+                | (self.bus.upd as u64) << 48,
+        )
+    }
+
+    /// The first cycle before `limit` in which the firmware writes a port (the only way the
+    /// bot's outputs change with its inputs held), or `limit`: run on a copy.
+    pub fn next_write(&self, limit: u64) -> u64 {
+        // A copy into the visible registers still to come changes the outputs too.
+        let mut settled = self.bus.probe();
+        settled.catch_up();
+        if settled.visible != self.bus.visible {
+            return self.cpu.cycle();
+        }
+        let mut probe = IssBot { cpu: self.cpu.clone(), bus: self.bus.probe(), next_sample: 0, budget: 0 };
+        probe.cpu.run_fast(&mut probe.bus, limit, |bus| bus.written.is_some());
+        probe.bus.written.unwrap_or(limit).min(limit)
+    }
+
+    /// Run `cycles` cycles with the inputs held (reset low), none of which writes a port
+    /// ([`IssBot::next_write`] says how far that is): what a board's fast-forward does.
+    pub fn skip(&mut self, cycles: u64) {
+        let end = self.cpu.cycle() + cycles;
+        self.cpu.run_fast(&mut self.bus, end.saturating_sub(2), |_| false);
+        while self.cpu.cycle() < end {
+            self.cpu.tick(kcpsm6::iss::Pins::default(), &mut self.bus);
+        }
+        self.bus.pulse = None;
     }
 
     /// Where the CPU is now.

@@ -917,3 +917,52 @@ fn a_bot_condition_writes_the_firmwares_answer_to_that_sample() {
     assert_eq!(v[2], stop, "{out}");
     assert!(v[0] < stop && stop - v[0] <= 40_000 && v[1] > stop + 100_000, "{out}");
 }
+
+#[test]
+fn the_fast_forward_skips_what_repeats_and_changes_nothing_the_board_shows() {
+    // The Project 2 example at the bot's hw timing (a sample every 5.3 M clocks), its own
+    // firmware showing the bot's registers, a button pressed, the switches changed and the CPU
+    // reset pressed along the way: every edge simulated, then with the fast-forward.
+    let dir = tempfile::tempdir().unwrap();
+    let stim = dir.path().join("stim.txt");
+    std::fs::write(&stim, "80ms press btnU 5ms\n120ms switches 00A5\n170ms press btnCpuReset 2ms\n").unwrap();
+    let mut outputs = Vec::new();
+    for ff in [false, true] {
+        let (csv, display) = (dir.path().join(format!("{ff}.csv")), dir.path().join(format!("{ff}.txt")));
+        let mut args = vec![
+            "--cpu",
+            "iss",
+            "--bot",
+            "model",
+            "--samples",
+            "5",
+            "--stimulus",
+            stim.to_str().unwrap(),
+            "--trace-csv",
+            csv.to_str().unwrap(),
+            "--display",
+            display.to_str().unwrap(),
+            "--json",
+        ];
+        if !ff {
+            args.push("--no-fast-forward");
+        }
+        let o = example("examples/nexys4_proj2", &args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let s: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let skipped = s["fast_forward"]["skipped_seconds"].as_f64().unwrap();
+        if ff {
+            // Several periods of the display's refresh (2^20 clocks, 10.5 ms) skipped.
+            assert!(skipped > 0.04, "{s}");
+        } else {
+            assert_eq!(skipped, 0.0, "{s}");
+        }
+        let read = |p: &Path| std::fs::read_to_string(p).unwrap();
+        outputs.push((read(&csv), read(&display), s["samples"].clone(), s["leds"].clone()));
+    }
+    // The same samples (with the bot's cycle counts), the same display and LED changes at the
+    // same times (without the display's refresh repeated into the skipped periods, its digits
+    // would go dark: a digit not refreshed for 20 ms is).
+    assert!(outputs[0].0.lines().count() == 7 && !outputs[0].1.is_empty(), "{:?}", outputs[0]);
+    assert_eq!(outputs[0], outputs[1]);
+}

@@ -287,6 +287,44 @@ impl Cpu {
         self.cycle
     }
 
+    /// Everything that decides what the core does next is as in `other`, whatever their
+    /// cycle counts: with the same pins from now on, both do the same thing. A board's
+    /// fast-forward takes a core whose state repeats as repeating ([`Cpu::skip_period`]).
+    pub fn same_state_as(&self, other: &Cpu) -> bool {
+        // The pending second cycle, its D cycle relative to now.
+        let pending =
+            |c: &Cpu| c.pending.map(|p| (p.kind, c.cycle - p.cycle, p.pc, p.word, p.op, p.result, p.carry, p.zero));
+        self.config == other.config
+            && self.regs == other.regs
+            && self.spm == other.spm
+            && self.stack == other.stack
+            && (self.depth, self.pc, self.c, self.z, self.ie, self.bank, self.xb)
+                == (other.depth, other.pc, other.c, other.z, other.ie, other.bank, other.xb)
+            && self.phase == other.phase
+            && (self.run, self.internal_reset, self.sleep_reg, self.irq_reg, self.active_interrupt, self.interrupt_ack)
+                == (
+                    other.run,
+                    other.internal_reset,
+                    other.sleep_reg,
+                    other.irq_reg,
+                    other.active_interrupt,
+                    other.interrupt_ack,
+                )
+            && self.instr == other.instr
+            && pending(self) == pending(other)
+            && self.rom == other.rom
+    }
+
+    /// Count `cycles` more without simulating them: only for a core whose state repeats
+    /// every `cycles` cycles with its pins held ([`Cpu::same_state_as`] an earlier copy of
+    /// itself), when what it would do in them is what it has just done.
+    pub fn skip_period(&mut self, cycles: u64) {
+        self.cycle += cycles;
+        if let Some(p) = &mut self.pending {
+            p.cycle += cycles;
+        }
+    }
+
     pub fn pc(&self) -> u16 {
         self.pc
     }
@@ -783,6 +821,37 @@ mod tests {
 
     fn cpu(words: &[u32]) -> Cpu {
         Cpu::new(Config::default(), words)
+    }
+
+    #[test]
+    fn a_core_whose_state_repeats_skips_a_period_as_if_it_had_run_it() {
+        // A wait loop that polls a port: COMPARE s0, 00 / JUMP Z back to it.
+        let words = [0x1D000, 0x32000];
+        let mut bus = NullBus::default();
+        let mut run = cpu(&words);
+        for _ in 0..20 {
+            run.tick(Pins::default(), &mut bus);
+        }
+        let mark = run.clone();
+        for _ in 0..4 {
+            run.tick(Pins::default(), &mut bus);
+        }
+        assert!(run.same_state_as(&mark) && run.cycle() == mark.cycle() + 4);
+        let mut skipped = mark.clone();
+        skipped.skip_period(4);
+        assert!(!run.same_state_as(&cpu(&[0x1D001, 0x32000])));
+        // From here both run alike, cycle for cycle.
+        for _ in 0..9 {
+            assert_eq!(run.tick(Pins::default(), &mut bus), skipped.tick(Pins::default(), &mut bus));
+            assert_eq!((run.cycle(), run.pc()), (skipped.cycle(), skipped.pc()));
+        }
+        // A cycle on is mid-instruction: not the same state.
+        let mut half = run.clone();
+        half.tick(Pins::default(), &mut bus);
+        assert!(!half.same_state_as(&run));
+        let mut other = run.clone();
+        other.regs[3] = 1;
+        assert!(!other.same_state_as(&run));
     }
 
     #[test]

@@ -59,4 +59,15 @@ typedef struct BoardHost {
     void* (*bot_new)(void* ctx, const char* path);
     /* Debug builds: the disassembly of `word`, 20 characters padded with spaces. */
     void (*disasm)(uint32_t word, char* text);
+    /* The fast-forward (harness.cpp): counted up by the models at every interrupt, write of
+     * the bot's firmware and change of the bot's inputs; mark every model's state; are the KCPSM6 models as
+     * marked (their cycle counts aside); how many periods (each as long as the time since the
+     * mark) the bot's outputs stay as they are with its inputs held, at most `periods`; run
+     * every model `periods` periods on (the CPUs' state repeats; the bot runs on), returning
+     * the bot's clock edges in them. */
+    uint64_t activity;
+    void (*ff_mark)(void* ctx);
+    int (*ff_same)(void* ctx);
+    uint64_t (*ff_room)(void* ctx, uint64_t periods);
+    uint64_t (*ff_skip)(void* ctx, uint64_t periods);
 } BoardHost;

@@ -77,6 +77,15 @@ struct Clock {
             e.q++;
         }
     }
+    // Skip `k` whole periods (the level and the kind of the next edge stay).
+    void skip(uint64_t k) {
+        for (EdgeTime* e : {&rise, &fall}) {
+            unsigned __int128 r = (unsigned __int128)e->r + (unsigned __int128)k * step_r;
+            e->q += k * step_q + (uint64_t)(r / den);
+            e->r = (uint64_t)(r % den);
+        }
+        next_t = next_high ? rise.q : fall.q;
+    }
     void advance() {
         if (next_high) {
             next_high = false;
@@ -91,6 +100,31 @@ struct Clock {
 };
 
 }  // namespace
+
+// The fast-forward (a one-clock board whose KCPSM6s are models and whose bot is a model):
+// after a rising edge, when the whole model (every byte of Verilator's state, every KCPSM6
+// model's state but for its cycle count) is as it was at a mark, with nothing written,
+// interrupted or changed at the bot's inputs since, the board repeats that period for as long
+// as nothing changes it. The board then skips whole periods up to the next change it can
+// foresee (the bot's next port write, the end of the run, the next input change): the models
+// run on by as many cycles (the bot simulates them, cheaply), and what the board showed in the
+// period (display and LED changes) is repeated into the records, so the records are the same
+// as the edge-by-edge run's.
+struct FastForward {
+    bool on = false;
+    std::vector<uint8_t> mark;  // Verilator's state at the mark
+    bool marked = false;
+    uint64_t mark_t = 0;        // the mark's time
+    uint64_t activity = ~0ull;  // the models' activity count last seen, and since when
+    uint64_t quiet_from = 0;
+    uint64_t patience = 0;      // how long the mark waits for its period
+    uint64_t last_period = 0;   // the period found last (the next is likely the same)
+    size_t hint = 0;             // the word that differed last
+    size_t bot_cycles = 0;       // where the wrapper's bot_cycles counter is (not compared)
+    std::vector<BoardEvent> shown;  // what the board showed since the mark
+    bool overflow = false;          // too much for `shown`: no skip from this mark
+    uint64_t skips = 0, skipped_ps = 0;
+};
 
 struct Board {
     VerilatedContext ctx;
@@ -108,7 +142,8 @@ struct Board {
     bool last_upd = false;
     uint64_t samples = 0;
     std::string fatal;
-    const BoardHost* host = nullptr;  // the KCPSM6 models of a --cpu iss build
+    BoardHost* host = nullptr;  // the KCPSM6 models of a --cpu iss build
+    FastForward ff;
 };
 
 static thread_local Board* current = nullptr;
@@ -123,7 +158,7 @@ static inline void enter(Board* b) {
 
 extern "C" {
 
-Board* board_new_hosted(int argc, const char** argv, const BoardHost* host) {
+Board* board_new_hosted(int argc, const char** argv, BoardHost* host) {
     Board* b = new Board;
     b->host = host;
     b->ctx.commandArgs(argc, argv);
@@ -228,6 +263,24 @@ static inline void record(BoardEvent* buf, uint32_t* n, uint64_t t, uint32_t kin
     e.c = c;
 }
 
+// Turn the fast-forward on or off (the caller knows when the run allows it: no waveform, no
+// VGA capture, no traces, breakpoints or lock-step); 0 when this board cannot.
+int board_fast_forward(Board* b, int on) {
+    FastForward& f = b->ff;
+    f.on = on && b->host && b->host->ff_same && b->clocks.size() == 1;
+    f.mark.assign(sizeof(Vboard___024root), 0);
+    f.marked = false;
+    f.activity = ~0ull;
+    f.bot_cycles = (size_t)((const uint8_t*)&b->top->rootp->bot_cycles - (const uint8_t*)b->top->rootp);
+    return f.on;
+}
+
+// Skips so far and the time they covered.
+void board_fast_forwarded(Board* b, uint64_t* skips, uint64_t* ps) {
+    *skips = b->ff.skips;
+    *ps = b->ff.skipped_ps;
+}
+
 }  // extern "C"
 
 namespace {
@@ -242,6 +295,94 @@ struct Shown {
     uint64_t samples, evals;
 };
 
+// The longest period the fast-forward looks for (2^22 clocks of 100 MHz, 42 ms); how long the
+// models must have been quiet (no interrupt, nothing from or to the bot) before it marks,
+// while the firmware answers (2^14 clocks, 164 us); how long a first mark waits for its
+// period when none is known yet (each later one waits twice as long, up to the longest).
+constexpr uint64_t kMaxPeriodPs = (1ull << 22) * 10000;
+constexpr uint64_t kSettlePs = (1ull << 14) * 10000;
+constexpr uint64_t kFirstPatiencePs = (1ull << 16) * 10000;
+
+// Mark the state the fast-forward compares with.
+void ff_mark(Board* b, uint64_t t) {
+    FastForward& f = b->ff;
+    std::memcpy(f.mark.data(), (const void*)b->top->rootp, f.mark.size());
+    f.mark_t = t;
+    f.marked = true;
+    f.shown.clear();
+    f.overflow = false;
+    b->host->ff_mark(b->host->ctx);
+}
+
+// After the rising edge at `t`: mark, or compare with the mark and skip what repeats. The
+// records of the skipped periods go to `buf` (room permitting); returns the cycles skipped.
+uint64_t ff_step(Board* b, uint64_t t, uint64_t until_ps, BoardEvent* buf, uint32_t cap, uint32_t* n) {
+    FastForward& f = b->ff;
+    BoardHost* h = b->host;
+    if (h->activity != f.activity) {
+        f.activity = h->activity;
+        f.quiet_from = t;
+        f.marked = false;
+        // The period found last, and a little more; or a first guess.
+        f.patience = std::max(kFirstPatiencePs, f.last_period + f.last_period / 4);
+        return 0;
+    }
+    if (!f.marked) {
+        if (t - f.quiet_from >= kSettlePs) ff_mark(b, t);
+        return 0;
+    }
+    if (f.overflow || t - f.mark_t > f.patience) {
+        // Marked too early (the firmware was still at work) or the period is longer.
+        f.patience = std::min(2 * f.patience, kMaxPeriodPs);
+        ff_mark(b, t);
+        return 0;
+    }
+    const uint8_t* root = (const uint8_t*)b->top->rootp;
+    uint8_t* m = f.mark.data();
+    const size_t size = f.mark.size();
+    // The word that differed last is the cheap test; most edges end here.
+    if (std::memcmp(root + 8 * f.hint, m + 8 * f.hint, 8) != 0) return 0;
+    std::memcpy(m + f.bot_cycles, root + f.bot_cycles, 8);  // a counter, not state
+    if (std::memcmp(root, m, size) != 0) {
+        size_t w = 0;
+        while (std::memcmp(root + 8 * w, m + 8 * w, 8) == 0) w++;
+        f.hint = w;
+        return 0;
+    }
+    if (!h->ff_same(h->ctx)) {
+        ff_mark(b, t);
+        return 0;
+    }
+    // The board repeats the period since the mark. Whole periods, ending a period before the
+    // run's end, with their records in the buffer, up to the bot's next port write.
+    const uint64_t period = t - f.mark_t;
+    f.last_period = period;
+    if (until_ps < t + 2 * period) return 0;
+    uint64_t most = (until_ps - t) / period - 1;
+    const size_t per = f.shown.size();
+    if (per) most = std::min<uint64_t>(most, (cap - *n - 8) / per);
+    if (most == 0) return 0;
+    const uint64_t k = h->ff_room(h->ctx, most);
+    if (k == 0) return 0;
+    const uint64_t edges = h->ff_skip(h->ctx, k);
+    for (uint64_t j = 1; j <= k; j++) {
+        for (const BoardEvent& e : f.shown) {
+            buf[*n] = e;
+            buf[(*n)++].time_ps += j * period;
+        }
+    }
+    const uint64_t skipped = k * period;
+    for (BoardEvent& e : f.shown) e.time_ps += skipped;
+    f.mark_t += skipped;
+    b->clocks[0].skip(skipped / b->clocks[0].num);
+    b->top->rootp->bot_cycles += edges;
+    b->now = t + skipped;
+    b->ctx.time(b->now);
+    f.skips++;
+    f.skipped_ps += skipped;
+    return skipped / b->clocks[0].num;
+}
+
 // The run loop. kOneClock: the oscillator is the only clock (most designs), so the scheduler
 // reduces to stepping it.
 template <bool kOneClock>
@@ -251,6 +392,9 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
     const size_t nc = b->clocks.size();
     Clock* clocks = b->clocks.data();
     const bool vga = b->vga, watch_bot = b->bot;
+    // The fast-forward, on one-clock boards without a waveform (the oscillator's period is a
+    // whole number of picoseconds).
+    const bool ff = kOneClock && b->ff.on && !b->vcd && clocks[0].den == 1;
     Shown s{b->last_an, b->last_seg, b->last_dp, b->last_led, b->last_vga, b->last_bot, b->last_upd, b->samples, b->evals};
     uint32_t why = BOARD_BUFFER_FULL;
     // Room for one evaluation's records (at most 5) must remain.
@@ -269,7 +413,10 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
             break;
         }
         b->ctx.time(t);
+        const uint32_t n0 = *n;
+        bool rose = false;
         if (kOneClock) {
+            rose = clocks[0].next_high;
             *clocks[0].q = clocks[0].next_high;
             clocks[0].advance();
         } else {
@@ -346,6 +493,14 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
                     break;
                 }
             }
+        }
+        if (ff) {
+            FastForward& f = b->ff;
+            if (*n != n0) {
+                if (f.shown.size() + (*n - n0) > 1024) f.overflow = true;
+                else f.shown.insert(f.shown.end(), buf + n0, buf + *n);
+            }
+            if (rose) s.evals += 2 * ff_step(b, t, until_ps, buf, cap, n);
         }
     }
     b->last_an = s.an;

@@ -9,7 +9,7 @@
 //! allocation, no lookup; the model pointer carries its own function table, so the harness
 //! reaches it without thread-local state.
 
-use std::ffi::{c_char, c_void, CStr};
+use std::ffi::{c_char, c_int, c_void, CStr};
 
 use std::collections::BTreeMap;
 use std::io::{BufWriter, Write};
@@ -100,6 +100,10 @@ pub struct IssCpu {
     breaks: Option<Box<(Breaks, *const u64)>>,
     hit: Option<Hit>,
     path: String,
+    /// The host's activity count (interrupts bump it), and the state at the fast-forward's
+    /// mark.
+    activity: *mut u64,
+    mark: Option<Box<Cpu>>,
 }
 
 /// Where a run should stop, for one CPU: addresses, port writes (port, value or any).
@@ -165,6 +169,8 @@ impl IssCpu {
             breaks: None,
             hit: None,
             path: String::new(),
+            activity: std::ptr::null_mut(),
+            mark: None,
         }
     }
 
@@ -230,7 +236,13 @@ impl IssCpu {
         // Two copies of the inlined tick: the plain one builds no record.
         if self.trace.is_none() && self.breaks.is_none() {
             self.cpu.tick(p, &mut self.bus);
-            return self.state();
+            let state = self.state();
+            // An interrupt: the fast-forward looks for a new period once the firmware is done.
+            if state & 1 << 32 != 0 && !self.activity.is_null() {
+                // SAFETY: the host outlives its models.
+                unsafe { *self.activity += 1 };
+            }
+            return state;
         }
         let mut hit = false;
         if let Some(r) = self.cpu.tick(p, &mut self.bus) {
@@ -302,6 +314,11 @@ pub struct RawHost {
     probe_new: unsafe extern "C" fn(*mut c_void, *const c_char) -> *mut c_void,
     bot_new: unsafe extern "C" fn(*mut c_void, *const c_char) -> *mut c_void,
     disasm: unsafe extern "C" fn(u32, *mut u8),
+    activity: u64,
+    ff_mark: unsafe extern "C" fn(*mut c_void),
+    ff_same: unsafe extern "C" fn(*mut c_void) -> c_int,
+    ff_room: unsafe extern "C" fn(*mut c_void, u64) -> u64,
+    ff_skip: unsafe extern "C" fn(*mut c_void, u64) -> u64,
 }
 
 /// The function a bot model's pointer starts with (`BoardBotFns` in board_abi.h).
@@ -318,12 +335,31 @@ static BOT_FNS: BotFns = BotFns { edge: edge_ffi };
 pub struct BotModel {
     fns: &'static BotFns,
     pub bot: IssBot,
+    /// The inputs of the last edge.
+    pins: u32,
+    /// The host's activity count.
+    activity: *mut u64,
+    /// The bot's cycle at the fast-forward's mark.
+    mark: u64,
+}
+
+impl BotModel {
+    /// The reset input of the last edge.
+    fn reset(&self) -> bool {
+        self.pins >> 8 & 1 == 1
+    }
 }
 
 unsafe extern "C" fn edge_ffi(model: *mut BotModel, pins: u32) -> u64 {
     // SAFETY: the pointer is one `Host::bot` made; the harness calls from one thread.
     let m = unsafe { &mut *model };
-    m.bot.edge(pins >> 8 & 1 == 1, pins as u8).0
+    let out = m.bot.edge(pins >> 8 & 1 == 1, pins as u8).0;
+    if m.bot.wrote() || pins != m.pins {
+        m.pins = pins;
+        // SAFETY: the host outlives its models.
+        unsafe { *m.activity += 1 };
+    }
+    out
 }
 
 unsafe extern "C" fn bot_new_ffi(ctx: *mut c_void, path: *const c_char) -> *mut c_void {
@@ -377,6 +413,11 @@ impl Host {
                 probe_new: probe_new_ffi,
                 bot_new: bot_new_ffi,
                 disasm: disasm_ffi,
+                activity: 0,
+                ff_mark: ff_mark_ffi,
+                ff_same: ff_same_ffi,
+                ff_room: ff_room_ffi,
+                ff_skip: ff_skip_ffi,
             },
         });
         h.raw.ctx = &mut *h as *mut Host as *mut c_void;
@@ -413,7 +454,8 @@ impl Host {
             return std::ptr::null_mut();
         };
         let Ok(bot) = IssBot::new(image, world.clone()) else { return std::ptr::null_mut() };
-        let mut m = Box::new(BotModel { fns: &BOT_FNS, bot });
+        let activity = &mut self.raw.activity as *mut u64;
+        let mut m = Box::new(BotModel { fns: &BOT_FNS, bot, pins: 0, activity, mark: 0 });
         let ptr = &mut *m as *mut BotModel;
         self.bots.push(m);
         ptr
@@ -450,6 +492,7 @@ impl Host {
         let (path, image) = &self.programs[k];
         let mut cpu = Box::new(IssCpu::new(config, image, self.recording));
         cpu.path = path.clone();
+        cpu.activity = &mut self.raw.activity;
         if let Some(b) = self.breaks.get(path) {
             cpu.breaks = Some(Box::new((b.clone(), now)));
         }
@@ -478,6 +521,58 @@ impl Host {
         let ptr = &mut *cpu as *mut IssCpu;
         self.cpus.push((path.clone(), cpu));
         ptr
+    }
+
+    /// The fast-forward's mark: every model's state now.
+    fn ff_mark(&mut self) {
+        for (_, c) in &mut self.cpus {
+            c.mark = Some(Box::new(c.cpu.clone()));
+        }
+        for b in &mut self.bots {
+            b.mark = b.bot.cycle();
+        }
+    }
+
+    /// Every KCPSM6 model is in its marked state (its cycle count aside).
+    fn ff_same(&self) -> bool {
+        self.cpus.iter().all(|(_, c)| c.mark.as_ref().is_some_and(|m| c.cpu.same_state_as(m)))
+    }
+
+    /// How many periods (each as long as the time since the mark) every bot's outputs stay as
+    /// they are with its inputs held, at most `periods`; none without a bot model.
+    fn ff_room(&self, periods: u64) -> u64 {
+        // Margin: the skip ends this many cycles before the bot's next write.
+        const MARGIN: u64 = 4;
+        if self.bots.is_empty() {
+            return 0;
+        }
+        let mut n = periods;
+        for b in &self.bots {
+            let now = b.bot.cycle();
+            let per = now - b.mark;
+            if per == 0 {
+                continue; // its clock does not run
+            }
+            let room = b.bot.next_write(now + n.saturating_mul(per) + MARGIN, b.reset()) - now;
+            n = n.min(room.saturating_sub(MARGIN) / per);
+        }
+        n
+    }
+
+    /// Run every model `periods` periods on; the bot's clock edges in them.
+    fn ff_skip(&mut self, periods: u64) -> u64 {
+        for (_, c) in &mut self.cpus {
+            let per = c.mark.as_ref().map_or(0, |m| c.cpu.cycle() - m.cycle());
+            c.cpu.skip_period(periods * per);
+        }
+        let mut edges = 0;
+        for b in &mut self.bots {
+            let n = periods * (b.bot.cycle() - b.mark);
+            let reset = b.reset();
+            b.bot.skip(n, reset);
+            edges = n;
+        }
+        edges
     }
 
     /// A probe for the RTL instance Verilator names `scope`.
@@ -515,6 +610,26 @@ impl Host {
     pub fn cpus(&self) -> impl Iterator<Item = (&str, &Cpu)> {
         self.cpus.iter().map(|(p, c)| (p.as_str(), &c.cpu))
     }
+}
+
+unsafe extern "C" fn ff_mark_ffi(ctx: *mut c_void) {
+    // SAFETY: ctx is the Host that made the RawHost; the harness calls from one thread.
+    unsafe { (*(ctx as *mut Host)).ff_mark() }
+}
+
+unsafe extern "C" fn ff_same_ffi(ctx: *mut c_void) -> c_int {
+    // SAFETY: as for ff_mark_ffi.
+    unsafe { (*(ctx as *const Host)).ff_same() as c_int }
+}
+
+unsafe extern "C" fn ff_room_ffi(ctx: *mut c_void, periods: u64) -> u64 {
+    // SAFETY: as for ff_mark_ffi.
+    unsafe { (*(ctx as *const Host)).ff_room(periods) }
+}
+
+unsafe extern "C" fn ff_skip_ffi(ctx: *mut c_void, periods: u64) -> u64 {
+    // SAFETY: as for ff_mark_ffi.
+    unsafe { (*(ctx as *mut Host)).ff_skip(periods) }
 }
 
 unsafe extern "C" fn probe_new_ffi(ctx: *mut c_void, path: *const c_char) -> *mut c_void {

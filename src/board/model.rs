@@ -111,6 +111,8 @@ struct Api {
     clock: unsafe extern "C" fn(*mut Opaque, usize, *mut u64, *mut u64),
     fatal: unsafe extern "C" fn(*mut Opaque) -> *const c_char,
     bench_minimal: unsafe extern "C" fn(*mut Opaque, u64),
+    fast_forward: unsafe extern "C" fn(*mut Opaque, c_int) -> c_int,
+    fast_forwarded: unsafe extern "C" fn(*mut Opaque, *mut u64, *mut u64),
 }
 
 /// A running board simulation.
@@ -151,6 +153,8 @@ impl BoardModel {
             set_inputs: sym!(b"board_set_inputs"),
             record_vga: sym!(b"board_record_vga"),
             record_bot: sym!(b"board_record_bot"),
+            fast_forward: sym!(b"board_fast_forward"),
+            fast_forwarded: sym!(b"board_fast_forwarded"),
             run: sym!(b"board_run"),
             time_ps: sym!(b"board_time_ps"),
             evals: sym!(b"board_evals"),
@@ -187,6 +191,23 @@ impl BoardModel {
     pub fn set_inputs(&mut self, reset_pressed: bool, buttons: u8, switches: u16) {
         // SAFETY: ptr is live until drop.
         unsafe { (self.api.set_inputs)(self.ptr, reset_pressed as u32, buttons as u32, switches as u32) }
+    }
+
+    /// Skip the periods in which the whole board repeats itself (harness.cpp's fast-forward):
+    /// for a one-clock board whose KCPSM6s and bot are models, and only while nothing needs
+    /// every edge (a waveform is written edge by edge whatever this says; VGA capture, CPU
+    /// traces, breakpoints and lock-step need it off). Returns whether it is on.
+    pub fn fast_forward(&mut self, on: bool) -> bool {
+        // SAFETY: ptr is live.
+        unsafe { (self.api.fast_forward)(self.ptr, on as c_int) != 0 }
+    }
+
+    /// The skips so far and the simulated time they covered (ps).
+    pub fn fast_forwarded(&self) -> (u64, u64) {
+        let (mut skips, mut ps) = (0, 0);
+        // SAFETY: ptr is live.
+        unsafe { (self.api.fast_forwarded)(self.ptr, &mut skips, &mut ps) };
+        (skips, ps)
     }
 
     /// Record every change of the bot's outputs from now on (a lock-step run compares them).

@@ -119,6 +119,10 @@ pub struct Args {
     /// --cpu lockstep, the ISS board's bot
     #[arg(long, value_enum, default_value = "rtl")]
     bot: BotArg,
+    /// With --cpu iss --bot model the board skips the periods in which all of it repeats
+    /// itself (the same results, edge for edge); this simulates every edge
+    #[arg(long)]
+    no_fast_forward: bool,
     /// Measure instead of run: the board harness against a minimal C++ harness of the same
     /// built design (100 MHz oscillator only, nothing recorded), or with --cpu iss the ISS
     /// board against the all-RTL board; in Mcycles/s of the 100 MHz clock, over --seconds of
@@ -541,6 +545,17 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         vcd_open = true;
     }
     model.record_vga(a.frames.is_some());
+    // The fast-forward: every KCPSM6 and the bot are models, and nothing needs every edge
+    // (a waveform turns it off while it is written).
+    let fast_forward = !a.no_fast_forward
+        && cpu == CpuModel::Iss
+        && main_bot == BotKind::Model
+        && a.frames.is_none()
+        && a.cpu_trace.is_none()
+        && cpu_breaks.is_empty();
+    if let Sim::One(m) = &mut model {
+        m.fast_forward(fast_forward);
+    }
     let mut vga = Capture::default();
     let mut frames_seen = 0u64;
     let mut frames_written = 0u64;
@@ -679,6 +694,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         }
     };
     let wall = t0.elapsed().as_secs_f64();
+    let (skips, skipped_ps) = model.main().fast_forwarded();
     let sim_ps = model.main().time_ps();
     display.settle(sim_ps);
     model.check()?;
@@ -761,6 +777,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
             "wall_seconds": wall,
             "build_seconds": built.seconds,
             "cpu_traces": traces,
+            "fast_forward": {"skips": skips, "skipped_seconds": skipped_ps as f64 / 1e12},
             "break": stopped.as_ref().map(|s| serde_json::json!({"time_ps": s.time_ps, "what": s.message})),
         });
         println!("{v}");
@@ -771,6 +788,9 @@ fn run_once(a: Args) -> Result<Stopped, String> {
             sim_ps as f64 / 1e12,
             snapshots.len()
         );
+        if skips > 0 {
+            println!("  fast-forwarded {:.3} s of it in {skips} skips", skipped_ps as f64 / 1e12);
+        }
         for t in &traces {
             println!("  wrote {}", t.display());
         }

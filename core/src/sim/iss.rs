@@ -78,7 +78,8 @@ struct WorldIf {
     pulse: Option<u64>,
     /// Every port access, when recording (lock-step runs).
     events: Option<Vec<PortEvent>>,
-    /// The cycle of the first write since it was cleared ([`IssBot::next_write`]).
+    /// The cycle of the first write since it was cleared that changes the outputs
+    /// ([`IssBot::next_write`]).
     written: Option<u64>,
 }
 
@@ -118,7 +119,9 @@ impl Bus for WorldIf {
 
     fn output(&mut self, port: u8, value: u8, cycle: u64) {
         self.record(cycle, PortKind::Write, port, value);
-        self.written.get_or_insert(cycle);
+        if self.shows(port) {
+            self.written.get_or_insert(cycle);
+        }
         self.write(port, value, cycle);
     }
 
@@ -134,6 +137,18 @@ impl WorldIf {
         self.holding = [0; 7];
         self.visible = Registers::default();
         (self.load_sys, self.load_dist, self.upd) = (false, false, false);
+    }
+
+    /// Would a write to `port` now change world_if's outputs (a toggle, or a holding register
+    /// while its visible register copies it)? The map's address registers only change what
+    /// the firmware reads.
+    fn shows(&self, port: u8) -> bool {
+        match port & 15 {
+            ports::PRW_LOADREGS | ports::PRW_LDMOTDIST | ports::PRW_UPDSYSREGS => true,
+            ports::PWR_LOCX..=ports::PWR_SENSORS => self.load_sys,
+            ports::PWR_LMDIST | ports::PWR_RMDIST => self.load_dist,
+            _ => false,
+        }
     }
 
     /// A copy to run ahead on (no recording).
@@ -300,6 +315,11 @@ impl IssBot {
         self.pins()
     }
 
+    /// Whether the firmware wrote a port since the last call in a way that changes the outputs.
+    pub fn wrote(&mut self) -> bool {
+        self.bus.written.take().is_some()
+    }
+
     /// What world_if holds now.
     pub fn pins(&self) -> BotPins {
         let v = &self.bus.visible;
@@ -309,9 +329,13 @@ impl IssBot {
         )
     }
 
-    /// The first cycle before `limit` in which the firmware writes a port (the only way the
-    /// bot's outputs change with its inputs held), or `limit`: run on a copy.
-    pub fn next_write(&self, limit: u64) -> u64 {
+    /// The first cycle before `limit` in which the firmware writes a port in a way that
+    /// changes world_if's outputs (the only way they change with the inputs held), or `limit`:
+    /// run on a copy. `reset`: the reset input held (nothing is written in reset).
+    pub fn next_write(&self, limit: u64, reset: bool) -> u64 {
+        if reset {
+            return limit;
+        }
         // A copy into the visible registers still to come changes the outputs too.
         let mut settled = self.bus.probe();
         settled.catch_up();
@@ -323,10 +347,18 @@ impl IssBot {
         probe.bus.written.unwrap_or(limit).min(limit)
     }
 
-    /// Run `cycles` cycles with the inputs held (reset low), none of which writes a port
+    /// Run `cycles` cycles with the inputs held, none of which writes a port
     /// ([`IssBot::next_write`] says how far that is): what a board's fast-forward does.
-    pub fn skip(&mut self, cycles: u64) {
+    pub fn skip(&mut self, cycles: u64, reset: bool) {
         let end = self.cpu.cycle() + cycles;
+        if reset {
+            // Held in reset: the core's reset sequence, world_if cleared at every edge.
+            while self.cpu.cycle() < end {
+                self.cpu.tick(kcpsm6::iss::Pins { reset: true, ..Default::default() }, &mut self.bus);
+            }
+            self.bus.reset();
+            return;
+        }
         self.cpu.run_fast(&mut self.bus, end.saturating_sub(2), |_| false);
         while self.cpu.cycle() < end {
             self.cpu.tick(kcpsm6::iss::Pins::default(), &mut self.bus);

@@ -517,7 +517,8 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         let rtl =
             build(&plan, &params, CpuModel::Rtl, BotKind::Rtl, false, a.quiet || a.json).map_err(|e| e.to_string())?;
         let iss = &built.library;
-        return bench_iss(&rtl.library, iss, &world, &plan.roms, a.seconds.unwrap_or(0.05), a.json, &|| {
+        let ff = main_bot == BotKind::Model && !a.no_fast_forward;
+        return bench_iss(&rtl.library, iss, &world, &plan.roms, a.seconds.unwrap_or(0.05), a.json, ff, &|| {
             host(&plan, cpu, main_bot)
         })
         .map(|_| None);
@@ -1083,9 +1084,11 @@ fn board_rate(
     roms: &[Rom],
     host: Option<Box<Host>>,
     cycles: u64,
+    fast_forward: bool,
 ) -> Result<f64, String> {
     let mut m = load(library, world, roms, host)?;
     m.set_inputs(false, 0, 0);
+    m.fast_forward(fast_forward);
     let mut buf = vec![RawEvent::default(); 4096];
     let mut display = Display::default();
     let t = Instant::now();
@@ -1117,28 +1120,42 @@ fn bench_iss(
     roms: &[Rom],
     seconds: f64,
     json: bool,
+    fast_forward: bool,
     host: &dyn Fn() -> Result<Option<Box<Host>>, String>,
 ) -> Result<(), String> {
     let cycles = (seconds * 1e8) as u64;
-    let (mut r, mut i, mut ratios) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut r, mut i, mut f, mut ratios, mut ff_ratios) = (vec![], vec![], vec![], vec![], vec![]);
     for _ in 0..ROUNDS {
-        let a = board_rate(rtl, world, roms, Some(Host::new(Vec::new(), false)), cycles)?;
-        let b = board_rate(iss, world, roms, host()?, cycles)?;
+        let a = board_rate(rtl, world, roms, Some(Host::new(Vec::new(), false)), cycles, false)?;
+        let b = board_rate(iss, world, roms, host()?, cycles, false)?;
         r.push(a);
         i.push(b);
         ratios.push(b / a);
+        if fast_forward {
+            let c = board_rate(iss, world, roms, host()?, cycles, true)?;
+            f.push(c);
+            ff_ratios.push(c / a);
+        }
     }
     let (r, i, x) = (median(&mut r), median(&mut i), median(&mut ratios));
+    let (f, fx) = (fast_forward.then(|| median(&mut f)), fast_forward.then(|| median(&mut ff_ratios)));
     if json {
         println!(
             "{}",
-            serde_json::json!({"iss_board_mcycles_per_s": i, "rtl_board_mcycles_per_s": r, "speedup": x, "cycles": cycles, "rounds": ROUNDS})
+            serde_json::json!({"iss_board_mcycles_per_s": i, "rtl_board_mcycles_per_s": r, "speedup": x,
+                "fast_forward_mcycles_per_s": f, "fast_forward_speedup": fx, "cycles": cycles, "rounds": ROUNDS})
         );
     } else {
         println!(
             "ISS board {i:.2} Mcycles/s, all-RTL board {r:.2} Mcycles/s (medians): {x:.2} x (median of {ROUNDS} side-by-side rounds of {cycles} cycles of 100 MHz; {:.3} x the board's real time)",
             i / 100.0
         );
+        if let (Some(f), Some(fx)) = (f, fx) {
+            println!(
+                "with the fast-forward {f:.2} Mcycles/s of board time: {fx:.2} x the all-RTL board ({:.3} x the board's real time)",
+                f / 100.0
+            );
+        }
     }
     Ok(())
 }
@@ -1157,7 +1174,7 @@ fn bench(
     let cycles = (seconds * 1e8) as u64;
     let (mut board_rates, mut minimal_rates) = (Vec::new(), Vec::new());
     for _ in 0..ROUNDS {
-        board_rates.push(board_rate(library, world, roms, host()?, cycles)?);
+        board_rates.push(board_rate(library, world, roms, host()?, cycles, false)?);
         let mut m = load(library, world, roms, host()?)?;
         m.set_inputs(false, 0, 0);
         let t = Instant::now();

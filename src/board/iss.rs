@@ -20,7 +20,7 @@ use kcpsm6::source::SourceMap;
 use kcpsm6::trace::Tracer;
 use kcpsm6::Image;
 
-use botsim_core::sim::iss::IssBot;
+use botsim_core::sim::iss::{IssBot, LazyBot};
 use botsim_core::World;
 
 /// The functions a model pointer starts with (`BoardCpuFns` in board_abi.h).
@@ -330,31 +330,24 @@ struct BotFns {
 static BOT_FNS: BotFns = BotFns { edge: edge_ffi };
 
 /// The bot of a `--bot model` build: botsim's bot on the ISS with Rust models of world_if
-/// and the map ([`IssBot::edge`]).
+/// and the map, simulated when something can change ([`LazyBot`]).
 #[repr(C)]
 pub struct BotModel {
     fns: &'static BotFns,
-    pub bot: IssBot,
+    pub bot: LazyBot,
     /// The inputs of the last edge.
     pins: u32,
     /// The host's activity count.
     activity: *mut u64,
-    /// The bot's cycle at the fast-forward's mark.
+    /// The bot's edges at the fast-forward's mark.
     mark: u64,
-}
-
-impl BotModel {
-    /// The reset input of the last edge.
-    fn reset(&self) -> bool {
-        self.pins >> 8 & 1 == 1
-    }
 }
 
 unsafe extern "C" fn edge_ffi(model: *mut BotModel, pins: u32) -> u64 {
     // SAFETY: the pointer is one `Host::bot` made; the harness calls from one thread.
     let m = unsafe { &mut *model };
     let out = m.bot.edge(pins >> 8 & 1 == 1, pins as u8).0;
-    if m.bot.wrote() || pins != m.pins {
+    if pins != m.pins || m.bot.wrote() {
         m.pins = pins;
         // SAFETY: the host outlives its models.
         unsafe { *m.activity += 1 };
@@ -455,7 +448,7 @@ impl Host {
         };
         let Ok(bot) = IssBot::new(image, world.clone()) else { return std::ptr::null_mut() };
         let activity = &mut self.raw.activity as *mut u64;
-        let mut m = Box::new(BotModel { fns: &BOT_FNS, bot, pins: 0, activity, mark: 0 });
+        let mut m = Box::new(BotModel { fns: &BOT_FNS, bot: LazyBot::new(bot), pins: 0, activity, mark: 0 });
         let ptr = &mut *m as *mut BotModel;
         self.bots.push(m);
         ptr
@@ -464,11 +457,6 @@ impl Host {
     /// True when the bot is a model ([`Host::model_bot`]).
     pub fn models_bot(&self) -> bool {
         self.bot_spec.is_some()
-    }
-
-    /// The bot models made (one per `bot` instance).
-    pub fn bots(&mut self) -> impl Iterator<Item = &mut BotModel> {
-        self.bots.iter_mut().map(|b| &mut **b)
     }
 
     /// Stop the run at these breakpoints, by instance path (before the model is made).
@@ -529,7 +517,7 @@ impl Host {
             c.mark = Some(Box::new(c.cpu.clone()));
         }
         for b in &mut self.bots {
-            b.mark = b.bot.cycle();
+            b.mark = b.bot.edges();
         }
     }
 
@@ -548,13 +536,11 @@ impl Host {
         }
         let mut n = periods;
         for b in &self.bots {
-            let now = b.bot.cycle();
-            let per = now - b.mark;
+            let per = b.bot.edges() - b.mark;
             if per == 0 {
                 continue; // its clock does not run
             }
-            let room = b.bot.next_write(now + n.saturating_mul(per) + MARGIN, b.reset()) - now;
-            n = n.min(room.saturating_sub(MARGIN) / per);
+            n = n.min(b.bot.quiet_for().saturating_sub(MARGIN) / per);
         }
         n
     }
@@ -567,9 +553,8 @@ impl Host {
         }
         let mut edges = 0;
         for b in &mut self.bots {
-            let n = periods * (b.bot.cycle() - b.mark);
-            let reset = b.reset();
-            b.bot.skip(n, reset);
+            let n = periods * (b.bot.edges() - b.mark);
+            b.bot.skip(n);
             edges = n;
         }
         edges

@@ -210,6 +210,94 @@ impl WorldIf {
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct BotPins(pub u64);
 
+/// The bot of a board design (`--bot model`), stepped edge by edge like [`IssBot::edge`] but
+/// simulated only when something can change: while its inputs are held and before the next
+/// write that shows (found by running ahead on a copy), an edge only counts. The outputs of
+/// every edge are [`IssBot::edge`]'s (tested).
+pub struct LazyBot {
+    bot: IssBot,
+    /// Edges seen: the next edge ends cycle `edges`.
+    edges: u64,
+    /// The inputs of the last edge, and the outputs after it.
+    reset: bool,
+    motctl: u8,
+    out: BotPins,
+    /// Edges before this one keep the outputs with the inputs held.
+    horizon: u64,
+    /// A write that shows, at the last edge.
+    wrote: bool,
+}
+
+impl LazyBot {
+    /// How far a run-ahead looks for the next write that shows (8 M cycles: longer than a
+    /// sample at hw timing).
+    const RUN_AHEAD: u64 = 1 << 23;
+
+    pub fn new(bot: IssBot) -> LazyBot {
+        let (edges, out) = (bot.cycle(), bot.pins());
+        LazyBot { bot, edges, reset: false, motctl: 0, out, horizon: edges, wrote: false }
+    }
+
+    /// One rising edge (as [`IssBot::edge`]).
+    #[inline]
+    pub fn edge(&mut self, reset: bool, motctl: u8) -> BotPins {
+        let e = self.edges;
+        self.edges += 1;
+        self.wrote = false;
+        if reset == self.reset && motctl == self.motctl && e < self.horizon {
+            return self.out;
+        }
+        self.sync(e);
+        self.out = self.bot.edge(reset, motctl);
+        self.wrote = self.bot.wrote();
+        (self.reset, self.motctl) = (reset, motctl);
+        self.horizon = self.bot.next_write(self.edges + Self::RUN_AHEAD, reset);
+        self.out
+    }
+
+    /// Simulate the edges counted but not run, with the inputs held, up to cycle `cycle`.
+    fn sync(&mut self, cycle: u64) {
+        let c = self.bot.cycle();
+        if cycle > c {
+            self.bot.skip(cycle - c, self.reset);
+        }
+    }
+
+    /// The edges so far.
+    pub fn edges(&self) -> u64 {
+        self.edges
+    }
+
+    /// The inputs of the last edge changed them, or its firmware wrote what shows.
+    pub fn wrote(&self) -> bool {
+        self.wrote
+    }
+
+    /// The inputs of the last edge: (reset, MotCtl).
+    pub fn inputs(&self) -> (bool, u8) {
+        (self.reset, self.motctl)
+    }
+
+    /// How many edges from now the outputs stay as they are with the inputs held (at
+    /// least; the run-ahead looks 8 M cycles ahead).
+    pub fn quiet_for(&self) -> u64 {
+        self.horizon.saturating_sub(self.edges)
+    }
+
+    /// Count `edges` edges with the inputs held, fewer than [`LazyBot::quiet_for`]: a
+    /// board's fast-forward (they are simulated when something next changes).
+    pub fn skip(&mut self, edges: u64) {
+        debug_assert!(edges <= self.quiet_for());
+        self.edges += edges;
+    }
+
+    /// The bot, simulated up to now.
+    pub fn bot(&mut self) -> &IssBot {
+        self.sync(self.edges);
+        &self.bot
+    }
+}
+
 /// A BotSim whose CPU is the ISS.
 pub struct IssBot {
     cpu: Cpu,
@@ -400,6 +488,38 @@ impl Backend for IssBot {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_lazy_bot_shows_at_every_edge_what_the_edge_by_edge_bot_shows() {
+        // hw timing: a sample every 5.3 M cycles; MotCtl changes at odd times, a reset in the
+        // middle (held for a while), then MotCtl again.
+        let fw = crate::Firmware { timing: Timing::Hw, ..crate::Firmware::default() };
+        let image = fw.assemble().unwrap();
+        let mut eager = IssBot::new(&image, World::builtin()).unwrap();
+        let mut lazy = LazyBot::new(IssBot::new(&image, World::builtin()).unwrap());
+        let changes: [(u64, bool, u8); 7] = [
+            (3, true, 0x00),
+            (40, false, 0x00),
+            (1_234_567, false, MotCtl::FORWARD.0),
+            (6_000_001, false, 0x7A),
+            (11_500_000, true, 0x7A),
+            (11_500_300, false, 0x7A),
+            (12_345_679, false, MotCtl::FORWARD.0),
+        ];
+        let (mut reset, mut motctl, mut samples, mut upd) = (false, 0u8, 0, false);
+        for c in 0..17_000_000u64 {
+            if let Some(&(_, r, m)) = changes.iter().find(|(at, _, _)| *at == c) {
+                (reset, motctl) = (r, m);
+            }
+            let (a, b) = (eager.edge(reset, motctl), lazy.edge(reset, motctl));
+            assert_eq!(a, b, "edge {c}");
+            samples += (a.0 >> 48 & 1 == 1 && !upd) as u64;
+            upd = a.0 >> 48 & 1 == 1;
+        }
+        assert!(samples >= 3, "{samples} samples");
+        // The last edges were only counted.
+        assert!(lazy.bot.cycle() < lazy.edges());
+    }
 
     #[test]
     fn a_program_past_the_1k_rom_is_refused_as_by_the_rtl() {

@@ -518,7 +518,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
             build(&plan, &params, CpuModel::Rtl, BotKind::Rtl, false, a.quiet || a.json).map_err(|e| e.to_string())?;
         let iss = &built.library;
         let ff = main_bot == BotKind::Model && !a.no_fast_forward;
-        return bench_iss(&rtl.library, iss, &world, &plan.roms, a.seconds.unwrap_or(0.05), a.json, ff, &|| {
+        return bench_iss([&rtl.library, iss], &world, &plan.roms, a.seconds.unwrap_or(0.05), a.json, ff, &|| {
             host(&plan, cpu, main_bot)
         })
         .map(|_| None);
@@ -1111,11 +1111,11 @@ fn median(v: &mut [f64]) -> f64 {
     v[v.len() / 2]
 }
 
-/// `--bench --cpu iss`: the ISS board against the all-RTL board of the same design,
-/// alternating rounds; the speed-up is the median of the rounds' ratios.
+/// `--bench --cpu iss`: the ISS board against the all-RTL board of the same design (and,
+/// with `fast_forward`, the ISS board fast-forwarding), alternating rounds; each speed-up is
+/// the median of the rounds' ratios.
 fn bench_iss(
-    rtl: &Path,
-    iss: &Path,
+    [rtl, iss]: [&Path; 2],
     world: &World,
     roms: &[Rom],
     seconds: f64,

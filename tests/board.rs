@@ -32,6 +32,14 @@ fn example(top_dir: &str, args: &[&str]) -> Output {
     board(&all)
 }
 
+/// The Project 2 example running the line follower (examples/common/linefollow.psm) at `fast`
+/// timing, as the course maps were made (`--compat botsim20`), with `extra` arguments.
+fn follower(extra: &[&str]) -> Output {
+    let mut args = vec!["--program", "examples/common/linefollow.psm", "--timing", "fast", "--compat", "botsim20"];
+    args.extend_from_slice(extra);
+    example("examples/nexys4_proj2", &args)
+}
+
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
@@ -582,26 +590,17 @@ fn trace_lines(file: &Path) -> Vec<(u16, String, String)> {
 fn the_cpu_trace_names_the_source_lines_of_the_assemblers_listing() {
     let dir = tempfile::tempdir().unwrap();
     let t = dir.path().join("traces");
-    let o = example(
-        "examples/nexys4_proj2",
-        &[
-            "--program",
-            "examples/common/linefollow.psm",
-            "--timing",
-            "fast",
-            "--compat",
-            "botsim20",
-            "--samples",
-            "60",
-            "--cpu-trace",
-            t.to_str().unwrap(),
-            "--cpu-trace-from",
-            "1.2ms",
-            "--cpu-trace-to",
-            "1.4ms",
-            "-q",
-        ],
-    );
+    let o = follower(&[
+        "--samples",
+        "60",
+        "--cpu-trace",
+        t.to_str().unwrap(),
+        "--cpu-trace-from",
+        "1.2ms",
+        "--cpu-trace-to",
+        "1.4ms",
+        "-q",
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     // The team's CPU against linefollow.psm's listing, the bot's against botsim's firmware.
     let team = kcpsm6::asm::assemble_file(&root().join("examples/common/linefollow.psm"), &Default::default()).unwrap();
@@ -653,12 +652,7 @@ fn check_trace_against_listing(dir: &Path, cpu: &str, program: &kcpsm6::asm::Pro
 fn a_breakpoint_stops_at_the_instruction_and_the_sample_the_full_run_records() {
     let dir = tempfile::tempdir().unwrap();
     let (t, csv) = (dir.path().join("t"), dir.path().join("full.csv"));
-    let base = ["--program", "examples/common/linefollow.psm", "--timing", "fast", "--compat", "botsim20"];
-    let with = |extra: &[&str]| {
-        let mut v: Vec<&str> = base.to_vec();
-        v.extend_from_slice(extra);
-        example("examples/nexys4_proj2", &v)
-    };
+    let with = follower;
     // The full run: every instruction of the team CPU and every sample.
     let o = with(&["--samples", "400", "--cpu-trace", t.to_str().unwrap(), "--trace-csv", csv.to_str().unwrap(), "-q"]);
     assert!(o.status.success(), "{}", stderr(&o));
@@ -804,22 +798,7 @@ fn gtkwave_script(save_file: &Path, script: &str) -> Option<String> {
 fn the_save_file_opens_in_gtkwave_on_the_breakpoint_with_labels_and_decoded_registers() {
     let dir = tempfile::tempdir().unwrap();
     let vcd = dir.path().join("w.vcd");
-    let o = example(
-        "examples/nexys4_proj2",
-        &[
-            "--program",
-            "examples/common/linefollow.psm",
-            "--timing",
-            "fast",
-            "--break",
-            "label=isr",
-            "--break-window",
-            "20us",
-            "--vcd",
-            vcd.to_str().unwrap(),
-            "--json",
-        ],
-    );
+    let o = follower(&["--break", "label=isr", "--break-window", "20us", "--vcd", vcd.to_str().unwrap(), "--json"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let s: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let stop = s["break"]["time_ps"].as_u64().unwrap();
@@ -859,30 +838,21 @@ fn the_save_file_opens_in_gtkwave_on_the_breakpoint_with_labels_and_decoded_regi
 fn a_bot_condition_writes_the_firmwares_answer_to_that_sample() {
     let dir = tempfile::tempdir().unwrap();
     let (vcd, t, csv) = (dir.path().join("w.vcd"), dir.path().join("t"), dir.path().join("t.csv"));
-    let o = example(
-        "examples/nexys4_proj2",
-        &[
-            "--program",
-            "examples/common/linefollow.psm",
-            "--timing",
-            "fast",
-            "--compat",
-            "botsim20",
-            "--samples",
-            "400",
-            "--break",
-            "bot=off-line",
-            "--break-window",
-            "20us",
-            "--vcd",
-            vcd.to_str().unwrap(),
-            "--cpu-trace",
-            t.to_str().unwrap(),
-            "--trace-csv",
-            csv.to_str().unwrap(),
-            "--json",
-        ],
-    );
+    let o = follower(&[
+        "--samples",
+        "400",
+        "--break",
+        "bot=off-line",
+        "--break-window",
+        "20us",
+        "--vcd",
+        vcd.to_str().unwrap(),
+        "--cpu-trace",
+        t.to_str().unwrap(),
+        "--trace-csv",
+        csv.to_str().unwrap(),
+        "--json",
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let s: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let stop = s["break"]["time_ps"].as_u64().unwrap();

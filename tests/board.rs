@@ -94,6 +94,12 @@ fn the_trace_follows_the_samples_asked_for_and_reruns_reuse_the_build() {
     let again = example("examples/nexys4_proj2", &a);
     assert!(again.status.success());
     assert!(stderr(&again).contains("reused the build"), "{}", stderr(&again));
+    // The same sources named by absolute paths (as a suite file gives them): the same build.
+    let (common, top) = (root().join("examples/common"), root().join("examples/nexys4_proj2"));
+    let mut args = vec![common.to_str().unwrap(), top.to_str().unwrap(), "--param", "SIMULATE=1"];
+    args.extend_from_slice(&a);
+    let absolute = board(&args);
+    assert!(stderr(&absolute).contains("reused the build"), "{}", stderr(&absolute));
     let text = std::fs::read_to_string(&csv).unwrap();
     let mut lines = text.lines();
     assert_eq!(lines.next().unwrap(), "sample,cycle,loc_x,loc_y,bot_info,sensors,lm_dist,rm_dist");

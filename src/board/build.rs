@@ -181,16 +181,20 @@ pub fn build(
     ABI.hash(&mut h);
     f.generated.hash(&mut h);
     f.defines.hash(&mut h);
+    // The user's files and include folders as Verilator is given them (absolute paths), so
+    // the same sources named from another folder find the same build.
     for (name, text, path) in &f.user {
-        name.hash(&mut h);
+        absolute(path).hash(&mut h);
         match text {
-            Some(t) => t.hash(&mut h),
+            Some(t) => (name, t).hash(&mut h),
             None => {
                 std::fs::read(path).map_err(|e| BoardError::at(path, 0, 0, format!("cannot read: {e}")))?.hash(&mut h)
             }
         }
     }
-    plan.include_dirs.hash(&mut h);
+    for d in &plan.include_dirs {
+        absolute(d).hash(&mut h);
+    }
     // Included files (.vh) are part of the input too.
     for d in &plan.include_dirs {
         if let Ok(rd) = std::fs::read_dir(d) {

@@ -359,8 +359,9 @@ uint64_t ff_step(Board* b, uint64_t t, uint64_t until_ps, BoardEvent* buf, uint3
     f.last_period = period;
     if (until_ps < t + 2 * period) return 0;
     uint64_t most = (until_ps - t) / period - 1;
-    const size_t per = f.shown.size();
-    if (per) most = std::min<uint64_t>(most, (cap - *n - 8) / per);
+    // The repeated records must fit with room for one evaluation's (5) to spare.
+    const size_t per = f.shown.size(), room = cap - *n;
+    if (per) most = room < 8 + per ? 0 : std::min<uint64_t>(most, (room - 8) / per);
     if (most == 0) return 0;
     const uint64_t k = h->ff_room(h->ctx, most);
     if (k == 0) return 0;

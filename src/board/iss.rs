@@ -334,7 +334,7 @@ static BOT_FNS: BotFns = BotFns { edge: edge_ffi };
 #[repr(C)]
 pub struct BotModel {
     fns: &'static BotFns,
-    pub bot: LazyBot,
+    bot: LazyBot,
     /// The inputs of the last edge.
     pins: u32,
     /// The host's activity count.
@@ -528,19 +528,20 @@ impl Host {
 
     /// How many periods (each as long as the time since the mark) every bot's outputs stay as
     /// they are with its inputs held, at most `periods`; none without a bot model.
-    fn ff_room(&self, periods: u64) -> u64 {
+    fn ff_room(&mut self, periods: u64) -> u64 {
         // Margin: the skip ends this many cycles before the bot's next write.
         const MARGIN: u64 = 4;
         if self.bots.is_empty() {
             return 0;
         }
         let mut n = periods;
-        for b in &self.bots {
+        for b in &mut self.bots {
             let per = b.bot.edges() - b.mark;
             if per == 0 {
                 continue; // its clock does not run
             }
-            n = n.min(b.bot.quiet_for().saturating_sub(MARGIN) / per);
+            let wanted = n.saturating_mul(per).saturating_add(MARGIN);
+            n = n.min(b.bot.quiet_for(wanted).saturating_sub(MARGIN) / per);
         }
         n
     }
@@ -609,7 +610,7 @@ unsafe extern "C" fn ff_same_ffi(ctx: *mut c_void) -> c_int {
 
 unsafe extern "C" fn ff_room_ffi(ctx: *mut c_void, periods: u64) -> u64 {
     // SAFETY: as for ff_mark_ffi.
-    unsafe { (*(ctx as *const Host)).ff_room(periods) }
+    unsafe { (*(ctx as *mut Host)).ff_room(periods) }
 }
 
 unsafe extern "C" fn ff_skip_ffi(ctx: *mut c_void, periods: u64) -> u64 {

@@ -483,13 +483,12 @@ fn random_stimulus(seed: u64, ms: u64) -> String {
 fn rtl_and_iss_boards_agree_pin_for_pin_under_random_buttons_switches_and_resets() {
     let dir = tempfile::tempdir().unwrap();
     // With --bot model the ISS board's bot is botsim's model (every change of its outputs is
-    // compared too); the VGA design reads the map through the video port.
+    // compared too); the VGA design (its MMCM, two clocks) reads the map through the video
+    // port of the model's map.
     for (design, seed, bot) in [
         ("examples/nexys4_proj2", 1, "rtl"),
-        ("examples/nexys4_vga", 2, "rtl"),
-        ("examples/nexys4_proj2", 3, "rtl"),
-        ("examples/nexys4_proj2", 4, "model"),
-        ("examples/nexys4_vga", 5, "model"),
+        ("examples/nexys4_vga", 2, "model"),
+        ("examples/nexys4_proj2", 3, "model"),
     ] {
         let stim = dir.path().join(format!("stim{seed}.txt"));
         let text = random_stimulus(seed, 12);

@@ -941,3 +941,33 @@ fn the_fast_forward_skips_what_repeats_and_changes_nothing_the_board_shows() {
     assert!(outputs[0].0.lines().count() == 7 && !outputs[0].1.is_empty(), "{:?}", outputs[0]);
     assert_eq!(outputs[0], outputs[1]);
 }
+
+#[test]
+fn a_design_that_reads_the_time_runs_every_edge_and_says_why() {
+    // tests/board_designs/timed lights LED 0 at $time 30 ms. Its flops repeat every clock, so
+    // a fast-forward that trusted them would skip from the first quiet period to the bot's
+    // next sample (53 ms) and light the LED there; the build's check keeps it off.
+    let dir = tempfile::tempdir().unwrap();
+    let log = dir.path().join("display.txt");
+    let o = board(&[
+        "tests/board_designs/timed",
+        "--cpu",
+        "iss",
+        "--bot",
+        "model",
+        "--seconds",
+        "0.06",
+        "--display",
+        log.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(s["fast_forward"]["off_because"], "the design reads the simulation time ($time, $realtime)", "{s}");
+    assert_eq!(s["fast_forward"]["skips"], 0, "{s}");
+    let log = std::fs::read_to_string(&log).unwrap();
+    assert_eq!(log.trim(), "30.000 ms  leds    0000000000000001");
+    // Without --json the run says so in a note.
+    let o = board(&["tests/board_designs/timed", "--cpu", "iss", "--bot", "model", "--seconds", "0.001"]);
+    assert!(stderr(&o).contains("note: no fast-forward: the design reads the simulation time"), "{}", stderr(&o));
+}

@@ -15,6 +15,8 @@
 
 #include <cstdint>
 #include <cstring>
+#include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -379,6 +381,7 @@ uint64_t ff_step(Board* b, uint64_t t, uint64_t until_ps, BoardEvent* buf, uint3
     b->top->rootp->bot_cycles += edges;
     b->now = t + skipped;
     b->ctx.time(b->now);
+    if (getenv("FFDBG")) fprintf(stderr, "skip t=%.4f ms mark=%.4f period=%llu clk k=%llu now=%.4f\n", t/1e9, (t-period)/1e9, (unsigned long long)(period/10000), (unsigned long long)k, b->now/1e9);
     f.skips++;
     f.skipped_ps += skipped;
     return skipped / b->clocks[0].num;

@@ -6,5 +6,6 @@ pub mod build;
 pub mod iss;
 pub mod lockstep;
 pub mod model;
+pub mod periodic;
 
 pub use botsim_core::board::*;

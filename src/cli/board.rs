@@ -517,7 +517,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         let rtl =
             build(&plan, &params, CpuModel::Rtl, BotKind::Rtl, false, a.quiet || a.json).map_err(|e| e.to_string())?;
         let iss = &built.library;
-        let ff = main_bot == BotKind::Model && !a.no_fast_forward;
+        let ff = main_bot == BotKind::Model && !a.no_fast_forward && built.fast_forward_blocker.is_none();
         return bench_iss([&rtl.library, iss], &world, &plan.roms, a.seconds.unwrap_or(0.05), a.json, ff, &|| {
             host(&plan, cpu, main_bot)
         })
@@ -554,8 +554,23 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         && a.frames.is_none()
         && a.cpu_trace.is_none()
         && cpu_breaks.is_empty();
+    // Why a run that could fast-forward does not (the design, not the options).
+    let mut fast_forward_off: Option<String> = None;
     if let Sim::One(m) = &mut model {
-        m.fast_forward(fast_forward);
+        if fast_forward {
+            fast_forward_off = built.fast_forward_blocker.clone();
+            if fast_forward_off.is_none() && !m.fast_forward(true) {
+                fast_forward_off = Some(format!(
+                    "the board has {} clocks (the fast-forward needs a board with one)",
+                    m.clocks().len()
+                ));
+            }
+            if let Some(why) = &fast_forward_off {
+                say(format!("note: no fast-forward: {why}; every clock edge is simulated"));
+            }
+        } else {
+            m.fast_forward(false);
+        }
     }
     let mut vga = Capture::default();
     let mut frames_seen = 0u64;
@@ -778,7 +793,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
             "wall_seconds": wall,
             "build_seconds": built.seconds,
             "cpu_traces": traces,
-            "fast_forward": {"skips": skips, "skipped_seconds": skipped_ps as f64 / 1e12},
+            "fast_forward": {"skips": skips, "skipped_seconds": skipped_ps as f64 / 1e12, "off_because": fast_forward_off},
             "break": stopped.as_ref().map(|s| serde_json::json!({"time_ps": s.time_ps, "what": s.message})),
         });
         println!("{v}");

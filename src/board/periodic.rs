@@ -1,0 +1,216 @@
+//! What the fast-forward (harness.cpp) needs of a Verilated design, checked on Verilator's
+//! output when the design is built.
+//!
+//! The fast-forward takes the bytes of Verilator's root object (with the KCPSM6 and bot
+//! models, which the host compares) for the whole state of the board: two equal copies mean
+//! the board repeats itself, and a copy put back is the board at that moment. That holds when
+//! every flop is a plain variable of the root and an evaluation depends on nothing else. It
+//! does not when the design
+//! - reads the simulation time (`$time`), draws random numbers at run time (`$random`), or
+//!   reads or writes files (its state, or what it does, lies outside the root);
+//! - prints (`$display` in a clocked block: a skipped period would not print);
+//! - calls DPI functions of its own (their state is the user's C code);
+//! - has variables that are not plain data (strings, queues, class objects, a `--timing`
+//!   scheduler: the bytes of a `std::string` are a pointer);
+//! - has modules Verilator did not inline (their state lives in other objects).
+//!
+//! [`blocker`] names the first such thing found in the generated files, so the fast-forward
+//! stays off for that design and the run says why.
+//!
+//! ```
+//! let header = "class Vboard___024root final : public VerilatedModule {\n  public:\n    CData/*0:0*/ x;\n    std::string name;\n};\n";
+//! let why = botsim::board::periodic::root_blocker(header);
+//! assert!(why.unwrap().contains("std::string name"));
+//! ```
+
+use std::path::Path;
+
+/// The generated C++ of a design (Verilator's `--Mdir`): why the fast-forward cannot take its
+/// root object for its whole state, or `None` when it can.
+pub fn blocker(obj: &Path) -> Option<String> {
+    let Ok(entries) = std::fs::read_dir(obj) else {
+        return Some("Verilator's output could not be read".into());
+    };
+    let mut names: Vec<String> = entries.flatten().map(|e| e.file_name().to_string_lossy().into_owned()).collect();
+    names.sort();
+    let read = |n: &str| std::fs::read_to_string(obj.join(n)).unwrap_or_default();
+    for n in &names {
+        if n.ends_with(".h") && n.starts_with("Vboard_") && !KNOWN_HEADERS.contains(&n.as_str()) {
+            return Some(format!(
+                "Verilator kept a module apart (`{}`) instead of inlining it",
+                n.trim_start_matches("Vboard_").trim_end_matches(".h").trim_start_matches('_')
+            ));
+        }
+    }
+    if let Some(why) = root_blocker(&read("Vboard___024root.h")) {
+        return Some(why);
+    }
+    if let Some(why) = dpi_blocker(&read("Vboard__Dpi.h")) {
+        return Some(why);
+    }
+    // The evaluation (the `__Slow` files hold the initial blocks and the constructor).
+    for n in names.iter().filter(|n| n.starts_with("Vboard___024root__DepSet_") && !n.ends_with("__Slow.cpp")) {
+        if let Some(why) = eval_blocker(&read(n)) {
+            return Some(why);
+        }
+    }
+    None
+}
+
+/// Headers every build has: the model, its symbol table, its DPI imports, the root.
+const KNOWN_HEADERS: &[&str] = &["Vboard__Syms.h", "Vboard__Dpi.h", "Vboard___024root.h"];
+
+/// Plain member types of the root: Verilator's integer and wide types, unpacked arrays of
+/// them, trigger vectors, the ports, and the symbol table's pointer.
+const PLAIN: &[&str] = &[
+    "CData",
+    "SData",
+    "IData",
+    "QData",
+    "EData",
+    "VlWide<",
+    "VlUnpacked<",
+    "VlTriggerVec<",
+    "VL_IN",
+    "VL_OUT",
+    "Vboard__Syms* const vlSymsp;",
+];
+
+/// The root's header: a member that is not plain data, or `None`.
+pub fn root_blocker(header: &str) -> Option<String> {
+    let Some(start) = header.find("class Vboard___024root") else {
+        return Some("Verilator's root class was not found".into());
+    };
+    for line in header[start..].lines().skip(1) {
+        let code = strip_comments(line);
+        let code = code.trim();
+        if code.starts_with("} VL_ATTR_ALIGNED") || code == "};" && line.starts_with('}') {
+            break;
+        }
+        // Members end with `;`; skip access labels, nested struct braces and functions.
+        let function = code.contains('(') && !code.starts_with("VL_IN") && !code.starts_with("VL_OUT");
+        if !code.ends_with(';') || code == "};" || function {
+            continue;
+        }
+        let plain = PLAIN.iter().any(|p| code.starts_with(p)) && !code.contains("std::") && only_plain_vl_types(code);
+        if !plain {
+            return Some(format!("the design has a variable that is not plain data (`{code}`)"));
+        }
+    }
+    None
+}
+
+/// Every `Vl...` type named on the line is one of the plain ones.
+fn only_plain_vl_types(code: &str) -> bool {
+    code.match_indices("Vl").all(|(i, _)| {
+        let rest = &code[i..];
+        let before = code[..i].chars().next_back();
+        before.is_some_and(|c| c.is_alphanumeric() || c == '_')
+            || ["VlWide<", "VlUnpacked<", "VlTriggerVec<"].iter().any(|p| rest.starts_with(p))
+    })
+}
+
+fn strip_comments(line: &str) -> String {
+    let mut out = String::new();
+    let mut rest = line;
+    while let Some(i) = rest.find("/*") {
+        out.push_str(&rest[..i]);
+        match rest[i..].find("*/") {
+            Some(j) => rest = &rest[i + j + 2..],
+            None => return out,
+        }
+    }
+    out.push_str(rest.split("//").next().unwrap_or(""));
+    out
+}
+
+/// DPI imports and exports: only botsim's own (the KCPSM6 and bot models, the disassembler).
+fn dpi_blocker(header: &str) -> Option<String> {
+    let mut at = "";
+    for line in header.lines().map(str::trim) {
+        if let Some(place) = line.strip_prefix("// DPI import at ").or_else(|| line.strip_prefix("// DPI export at ")) {
+            at = place;
+        }
+        let Some(decl) = line.strip_prefix("extern ").filter(|d| !d.starts_with('"')) else { continue };
+        let name = decl.split('(').next().unwrap_or("").split_whitespace().last().unwrap_or("");
+        let name = name.trim_start_matches('*');
+        if !name.starts_with("botsim_") {
+            let place = if at.is_empty() { String::new() } else { format!(", {at}") };
+            return Some(format!("the design calls a DPI function of its own (`{name}`{place})"));
+        }
+    }
+    None
+}
+
+/// What the evaluation may not do, by the name of Verilator's runtime call, and what it is in
+/// the user's terms.
+const EVAL_CALLS: &[(&str, &str)] = &[
+    ("VL_TIME", "reads the simulation time ($time, $realtime)"),
+    ("->time()", "reads the simulation time ($time, $realtime)"),
+    ("VL_RANDOM", "draws random numbers while it runs ($random)"),
+    ("VL_URANDOM", "draws random numbers while it runs ($urandom)"),
+    ("VL_RAND_RESET", "draws random numbers while it runs"),
+    ("VL_WRITEF", "prints while it runs ($display, $write, $strobe, $monitor)"),
+    ("VL_FWRITEF", "writes a file while it runs ($fdisplay, $fwrite)"),
+    ("VL_FOPEN", "opens files while it runs ($fopen)"),
+    ("VL_FCLOSE", "closes files while it runs ($fclose)"),
+    ("VL_FREAD", "reads files while it runs ($fread)"),
+    ("VL_FGET", "reads files while it runs ($fgetc, $fgets)"),
+    ("VL_FSCANF", "reads files while it runs ($fscanf)"),
+    ("VL_FFLUSH", "writes a file while it runs ($fflush)"),
+    ("VL_READMEM", "loads memories while it runs ($readmemh)"),
+    ("VL_WRITEMEM", "writes memories to files while it runs ($writememh)"),
+    ("VL_SYSTEM", "runs commands while it runs ($system)"),
+];
+
+/// One file of the evaluation: the first call the fast-forward cannot repeat, or `None`.
+fn eval_blocker(code: &str) -> Option<String> {
+    EVAL_CALLS.iter().find(|(call, _)| code.contains(call)).map(|(_, what)| format!("the design {what}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const ROOT: &str = "class Vboard__Syms;\n\nclass Vboard___024root final : public VerilatedModule {\n  public:\n\n    // DESIGN SPECIFIC STATE\n    struct {\n        VL_IN8(clk,0,0);\n        VL_OUT16(led,15,0);\n        CData/*0:0*/ botsim_board__DOT__a;\n        VlWide<1024>/*32767:0*/ w;\n        VlUnpacked<IData/*17:0*/, 4096> rom;\n        QData/*63:0*/ cpu;\n    };\n    VlTriggerVec<1> __VactTriggered;\n\n    // INTERNAL VARIABLES\n    Vboard__Syms* const vlSymsp;\n\n    // CONSTRUCTORS\n    Vboard___024root(Vboard__Syms* symsp, const char* v__name);\n    ~Vboard___024root();\n    VL_UNCOPYABLE(Vboard___024root);\n\n    // INTERNAL METHODS\n    void __Vconfigure(bool first);\n} VL_ATTR_ALIGNED(VL_CACHE_LINE_BYTES);\n";
+
+    #[test]
+    fn a_root_of_plain_variables_passes() {
+        assert_eq!(root_blocker(ROOT), None);
+    }
+
+    #[test]
+    fn strings_queues_and_schedulers_are_not_plain() {
+        for member in [
+            "std::string name;",
+            "VlQueue<CData> q;",
+            "VlUnpacked<std::string, 2> names;",
+            "VlDelayScheduler __VdlySched;",
+            "VlClassRef<Vboard_c> obj;",
+        ] {
+            let h = ROOT.replace("QData/*63:0*/ cpu;", member);
+            let why = root_blocker(&h).unwrap_or_else(|| panic!("{member} passed"));
+            assert!(why.contains(member), "{why}");
+        }
+    }
+
+    #[test]
+    fn only_botsims_dpi_functions_pass() {
+        let ours = "#ifdef __cplusplus\nextern \"C\" {\n#endif\n    // DPI import at botsim_kcpsm6.v:41:37\n    extern long long botsim_iss_tick(void* cpu, long long pins);\n    extern void* botsim_bot_new(const char* path);\n";
+        assert_eq!(dpi_blocker(ours), None);
+        let theirs = format!("{ours}    // DPI import at uart.v:3:5\n    extern int uart_poll(int port);\n");
+        assert_eq!(
+            dpi_blocker(&theirs).as_deref(),
+            Some("the design calls a DPI function of its own (`uart_poll`, uart.v:3:5)")
+        );
+    }
+
+    #[test]
+    fn time_random_prints_and_files_in_the_evaluation_block() {
+        assert_eq!(eval_blocker("vlSelf->x = (1U + vlSelf->x);\n"), None);
+        let why = eval_blocker("if ((0x64ULL < VL_TIME_UNITED_Q(1000))) {").unwrap();
+        assert!(why.contains("$time"), "{why}");
+        assert!(eval_blocker("vlSelf->led = VL_RANDOM_I();").unwrap().contains("$random"));
+        assert!(eval_blocker("VL_WRITEF(\"hi %3#\\n\",8,vlSelf->x);").unwrap().contains("$display"));
+    }
+}

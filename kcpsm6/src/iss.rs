@@ -466,7 +466,7 @@ impl Cpu {
     /// Simulate one clock cycle: the state during cycle [`Cpu::cycle`] and the rising edge
     /// at its end, with `pins` sampled at that edge. Returns the record of an instruction
     /// whose second cycle this was (inlined: a caller that drops it does not build it).
-    #[inline]
+    #[inline(always)]
     pub fn tick<B: Bus>(&mut self, pins: Pins, bus: &mut B) -> Option<Retired> {
         let cycle = self.cycle;
         let phase = self.phase;

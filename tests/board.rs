@@ -901,9 +901,10 @@ fn the_fast_forward_skips_what_repeats_and_changes_nothing_the_board_shows() {
     let dir = tempfile::tempdir().unwrap();
     let stim = dir.path().join("stim.txt");
     std::fs::write(&stim, "80ms press btnU 5ms\n120ms switches 00A5\n170ms press btnCpuReset 2ms\n").unwrap();
-    let mut outputs = Vec::new();
+    let (mut outputs, mut pin_logs) = (Vec::new(), Vec::new());
     for ff in [false, true] {
         let (csv, display) = (dir.path().join(format!("{ff}.csv")), dir.path().join(format!("{ff}.txt")));
+        let pins = dir.path().join(format!("{ff}-pins.csv"));
         let mut args = vec![
             "--cpu",
             "iss",
@@ -917,6 +918,8 @@ fn the_fast_forward_skips_what_repeats_and_changes_nothing_the_board_shows() {
             csv.to_str().unwrap(),
             "--display",
             display.to_str().unwrap(),
+            "--pins",
+            pins.to_str().unwrap(),
             "--json",
         ];
         if !ff {
@@ -934,12 +937,28 @@ fn the_fast_forward_skips_what_repeats_and_changes_nothing_the_board_shows() {
         }
         let read = |p: &Path| std::fs::read_to_string(p).unwrap();
         outputs.push((read(&csv), read(&display), s["samples"].clone(), s["leds"].clone()));
+        pin_logs.push(read(&pins));
     }
     // The same samples (with the bot's cycle counts), the same display and LED changes at the
     // same times (without the display's refresh repeated into the skipped periods, its digits
     // would go dark: a digit not refreshed for 20 ms is).
     assert!(outputs[0].0.lines().count() == 7 && !outputs[0].1.is_empty(), "{:?}", outputs[0]);
     assert_eq!(outputs[0], outputs[1]);
+    // And every change of every display and LED pin at the same picosecond: the whole periods
+    // repeated, the part of one after them (a snapshot of that phase put back) too.
+    let (every_edge, skipping) = (&pin_logs[0], &pin_logs[1]);
+    assert!(every_edge.lines().count() > 100, "{}", every_edge.lines().count());
+    if every_edge != skipping {
+        let (a, b): (Vec<&str>, Vec<&str>) = (every_edge.lines().collect(), skipping.lines().collect());
+        let i = a.iter().zip(&b).position(|(x, y)| x != y).unwrap_or(a.len().min(b.len()));
+        panic!(
+            "--pins row {i}: every edge {:?}, fast-forward {:?} ({} and {} rows)",
+            a.get(i),
+            b.get(i),
+            a.len(),
+            b.len()
+        );
+    }
 }
 
 #[test]
@@ -970,4 +989,43 @@ fn a_design_that_reads_the_time_runs_every_edge_and_says_why() {
     // Without --json the run says so in a note.
     let o = board(&["tests/board_designs/timed", "--cpu", "iss", "--bot", "model", "--seconds", "0.001"]);
     assert!(stderr(&o).contains("note: no fast-forward: the design reads the simulation time"), "{}", stderr(&o));
+}
+
+#[test]
+fn the_fast_forward_puts_every_model_back_at_the_phase_it_skips_to() {
+    // tests/board_designs/phases: a CPU waiting in a loop of six cycles beside a refresh
+    // counter of 2^16 clocks repeats itself every 3 x 2^16 clocks; the skips end part-way
+    // into a period (a snapshot of that phase put back), where the CPU is not where it was
+    // at the period's start: with the CPU left at the wrong phase its ROM check stops the run.
+    let dir = tempfile::tempdir().unwrap();
+    let mut logs = Vec::new();
+    for ff in [false, true] {
+        let pins = dir.path().join(format!("{ff}.csv"));
+        let mut args = vec![
+            "tests/board_designs/phases",
+            "--program",
+            "tests/board_designs/phases/phases.psm",
+            "--cpu",
+            "iss",
+            "--bot",
+            "model",
+            "--samples",
+            "4",
+            "--pins",
+            pins.to_str().unwrap(),
+            "--json",
+        ];
+        if !ff {
+            args.push("--no-fast-forward");
+        }
+        let o = board(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let s: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        assert_eq!(s["leds"], 4, "an interrupt at every sample: {s}");
+        let skipped = s["fast_forward"]["skipped_seconds"].as_f64().unwrap();
+        assert!(if ff { skipped > 0.14 } else { skipped == 0.0 }, "{s}");
+        logs.push(std::fs::read_to_string(&pins).unwrap());
+    }
+    assert!(logs[0].lines().count() > 1000, "{}", logs[0].lines().count());
+    assert!(logs[0] == logs[1], "--pins differ with the fast-forward");
 }

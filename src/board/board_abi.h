@@ -60,14 +60,20 @@ typedef struct BoardHost {
     /* Debug builds: the disassembly of `word`, 20 characters padded with spaces. */
     void (*disasm)(uint32_t word, char* text);
     /* The fast-forward (harness.cpp): counted up by the models at every interrupt, write of
-     * the bot's firmware and change of the bot's inputs; mark every model's state; are the KCPSM6 models as
-     * marked (their cycle counts aside); how many periods (each as long as the time since the
-     * mark) the bot's outputs stay as they are with its inputs held, at most `periods`; run
-     * every model `periods` periods on (the CPUs' state repeats; the bot runs on), returning
-     * the bot's clock edges in them. */
+     * the bot's firmware and change of the bot's inputs; mark every model's state; take a
+     * phase snapshot of every model's state (the snapshots since the mark are numbered from
+     * 1); are the KCPSM6 models as marked (their cycle counts aside); how many periods (each
+     * as long as the time since the mark) the bot's outputs stay as they are with its inputs
+     * held, at most `periods`; do they stay so for `periods` periods and then up to phase
+     * snapshot `phase`; run every model `periods` periods on and then to phase snapshot
+     * `phase` (0: none) of the next (the CPUs' state repeats; the bot runs on), returning the
+     * bot's clock edges in them (called at the end of the mark's first period; the mark and
+     * the snapshots move on to the start of the period the models are then in). */
     uint64_t activity;
     void (*ff_mark)(void* ctx);
+    void (*ff_snap)(void* ctx);
     int (*ff_same)(void* ctx);
     uint64_t (*ff_room)(void* ctx, uint64_t periods);
-    uint64_t (*ff_skip)(void* ctx, uint64_t periods);
+    int (*ff_fits)(void* ctx, uint64_t periods, uint32_t phase);
+    uint64_t (*ff_skip)(void* ctx, uint64_t periods, uint32_t phase);
 } BoardHost;

@@ -15,8 +15,6 @@
 
 #include <cstdint>
 #include <cstring>
-#include <cstdio>
-#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -107,15 +105,24 @@ struct Clock {
 // after a rising edge, when the whole model (every byte of Verilator's state, every KCPSM6
 // model's state but for its cycle count) is as it was at a mark, with nothing written,
 // interrupted or changed at the bot's inputs since, the board repeats that period for as long
-// as nothing changes it. The board then skips whole periods up to the next change it can
-// foresee (the bot's next port write, the end of the run, the next input change): the models
-// run on by as many cycles (the bot simulates them, cheaply), and what the board showed in the
+// as nothing changes it. The board then skips ahead to just before the next change it can
+// foresee (the bot's next port write, the end of the run): whole periods, then part of one by
+// putting back a snapshot taken at that phase while the period was proved. The models run on
+// by as many cycles (the bot simulates them, cheaply), and what the board showed in the
 // period (display and LED changes) is repeated into the records, so the records are the same
-// as the edge-by-edge run's.
+// as the edge-by-edge run's. The build checks that Verilator's state is all in its root
+// object (src/board/periodic.rs).
+struct Phase {
+    uint64_t at = 0;            // ps after the mark
+    std::vector<uint8_t> root;  // Verilator's state then
+    size_t shown = 0;           // the period's records up to then
+};
+
 struct FastForward {
     bool on = false;
     std::vector<uint8_t> mark;  // Verilator's state at the mark
     bool marked = false;
+    bool proven = false;        // the mark's period is known, and `shown` holds it
     uint64_t mark_t = 0;        // the mark's time
     uint64_t activity = ~0ull;  // the models' activity count last seen, and since when
     uint64_t quiet_from = 0;
@@ -123,8 +130,11 @@ struct FastForward {
     uint64_t last_period = 0;   // the period found last (the next is likely the same)
     size_t hint = 0;             // the word that differed last
     size_t bot_cycles = 0;       // where the wrapper's bot_cycles counter is (not compared)
-    std::vector<BoardEvent> shown;  // what the board showed since the mark
+    std::vector<BoardEvent> shown;  // what the board showed in the period, times from the mark
     bool overflow = false;          // too much for `shown`: no skip from this mark
+    std::vector<Phase> phases;      // snapshots while the period is proved (buffers reused)
+    size_t nphases = 0;
+    uint64_t phase_every = 0;  // ps between snapshots
     uint64_t skips = 0, skipped_ps = 0;
 };
 
@@ -247,6 +257,9 @@ void board_set_inputs(Board* b, uint32_t reset_pressed, uint32_t buttons, uint32
     b->top->sw = switches & 0xFFFF;
     b->top->eval();
     b->evals++;
+    // The fast-forward's mark and snapshots hold the inputs they saw: look for a new period.
+    b->ff.marked = false;
+    b->ff.quiet_from = b->now;
 }
 
 void board_record_vga(Board* b, int on) { b->vga = on != 0; }
@@ -300,10 +313,12 @@ struct Shown {
 // The longest period the fast-forward looks for (2^22 clocks of 100 MHz, 42 ms); how long the
 // models must have been quiet (no interrupt, nothing from or to the bot) before it marks,
 // while the firmware answers (2^14 clocks, 164 us); how long a first mark waits for its
-// period when none is known yet (each later one waits twice as long, up to the longest).
+// period when none is known yet (each later one waits twice as long, up to the longest); how
+// many phase snapshots a period gets at most (each at least the settling time apart).
 constexpr uint64_t kMaxPeriodPs = (1ull << 22) * 10000;
 constexpr uint64_t kSettlePs = (1ull << 14) * 10000;
 constexpr uint64_t kFirstPatiencePs = (1ull << 16) * 10000;
+constexpr size_t kMaxPhases = 64;
 
 // Mark the state the fast-forward compares with.
 void ff_mark(Board* b, uint64_t t) {
@@ -311,14 +326,33 @@ void ff_mark(Board* b, uint64_t t) {
     std::memcpy(f.mark.data(), (const void*)b->top->rootp, f.mark.size());
     f.mark_t = t;
     f.marked = true;
+    f.proven = false;
     f.shown.clear();
     f.overflow = false;
+    f.nphases = 0;
+    f.phase_every = std::max(kSettlePs, f.patience / kMaxPhases);
     b->host->ff_mark(b->host->ctx);
 }
 
+// While the period is proved: a snapshot of every model, now and then.
+void ff_snap(Board* b, uint64_t t) {
+    FastForward& f = b->ff;
+    if (f.proven || f.nphases == kMaxPhases) return;
+    const uint64_t last = f.nphases ? f.phases[f.nphases - 1].at : 0;
+    if (t - f.mark_t - last < f.phase_every) return;
+    if (f.phases.size() == f.nphases) f.phases.emplace_back();
+    Phase& p = f.phases[f.nphases++];
+    p.at = t - f.mark_t;
+    const uint8_t* root = (const uint8_t*)b->top->rootp;
+    p.root.assign(root, root + f.mark.size());
+    p.shown = f.shown.size();
+    b->host->ff_snap(b->host->ctx);
+}
+
 // After the rising edge at `t`: mark, or compare with the mark and skip what repeats. The
-// records of the skipped periods go to `buf` (room permitting); returns the cycles skipped.
-uint64_t ff_step(Board* b, uint64_t t, uint64_t until_ps, BoardEvent* buf, uint32_t cap, uint32_t* n) {
+// records of the skipped time go to `buf` (room permitting) and `s` is what the board shows
+// after it; returns the cycles skipped.
+uint64_t ff_step(Board* b, uint64_t t, uint64_t until_ps, BoardEvent* buf, uint32_t cap, uint32_t* n, Shown& s) {
     FastForward& f = b->ff;
     BoardHost* h = b->host;
     if (h->activity != f.activity) {
@@ -339,49 +373,72 @@ uint64_t ff_step(Board* b, uint64_t t, uint64_t until_ps, BoardEvent* buf, uint3
         ff_mark(b, t);
         return 0;
     }
-    const uint8_t* root = (const uint8_t*)b->top->rootp;
+    uint8_t* root = (uint8_t*)b->top->rootp;
     uint8_t* m = f.mark.data();
     const size_t size = f.mark.size();
     // The word that differed last is the cheap test; most edges end here.
-    if (std::memcmp(root + 8 * f.hint, m + 8 * f.hint, 8) != 0) return 0;
+    if (std::memcmp(root + 8 * f.hint, m + 8 * f.hint, 8) != 0) {
+        ff_snap(b, t);
+        return 0;
+    }
     std::memcpy(m + f.bot_cycles, root + f.bot_cycles, 8);  // a counter, not state
     if (std::memcmp(root, m, size) != 0) {
         size_t w = 0;
         while (std::memcmp(root + 8 * w, m + 8 * w, 8) == 0) w++;
         f.hint = w;
+        ff_snap(b, t);
         return 0;
     }
     if (!h->ff_same(h->ctx)) {
         ff_mark(b, t);
         return 0;
     }
-    // The board repeats the period since the mark. Whole periods, ending a period before the
-    // run's end, with their records in the buffer, up to the bot's next port write.
+    // The board repeats the period since the mark. Whole periods, then a phase of the next,
+    // within the run, with room for their records, up to the bot's next port write.
     const uint64_t period = t - f.mark_t;
     f.last_period = period;
-    if (until_ps < t + 2 * period) return 0;
-    uint64_t most = (until_ps - t) / period - 1;
+    f.proven = true;
     // The repeated records must fit with room for one evaluation's (5) to spare.
-    const size_t per = f.shown.size(), room = cap - *n;
-    if (per) most = room < 8 + per ? 0 : std::min<uint64_t>(most, (room - 8) / per);
-    if (most == 0) return 0;
-    const uint64_t k = h->ff_room(h->ctx, most);
-    if (k == 0) return 0;
-    const uint64_t edges = h->ff_skip(h->ctx, k);
-    for (uint64_t j = 1; j <= k; j++) {
-        for (const BoardEvent& e : f.shown) {
-            buf[*n] = e;
-            buf[(*n)++].time_ps += j * period;
+    if (t >= until_ps || cap - *n < 8) return 0;
+    const uint64_t ahead = until_ps - t;
+    const size_t per = f.shown.size(), room = cap - *n - 8;
+    uint64_t most = ahead / period;
+    if (per) most = std::min<uint64_t>(most, room / per);
+    const uint64_t k = most ? h->ff_room(h->ctx, most) : 0;
+    size_t phase = 0;
+    for (size_t j = f.nphases; j > 0; j--) {
+        const Phase& p = f.phases[j - 1];
+        if (k * period + p.at <= ahead && k * per + p.shown <= room && h->ff_fits(h->ctx, k, (uint32_t)j)) {
+            phase = j;
+            break;
         }
     }
-    const uint64_t skipped = k * period;
-    for (BoardEvent& e : f.shown) e.time_ps += skipped;
-    f.mark_t += skipped;
+    if (k == 0 && phase == 0) return 0;
+    const uint64_t edges = h->ff_skip(h->ctx, k, (uint32_t)phase);
+    // Period j after the mark's shows what the mark's did, j periods later.
+    for (uint64_t j = 1; j <= k + (phase ? 1 : 0); j++) {
+        const size_t count = j <= k ? per : f.phases[phase - 1].shown;
+        for (size_t i = 0; i < count; i++) {
+            buf[*n] = f.shown[i];
+            buf[(*n)++].time_ps += f.mark_t + j * period;
+        }
+    }
+    uint64_t skipped = k * period;
+    const uint64_t bot_cycles = b->top->rootp->bot_cycles;
+    if (phase) {
+        const Phase& p = f.phases[phase - 1];
+        std::memcpy(root, p.root.data(), size);
+        skipped += p.at;
+    }
+    f.mark_t += (k + 1) * period;  // the start of the period the board is now in
     b->clocks[0].skip(skipped / b->clocks[0].num);
-    b->top->rootp->bot_cycles += edges;
+    b->top->rootp->bot_cycles = bot_cycles + edges;
     b->now = t + skipped;
     b->ctx.time(b->now);
-    if (getenv("FFDBG")) fprintf(stderr, "skip t=%.4f ms mark=%.4f period=%llu clk k=%llu now=%.4f\n", t/1e9, (t-period)/1e9, (unsigned long long)(period/10000), (unsigned long long)k, b->now/1e9);
+    s.an = b->top->an;
+    s.seg = b->top->seg;
+    s.dp = b->top->dp;
+    s.led = b->top->led;
     f.skips++;
     f.skipped_ps += skipped;
     return skipped / b->clocks[0].num;
@@ -500,11 +557,17 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
         }
         if (ff) {
             FastForward& f = b->ff;
-            if (*n != n0) {
-                if (f.shown.size() + (*n - n0) > 1024) f.overflow = true;
-                else f.shown.insert(f.shown.end(), buf + n0, buf + *n);
+            if (*n != n0 && f.marked && !f.proven) {
+                if (f.shown.size() + (*n - n0) > 1024) {
+                    f.overflow = true;
+                } else {
+                    for (uint32_t i = n0; i < *n; i++) {
+                        f.shown.push_back(buf[i]);
+                        f.shown.back().time_ps -= f.mark_t;
+                    }
+                }
             }
-            if (rose) s.evals += 2 * ff_step(b, t, until_ps, buf, cap, n);
+            if (rose) s.evals += 2 * ff_step(b, t, until_ps, buf, cap, n, s);
         }
     }
     b->last_an = s.an;

@@ -104,6 +104,8 @@ pub struct IssCpu {
     /// mark.
     activity: *mut u64,
     mark: Option<Box<Cpu>>,
+    /// The state at each of the fast-forward's phase snapshots since the mark.
+    phases: Vec<Cpu>,
 }
 
 /// Where a run should stop, for one CPU: addresses, port writes (port, value or any).
@@ -171,6 +173,7 @@ impl IssCpu {
             path: String::new(),
             activity: std::ptr::null_mut(),
             mark: None,
+            phases: Vec::new(),
         }
     }
 
@@ -316,9 +319,11 @@ pub struct RawHost {
     disasm: unsafe extern "C" fn(u32, *mut u8),
     activity: u64,
     ff_mark: unsafe extern "C" fn(*mut c_void),
+    ff_snap: unsafe extern "C" fn(*mut c_void),
     ff_same: unsafe extern "C" fn(*mut c_void) -> c_int,
     ff_room: unsafe extern "C" fn(*mut c_void, u64) -> u64,
-    ff_skip: unsafe extern "C" fn(*mut c_void, u64) -> u64,
+    ff_fits: unsafe extern "C" fn(*mut c_void, u64, u32) -> c_int,
+    ff_skip: unsafe extern "C" fn(*mut c_void, u64, u32) -> u64,
 }
 
 /// The function a bot model's pointer starts with (`BoardBotFns` in board_abi.h).
@@ -339,8 +344,9 @@ pub struct BotModel {
     pins: u32,
     /// The host's activity count.
     activity: *mut u64,
-    /// The bot's edges at the fast-forward's mark.
+    /// The bot's edges at the fast-forward's mark, and at each phase snapshot since.
     mark: u64,
+    phases: Vec<u64>,
 }
 
 unsafe extern "C" fn edge_ffi(model: *mut BotModel, pins: u32) -> u64 {
@@ -408,8 +414,10 @@ impl Host {
                 disasm: disasm_ffi,
                 activity: 0,
                 ff_mark: ff_mark_ffi,
+                ff_snap: ff_snap_ffi,
                 ff_same: ff_same_ffi,
                 ff_room: ff_room_ffi,
+                ff_fits: ff_fits_ffi,
                 ff_skip: ff_skip_ffi,
             },
         });
@@ -448,7 +456,14 @@ impl Host {
         };
         let Ok(bot) = IssBot::new(image, world.clone()) else { return std::ptr::null_mut() };
         let activity = &mut self.raw.activity as *mut u64;
-        let mut m = Box::new(BotModel { fns: &BOT_FNS, bot: LazyBot::new(bot), pins: 0, activity, mark: 0 });
+        let mut m = Box::new(BotModel {
+            fns: &BOT_FNS,
+            bot: LazyBot::new(bot),
+            pins: 0,
+            activity,
+            mark: 0,
+            phases: Vec::new(),
+        });
         let ptr = &mut *m as *mut BotModel;
         self.bots.push(m);
         ptr
@@ -511,13 +526,26 @@ impl Host {
         ptr
     }
 
-    /// The fast-forward's mark: every model's state now.
+    /// The fast-forward's mark: every model's state now (the phase snapshots of the last
+    /// mark are dropped).
     fn ff_mark(&mut self) {
         for (_, c) in &mut self.cpus {
             c.mark = Some(Box::new(c.cpu.clone()));
+            c.phases.clear();
         }
         for b in &mut self.bots {
             b.mark = b.bot.edges();
+            b.phases.clear();
+        }
+    }
+
+    /// A phase snapshot: every model's state now, between the mark and its period's end.
+    fn ff_snap(&mut self) {
+        for (_, c) in &mut self.cpus {
+            c.phases.push(c.cpu.clone());
+        }
+        for b in &mut self.bots {
+            b.phases.push(b.bot.edges());
         }
     }
 
@@ -526,11 +554,9 @@ impl Host {
         self.cpus.iter().all(|(_, c)| c.mark.as_ref().is_some_and(|m| c.cpu.same_state_as(m)))
     }
 
-    /// How many periods (each as long as the time since the mark) every bot's outputs stay as
-    /// they are with its inputs held, at most `periods`; none without a bot model.
+    /// How many periods (each as long as the time since the mark), at most `periods`, every
+    /// bot's outputs stay as they are with its inputs held; none without a bot model.
     fn ff_room(&mut self, periods: u64) -> u64 {
-        // Margin: the skip ends this many cycles before the bot's next write.
-        const MARGIN: u64 = 4;
         if self.bots.is_empty() {
             return 0;
         }
@@ -540,23 +566,54 @@ impl Host {
             if per == 0 {
                 continue; // its clock does not run
             }
-            let wanted = n.saturating_mul(per).saturating_add(MARGIN);
-            n = n.min(b.bot.quiet_for(wanted).saturating_sub(MARGIN) / per);
+            let wanted = n.saturating_mul(per).saturating_add(Self::MARGIN);
+            n = n.min(b.bot.quiet_for(wanted).saturating_sub(Self::MARGIN) / per);
         }
         n
     }
 
-    /// Run every model `periods` periods on; the bot's clock edges in them.
-    fn ff_skip(&mut self, periods: u64) -> u64 {
+    /// Every bot's outputs stay as they are for `periods` periods and then up to phase
+    /// snapshot `phase` (1-based) of the next.
+    fn ff_fits(&mut self, periods: u64, phase: usize) -> bool {
+        !self.bots.is_empty()
+            && self.bots.iter_mut().all(|b| {
+                let wanted = periods * (b.bot.edges() - b.mark) + (b.phases[phase - 1] - b.mark) + Self::MARGIN;
+                b.bot.quiet_for(wanted) >= wanted
+            })
+    }
+
+    /// The fast-forward ends this many cycles before the bot's next write.
+    const MARGIN: u64 = 4;
+
+    /// Run every model `periods` periods on, then to phase snapshot `phase` (1-based; 0:
+    /// none) of the next; the bot's clock edges in all. Called at the end of the mark's first
+    /// period: the mark and the snapshots move on to the start of the period the models are
+    /// then in.
+    fn ff_skip(&mut self, periods: u64, phase: usize) -> u64 {
         for (_, c) in &mut self.cpus {
-            let per = c.mark.as_ref().map_or(0, |m| c.cpu.cycle() - m.cycle());
-            c.cpu.skip_period(periods * per);
+            let Some(mark) = c.mark.as_mut() else { continue };
+            let per = c.cpu.cycle() - mark.cycle();
+            let moved = (periods + 1) * per;
+            mark.skip_period(moved);
+            for p in &mut c.phases {
+                p.skip_period(moved);
+            }
+            match phase.checked_sub(1) {
+                Some(j) => c.cpu = c.phases[j].clone(),
+                None => c.cpu.skip_period(periods * per),
+            }
         }
         let mut edges = 0;
         for b in &mut self.bots {
-            let n = periods * (b.bot.edges() - b.mark);
-            b.bot.skip(n);
-            edges = n;
+            let per = b.bot.edges() - b.mark;
+            let part = phase.checked_sub(1).map_or(0, |j| b.phases[j] - b.mark);
+            let moved = (periods + 1) * per;
+            b.mark += moved;
+            for p in &mut b.phases {
+                *p += moved;
+            }
+            edges = periods * per + part;
+            b.bot.skip(edges);
         }
         edges
     }
@@ -608,14 +665,24 @@ unsafe extern "C" fn ff_same_ffi(ctx: *mut c_void) -> c_int {
     unsafe { (*(ctx as *const Host)).ff_same() as c_int }
 }
 
+unsafe extern "C" fn ff_snap_ffi(ctx: *mut c_void) {
+    // SAFETY: as for ff_mark_ffi.
+    unsafe { (*(ctx as *mut Host)).ff_snap() }
+}
+
 unsafe extern "C" fn ff_room_ffi(ctx: *mut c_void, periods: u64) -> u64 {
     // SAFETY: as for ff_mark_ffi.
     unsafe { (*(ctx as *mut Host)).ff_room(periods) }
 }
 
-unsafe extern "C" fn ff_skip_ffi(ctx: *mut c_void, periods: u64) -> u64 {
+unsafe extern "C" fn ff_fits_ffi(ctx: *mut c_void, periods: u64, phase: u32) -> c_int {
     // SAFETY: as for ff_mark_ffi.
-    unsafe { (*(ctx as *mut Host)).ff_skip(periods) }
+    unsafe { (*(ctx as *mut Host)).ff_fits(periods, phase as usize) as c_int }
+}
+
+unsafe extern "C" fn ff_skip_ffi(ctx: *mut c_void, periods: u64, phase: u32) -> u64 {
+    // SAFETY: as for ff_mark_ffi.
+    unsafe { (*(ctx as *mut Host)).ff_skip(periods, phase as usize) }
 }
 
 unsafe extern "C" fn probe_new_ffi(ctx: *mut c_void, path: *const c_char) -> *mut c_void {

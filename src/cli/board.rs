@@ -98,6 +98,10 @@ pub struct Args {
     /// Every change of the seven-segment display (and LEDs), one line each
     #[arg(long, value_name = "FILE")]
     display: Option<PathBuf>,
+    /// Every change of the display's and the LEDs' pins, one CSV row each (time_ps, an, seg,
+    /// dp, led in hex): the board's outputs edge for edge, as a waveform shows them
+    #[arg(long, value_name = "FILE")]
+    pins: Option<PathBuf>,
     /// A waveform of the whole design
     #[arg(long, value_name = "FILE")]
     vcd: Option<PathBuf>,
@@ -352,7 +356,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         let img = loader::load(p, &botsim::kcpsm6::asm::Options::default()).map_err(|d| d.to_string())?;
         programs.push((p.clone(), img));
     }
-    for p in [&a.trace_csv, &a.trace_json, &a.png, &a.display, &a.vcd].into_iter().flatten() {
+    for p in [&a.trace_csv, &a.trace_json, &a.png, &a.display, &a.pins, &a.vcd].into_iter().flatten() {
         check_writable(p)?;
     }
     if let Some(d) = &a.frames {
@@ -597,6 +601,8 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     let t0 = Instant::now();
     let mut display = Display::default();
     let mut display_log = String::new();
+    let mut pins_csv = String::from("time_ps,an,seg,dp,led\n");
+    let mut pins_now = (0xFFu8, 0x7Fu8, 1u8, 0u16);
     let mut snapshots: Vec<Snapshot> = Vec::new();
     let mut json = String::new();
     let mut buf = vec![RawEvent::default(); 4096];
@@ -625,6 +631,8 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         for e in buf[..n].iter().filter(|r| !past_stop(r.time_ps())).filter_map(Event::of) {
             match e {
                 Event::Display { time_ps, an, seg, dp } => {
+                    pins_now = (an, seg, dp as u8, pins_now.3);
+                    pins_csv.push_str(&pins_row(time_ps, pins_now));
                     let before = display.lines().len();
                     display.pins(time_ps, an, seg, dp);
                     for l in &display.lines()[before..] {
@@ -632,6 +640,8 @@ fn run_once(a: Args) -> Result<Stopped, String> {
                     }
                 }
                 Event::Leds { time_ps, leds } => {
+                    pins_now.3 = leds;
+                    pins_csv.push_str(&pins_row(time_ps, pins_now));
                     last_led = leds;
                     display_log.push_str(&format!("{:>12.3} ms  leds    {leds:016b}\n", time_ps as f64 / 1e9));
                 }
@@ -754,6 +764,9 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     }
     if let Some(p) = &a.trace_json {
         write_atomic(p, json.as_bytes())?;
+    }
+    if let Some(p) = &a.pins {
+        write_atomic(p, pins_csv.as_bytes())?;
     }
     if let Some(p) = &a.display {
         write_atomic(p, display_log.as_bytes())?;
@@ -1083,6 +1096,11 @@ fn load(library: &Path, world: &World, roms: &[Rom], host: Option<Box<Host>>) ->
         let _ = std::fs::remove_file(path);
     }
     model.map_err(|e| e.to_string())
+}
+
+/// A row of --pins: the time and the display's and the LEDs' pins after a change.
+fn pins_row(time_ps: u64, (an, seg, dp, led): (u8, u8, u8, u16)) -> String {
+    format!("{time_ps},{an:02X},{seg:02X},{dp},{led:04X}\n")
 }
 
 /// Models created by this process (their temporary files' names).

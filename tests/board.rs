@@ -1029,3 +1029,81 @@ fn the_fast_forward_puts_every_model_back_at_the_phase_it_skips_to() {
     assert!(logs[0].lines().count() > 1000, "{}", logs[0].lines().count());
     assert!(logs[0] == logs[1], "--pins differ with the fast-forward");
 }
+
+#[test]
+fn rising_edges_only_change_nothing_the_board_shows() {
+    // The Project 2 example on the RTL cores at hw timing: the build finds that nothing
+    // happens at the clock's falling edges, so the board evaluates rising edges only; the
+    // same run evaluating both edges shows the same pins, samples and display.
+    let dir = tempfile::tempdir().unwrap();
+    let mut runs = Vec::new();
+    for every_edge in [false, true] {
+        let out = |name: &str| dir.path().join(format!("{every_edge}-{name}"));
+        let (pins, csv, display) = (out("pins.csv"), out("trace.csv"), out("display.txt"));
+        let mut args = vec![
+            "--samples",
+            "2",
+            "--pins",
+            pins.to_str().unwrap(),
+            "--trace-csv",
+            csv.to_str().unwrap(),
+            "--display",
+            display.to_str().unwrap(),
+            "--json",
+        ];
+        if every_edge {
+            args.push("--every-edge");
+        }
+        let o = example("examples/nexys4_proj2", &args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let s: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let read = |p: &Path| std::fs::read_to_string(p).unwrap();
+        runs.push((s["evaluations"].as_u64().unwrap(), read(&pins), read(&csv), read(&display)));
+    }
+    let (rising, both) = (&runs[0], &runs[1]);
+    assert!(rising.1.lines().count() > 30 && rising.2.lines().count() == 4, "{rising:?}");
+    assert_eq!((&rising.1, &rising.2, &rising.3), (&both.1, &both.2, &both.3));
+    // One evaluation per clock against two (the reset's evaluation and the inputs' aside).
+    assert!(rising.0 * 2 - both.0 < 10, "{} and {} evaluations", rising.0, both.0);
+}
+
+#[test]
+fn falling_edges_are_evaluated_where_the_design_has_logic_on_them() {
+    // tests/board_designs/falling counts the clock's falling edges on its LEDs: 1 ms is
+    // 100,000 clocks, the first falling edge comes before the counter's first; with the
+    // falling edges left out it would count none.
+    for extra in [None, Some("--every-edge")] {
+        let mut args = vec!["tests/board_designs/falling", "--seconds", "0.001", "--json"];
+        args.extend(extra);
+        let o = board(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let s: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        assert_eq!((s["leds"].as_u64(), s["evaluations"].as_u64()), (Some(99_999 % 65_536), Some(200_000)), "{s}");
+    }
+}
+
+#[test]
+fn a_run_counted_in_samples_stops_when_the_bot_stops_sampling() {
+    // The CPU reset held from 60 ms holds the bot in reset too: --samples 3 would wait forever
+    // for sample 3; the run gives up after 1 s of board time without a sample.
+    let dir = tempfile::tempdir().unwrap();
+    let stim = dir.path().join("stim.txt");
+    std::fs::write(&stim, "60ms press btnCpuReset 5s\n").unwrap();
+    let o = board(&[
+        "tests/board_designs/phases",
+        "--program",
+        "tests/board_designs/phases/phases.psm",
+        "--cpu",
+        "iss",
+        "--bot",
+        "model",
+        "--samples",
+        "3",
+        "--stimulus",
+        stim.to_str().unwrap(),
+    ]);
+    assert_eq!(
+        one_line_error(&o),
+        "no bot sample in 1 s of board time after sample 2 at 54.138 ms (upd_sysregs never pulsed: is the bot held in reset, or its clock stopped?)"
+    );
+}

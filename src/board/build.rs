@@ -89,13 +89,7 @@ pub struct Built {
     pub warnings: Vec<(String, usize, String)>,
     /// The build's duration in seconds; `None` when the cache had it.
     pub seconds: Option<f64>,
-    /// Why the fast-forward cannot take Verilator's root object for the board's whole state
-    /// ([`super::periodic`]), or `None` when it can.
-    pub fast_forward_blocker: Option<String>,
 }
-
-/// The file of a build folder that keeps [`Built::fast_forward_blocker`] (empty: none).
-const BLOCKER_FILE: &str = "fast-forward.txt";
 
 /// The cache folder.
 pub fn cache_dir() -> PathBuf {
@@ -186,7 +180,7 @@ pub fn build(
     VERILATOR_FLAGS.hash(&mut h);
     ABI.hash(&mut h);
     // The check whose verdict the build keeps.
-    include_str!("periodic.rs").hash(&mut h);
+    include_str!("checks.rs").hash(&mut h);
     f.generated.hash(&mut h);
     f.defines.hash(&mut h);
     // The user's files and include folders as Verilator is given them (absolute paths), so
@@ -223,12 +217,7 @@ pub fn build(
     if library.exists() {
         let warnings =
             std::fs::read_to_string(dir.join("warnings.txt")).map(|t| parse_warnings(&t, &f)).unwrap_or_default();
-        let fast_forward_blocker = match std::fs::read_to_string(dir.join(BLOCKER_FILE)) {
-            Ok(t) if t.trim().is_empty() => None,
-            Ok(t) => Some(t.trim().to_string()),
-            Err(_) => Some(format!("{} is missing from the build folder {}", BLOCKER_FILE, dir.display())),
-        };
-        return Ok(Built { library, warnings, seconds: None, fast_forward_blocker });
+        return Ok(Built { library, warnings, seconds: None });
     }
     let t0 = Instant::now();
     let tmp = dir.with_extension(format!("tmp{}", std::process::id()));
@@ -292,20 +281,16 @@ pub fn build(
         let _ = std::fs::remove_dir_all(&tmp);
         return Err(first_error(&stderr, &stdout, &f));
     }
-    let fast_forward_blocker = super::periodic::blocker(&tmp.join("obj"));
+    // What the harness may assume of the design (BoardModel::load reads it).
+    let verdicts = super::checks::Verdicts::of(&tmp.join("obj"));
     std::fs::rename(tmp.join("obj/libboard.so"), tmp.join("libboard.so"))
         .and_then(|_| std::fs::write(tmp.join("warnings.txt"), &stderr))
-        .and_then(|_| std::fs::write(tmp.join(BLOCKER_FILE), fast_forward_blocker.as_deref().unwrap_or("")))
+        .and_then(|_| verdicts.save(&tmp))
         .map_err(|e| BoardError::at(&tmp, 0, 0, format!("cannot keep the build: {e}")))?;
     let _ = std::fs::remove_dir_all(tmp.join("obj"));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::rename(&tmp, &dir).map_err(|e| BoardError::at(&dir, 0, 0, format!("cannot keep the build: {e}")))?;
-    Ok(Built {
-        library,
-        warnings: parse_warnings(&stderr, &f),
-        seconds: Some(t0.elapsed().as_secs_f64()),
-        fast_forward_blocker,
-    })
+    Ok(Built { library, warnings: parse_warnings(&stderr, &f), seconds: Some(t0.elapsed().as_secs_f64()) })
 }
 
 /// The longest a build may take: `$BOTSIM_BUILD_TIMEOUT` seconds, else 20 minutes.

@@ -28,6 +28,10 @@ extern "C" {
 // evaluation of a small design; runs without a waveform call this directly (measured in
 // docs/PERFORMANCE.md).
 void Vboard___024root___eval(Vboard___024root* vlSelf);
+// Its trigger computation alone: at a falling edge of a board whose only trigger is the
+// clock's rising edge, it notes the clock's level and nothing else happens (the build checks
+// the design for this: src/board/checks.rs).
+void Vboard___024root___eval_triggers__act(Vboard___024root* vlSelf);
 
 namespace {
 
@@ -111,7 +115,7 @@ struct Clock {
 // by as many cycles (the bot simulates them, cheaply), and what the board showed in the
 // period (display and LED changes) is repeated into the records, so the records are the same
 // as the edge-by-edge run's. The build checks that Verilator's state is all in its root
-// object (src/board/periodic.rs).
+// object (src/board/checks.rs).
 struct Phase {
     uint64_t at = 0;            // ps after the mark
     std::vector<uint8_t> root;  // Verilator's state then
@@ -147,6 +151,7 @@ struct Board {
     uint64_t evals = 0;
     uint8_t last_an = 0xFF, last_seg = 0x7F, last_dp = 1;
     uint16_t last_led = 0;
+    bool rising_only = false;  // evaluate rising edges only (one clock, nothing on falling)
     bool vga = false;  // record the VGA pins (only when frames are asked for)
     uint16_t last_vga = 0x3000;
     bool bot = false;  // record every change of the bot's outputs (lock-step runs)
@@ -276,6 +281,13 @@ static inline void record(BoardEvent* buf, uint32_t* n, uint64_t t, uint32_t kin
     e.a = a;
     e.b = bb;
     e.c = c;
+}
+
+// Evaluate the oscillator's rising edges only (the build found that nothing happens on the
+// falling ones); a waveform still gets every edge. 0 when this board has several clocks.
+int board_rising_edges_only(Board* b, int on) {
+    b->rising_only = on && b->clocks.size() == 1;
+    return b->rising_only;
 }
 
 // Turn the fast-forward on or off (the caller knows when the run allows it: no waveform, no
@@ -456,6 +468,7 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
     // The fast-forward, on one-clock boards without a waveform (the oscillator's period is a
     // whole number of picoseconds).
     const bool ff = kOneClock && b->ff.on && !b->vcd && clocks[0].den == 1;
+    const bool rising_only = b->rising_only && !b->vcd;
     Shown s{b->last_an, b->last_seg, b->last_dp, b->last_led, b->last_vga, b->last_bot, b->last_upd, b->samples, b->evals};
     uint32_t why = BOARD_BUFFER_FULL;
     // Room for one evaluation's records (at most 5) must remain.
@@ -489,6 +502,10 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
             }
         }
         b->now = t;
+        if (kOneClock && rising_only && !rose) {
+            Vboard___024root___eval_triggers__act(top->rootp);
+            continue;
+        }
         if (b->vcd) {
             top->eval();
             b->vcd->dump(t);
@@ -567,7 +584,7 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
                     }
                 }
             }
-            if (rose) s.evals += 2 * ff_step(b, t, until_ps, buf, cap, n, s);
+            if (rose) s.evals += (rising_only ? 1 : 2) * ff_step(b, t, until_ps, buf, cap, n, s);
         }
     }
     b->last_an = s.an;

@@ -3,9 +3,9 @@
 //! harness (cached), [`model`] loads it and runs it.
 
 pub mod build;
+pub mod checks;
 pub mod iss;
 pub mod lockstep;
 pub mod model;
-pub mod periodic;
 
 pub use botsim_core::board::*;

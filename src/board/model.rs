@@ -7,6 +7,7 @@ use std::path::Path;
 use botsim_core::board::BoardError;
 use botsim_core::{MotCtl, Registers, Snapshot};
 
+use super::checks::Verdicts;
 use super::iss::{Host, RawHost};
 
 /// One record of the harness's buffer, as `board_abi.h` lays it out; [`Event::of`] reads it.
@@ -112,6 +113,7 @@ struct Api {
     fatal: unsafe extern "C" fn(*mut Opaque) -> *const c_char,
     bench_minimal: unsafe extern "C" fn(*mut Opaque, u64),
     fast_forward: unsafe extern "C" fn(*mut Opaque, c_int) -> c_int,
+    rising_edges_only: unsafe extern "C" fn(*mut Opaque, c_int) -> c_int,
     fast_forwarded: unsafe extern "C" fn(*mut Opaque, *mut u64, *mut u64),
 }
 
@@ -123,6 +125,8 @@ pub struct BoardModel {
     host: Option<Box<Host>>,
     /// The waveform's start and, once closed, its end (ps).
     vcd_span: Option<(u64, Option<u64>)>,
+    /// Why the build found this design cannot fast-forward (src/board/checks.rs).
+    fast_forward_blocker: Option<String>,
     // Dropped last: the functions above live in it.
     _lib: libloading::Library,
 }
@@ -154,6 +158,7 @@ impl BoardModel {
             record_vga: sym!(b"board_record_vga"),
             record_bot: sym!(b"board_record_bot"),
             fast_forward: sym!(b"board_fast_forward"),
+            rising_edges_only: sym!(b"board_rising_edges_only"),
             fast_forwarded: sym!(b"board_fast_forwarded"),
             run: sym!(b"board_run"),
             time_ps: sym!(b"board_time_ps"),
@@ -175,7 +180,24 @@ impl BoardModel {
         if ptr.is_null() {
             return Err(BoardError::at(path, 0, 0, "the built design could not be created"));
         }
-        Ok(BoardModel { api, ptr, host, vcd_span: None, _lib: lib })
+        // What the build found the design allows (src/board/checks.rs).
+        let verdicts = Verdicts::load(path.parent().unwrap_or(Path::new(".")));
+        // SAFETY: ptr is live.
+        unsafe { (api.rising_edges_only)(ptr, verdicts.falling_edges.is_none() as c_int) };
+        Ok(BoardModel { api, ptr, host, vcd_span: None, fast_forward_blocker: verdicts.fast_forward, _lib: lib })
+    }
+
+    /// Evaluate both clock edges, even where the build found the falling ones change nothing
+    /// (models load evaluating rising edges only when it did).
+    pub fn every_edge(&mut self) {
+        // SAFETY: ptr is live.
+        unsafe { (self.api.rising_edges_only)(self.ptr, 0) };
+    }
+
+    /// Why this design cannot fast-forward, or `None` when it can (one clock aside: see
+    /// [`BoardModel::fast_forward`]).
+    pub fn fast_forward_blocker(&self) -> Option<&str> {
+        self.fast_forward_blocker.as_deref()
     }
 
     /// The KCPSM6 models (or probes), for a `--cpu iss` or lock-step build.
@@ -198,6 +220,7 @@ impl BoardModel {
     /// every edge (a waveform is written edge by edge whatever this says; VGA capture, CPU
     /// traces, breakpoints and lock-step need it off). Returns whether it is on.
     pub fn fast_forward(&mut self, on: bool) -> bool {
+        let on = on && self.fast_forward_blocker.is_none();
         // SAFETY: ptr is live.
         unsafe { (self.api.fast_forward)(self.ptr, on as c_int) != 0 }
     }

@@ -127,6 +127,11 @@ pub struct Args {
     /// itself (the same results, edge for edge); this simulates every edge
     #[arg(long)]
     no_fast_forward: bool,
+    /// Evaluate the design at both edges of the clock even where the build found that nothing
+    /// happens at the falling ones (the same results, at twice the evaluations; a waveform
+    /// always gets both)
+    #[arg(long)]
+    every_edge: bool,
     /// Measure instead of run: the board harness against a minimal C++ harness of the same
     /// built design (100 MHz oscillator only, nothing recorded), or with --cpu iss the ISS
     /// board against the all-RTL board; in Mcycles/s of the 100 MHz clock, over --seconds of
@@ -521,7 +526,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         let rtl =
             build(&plan, &params, CpuModel::Rtl, BotKind::Rtl, false, a.quiet || a.json).map_err(|e| e.to_string())?;
         let iss = &built.library;
-        let ff = main_bot == BotKind::Model && !a.no_fast_forward && built.fast_forward_blocker.is_none();
+        let ff = main_bot == BotKind::Model && !a.no_fast_forward;
         return bench_iss([&rtl.library, iss], &world, &plan.roms, a.seconds.unwrap_or(0.05), a.json, ff, &|| {
             host(&plan, cpu, main_bot)
         })
@@ -535,10 +540,16 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     }
 
     // Run.
-    let first = load(&built.library, &world, &plan.roms, host(&plan, cpu, main_bot)?)?;
+    let mut first = load(&built.library, &world, &plan.roms, host(&plan, cpu, main_bot)?)?;
+    if a.every_edge {
+        first.every_edge();
+    }
     let mut model = match &twin {
         Some(b) => {
-            let iss = load(&b.library, &world, &plan.roms, host(&plan, CpuModel::Iss, bot)?)?;
+            let mut iss = load(&b.library, &world, &plan.roms, host(&plan, CpuModel::Iss, bot)?)?;
+            if a.every_edge {
+                iss.every_edge();
+            }
             Sim::Pair(Box::new(Lockstep::new(first, iss)))
         }
         None => Sim::One(first),
@@ -562,7 +573,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     let mut fast_forward_off: Option<String> = None;
     if let Sim::One(m) = &mut model {
         if fast_forward {
-            fast_forward_off = built.fast_forward_blocker.clone();
+            fast_forward_off = m.fast_forward_blocker().map(str::to_string);
             if fast_forward_off.is_none() && !m.fast_forward(true) {
                 fast_forward_off = Some(format!(
                     "the board has {} clocks (the fast-forward needs a board with one)",
@@ -609,6 +620,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     let mut last_led = 0u16;
     let mut at_end = false;
     let mut bot_stop: Option<BreakStop> = None;
+    let mut last_sample_ps = 0u64;
     // A run repeated to a stop writes its other outputs up to the stop only.
     let past_stop = |t: u64| a.stopped_at.as_ref().is_some_and(|s| t > s.time_ps);
     let finished = loop {
@@ -616,7 +628,12 @@ fn run_once(a: Args) -> Result<Stopped, String> {
             break None;
         }
         let now = model.main().time_ps();
-        let until = stops.range(now + 1..).next().copied().unwrap_or(end_ps).min(end_ps);
+        let mut until = stops.range(now + 1..).next().copied().unwrap_or(end_ps).min(end_ps);
+        // A run counted in samples waits for the next one a bounded time.
+        let stall_at = a.seconds.is_none().then(|| last_sample_ps.saturating_add(NO_SAMPLE_PS));
+        if let Some(t) = stall_at {
+            until = until.min(t);
+        }
         // A window given in samples: stop after sample s - 1 to open, after sample s to close.
         let window_limit = match (vcd_done, vcd_open, vcd_from, vcd_to) {
             (false, false, Mark::Sample(s), _) => Some(s),
@@ -646,6 +663,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
                     display_log.push_str(&format!("{:>12.3} ms  leds    {leds:016b}\n", time_ps as f64 / 1e9));
                 }
                 Event::Sample { time_ps, snapshot, motctl } => {
+                    last_sample_ps = time_ps;
                     json.push_str(&json_row(&snapshot, motctl));
                     at_end = at_end || (a.stop_at_line_end && at_line_end(&snapshot));
                     if bot_stop.is_none() {
@@ -702,6 +720,16 @@ fn run_once(a: Args) -> Result<Stopped, String> {
                 let t = model.main().time_ps();
                 if t >= end_ps {
                     break Some("time");
+                }
+                if stall_at.is_some_and(|s| t >= s) {
+                    let after = match snapshots.last() {
+                        None => "from the start".to_string(),
+                        Some(s) => format!("after sample {} at {:.3} ms", s.sample, last_sample_ps as f64 / 1e9),
+                    };
+                    return Err(format!(
+                        "no bot sample in {} s of board time {after} (upd_sysregs never pulsed: is the bot held in reset, or its clock stopped?)",
+                        NO_SAMPLE_PS / 1_000_000_000_000
+                    ));
                 }
                 if stops.contains(&t) {
                     let (r, b, sw) = stimulus.inputs_at(t);
@@ -1097,6 +1125,10 @@ fn load(library: &Path, world: &World, roms: &[Rom], host: Option<Box<Host>>) ->
     }
     model.map_err(|e| e.to_string())
 }
+
+/// How long a run counted in samples (--samples without --seconds) waits for the bot's next
+/// sample: 1 s of board time, about 19 samples at hw timing.
+const NO_SAMPLE_PS: u64 = 1_000_000_000_000;
 
 /// A row of --pins: the time and the display's and the LEDs' pins after a change.
 fn pins_row(time_ps: u64, (an, seg, dp, led): (u8, u8, u8, u16)) -> String {

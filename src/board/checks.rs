@@ -1,7 +1,7 @@
-//! What the fast-forward (harness.cpp) needs of a Verilated design, checked on Verilator's
-//! output when the design is built.
+//! What the board harness (harness.cpp) may rely on in a design, checked on Verilator's
+//! generated C++ when the design is built; each verdict is kept beside the library.
 //!
-//! The fast-forward takes the bytes of Verilator's root object (with the KCPSM6 and bot
+//! **The fast-forward** takes the bytes of Verilator's root object (with the KCPSM6 and bot
 //! models, which the host compares) for the whole state of the board: two equal copies mean
 //! the board repeats itself, and a copy put back is the board at that moment. That holds when
 //! every flop is a plain variable of the root and an evaluation depends on nothing else. It
@@ -14,20 +14,62 @@
 //!   scheduler: the bytes of a `std::string` are a pointer);
 //! - has modules Verilator did not inline (their state lives in other objects).
 //!
-//! [`blocker`] names the first such thing found in the generated files, so the fast-forward
-//! stays off for that design and the run says why.
+//! [`fast_forward_blocker`] names the first such thing found, so the fast-forward stays off
+//! for that design and the run says why.
+//!
+//! **One evaluation per clock**: on a board whose only clock is the oscillator and whose
+//! logic all runs on its rising edge, a falling edge changes nothing but the clock's level.
+//! The harness then evaluates rising edges only and, at a falling edge, lets Verilator note
+//! the level (its trigger function) without evaluating the design.
+//! [`falling_edge_blocker`] says why a design needs its falling edges evaluated: another
+//! trigger than `posedge clk` (a negative edge, a second clock, a level), or logic that
+//! reads the clock's level.
 //!
 //! ```
 //! let header = "class Vboard___024root final : public VerilatedModule {\n  public:\n    CData/*0:0*/ x;\n    std::string name;\n};\n";
-//! let why = botsim::board::periodic::root_blocker(header);
+//! let why = botsim::board::checks::root_blocker(header);
 //! assert!(why.unwrap().contains("std::string name"));
 //! ```
 
 use std::path::Path;
 
+/// What a build may assume, kept in its folder: for each, why not (`None`: it may).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Verdicts {
+    pub fast_forward: Option<String>,
+    pub falling_edges: Option<String>,
+}
+
+/// The files of a build folder that keep the verdicts (empty: none against).
+const FAST_FORWARD_FILE: &str = "fast-forward.txt";
+const FALLING_EDGES_FILE: &str = "falling-edges.txt";
+
+impl Verdicts {
+    /// The verdicts on Verilator's output folder `obj`.
+    pub fn of(obj: &Path) -> Verdicts {
+        Verdicts { fast_forward: fast_forward_blocker(obj), falling_edges: falling_edge_blocker(obj) }
+    }
+
+    /// Keep them in the build folder `dir`.
+    pub fn save(&self, dir: &Path) -> std::io::Result<()> {
+        std::fs::write(dir.join(FAST_FORWARD_FILE), self.fast_forward.as_deref().unwrap_or(""))?;
+        std::fs::write(dir.join(FALLING_EDGES_FILE), self.falling_edges.as_deref().unwrap_or(""))
+    }
+
+    /// The verdicts kept in the build folder `dir` (a missing file says no).
+    pub fn load(dir: &Path) -> Verdicts {
+        let read = |name: &str| match std::fs::read_to_string(dir.join(name)) {
+            Ok(t) if t.trim().is_empty() => None,
+            Ok(t) => Some(t.trim().to_string()),
+            Err(_) => Some(format!("{name} is missing from the build folder {}", dir.display())),
+        };
+        Verdicts { fast_forward: read(FAST_FORWARD_FILE), falling_edges: read(FALLING_EDGES_FILE) }
+    }
+}
+
 /// The generated C++ of a design (Verilator's `--Mdir`): why the fast-forward cannot take its
 /// root object for its whole state, or `None` when it can.
-pub fn blocker(obj: &Path) -> Option<String> {
+pub fn fast_forward_blocker(obj: &Path) -> Option<String> {
     let Ok(entries) = std::fs::read_dir(obj) else {
         return Some("Verilator's output could not be read".into());
     };
@@ -48,13 +90,92 @@ pub fn blocker(obj: &Path) -> Option<String> {
     if let Some(why) = dpi_blocker(&read("Vboard__Dpi.h")) {
         return Some(why);
     }
-    // The evaluation (the `__Slow` files hold the initial blocks and the constructor).
-    for n in names.iter().filter(|n| n.starts_with("Vboard___024root__DepSet_") && !n.ends_with("__Slow.cpp")) {
-        if let Some(why) = eval_blocker(&read(n)) {
-            return Some(why);
+    eval_files(obj).iter().find_map(|code| eval_blocker(code))
+}
+
+/// The evaluation's source files (the `__Slow` ones hold the initial blocks and the
+/// constructor), sorted by name.
+fn eval_files(obj: &Path) -> Vec<String> {
+    let Ok(entries) = std::fs::read_dir(obj) else { return Vec::new() };
+    let mut names: Vec<String> = entries
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with("Vboard___024root__DepSet_") && !n.ends_with("__Slow.cpp"))
+        .collect();
+    names.sort();
+    names.iter().map(|n| std::fs::read_to_string(obj.join(n)).unwrap_or_default()).collect()
+}
+
+/// The generated C++ of a design: why the harness must evaluate its falling clock edges, or
+/// `None` when the rising ones are enough.
+pub fn falling_edge_blocker(obj: &Path) -> Option<String> {
+    let root = std::fs::read_to_string(obj.join("Vboard___024root.h")).unwrap_or_default();
+    let code = eval_files(obj);
+    edge_blocker(&root, &code.iter().map(String::as_str).collect::<Vec<_>>())
+}
+
+/// [`falling_edge_blocker`] on the root's header and the evaluation's files.
+fn edge_blocker(root: &str, code: &[&str]) -> Option<String> {
+    // One trigger, `posedge clk`: the clock's level and its value at the last evaluation.
+    if !root.contains("VlTriggerVec<1> __VactTriggered;") {
+        return Some("the design has other triggers than the board clock's rising edge".into());
+    }
+    let triggers = code.iter().find_map(|c| function(c, "Vboard___024root___eval_triggers__act"));
+    let rising = "__VactTriggered.at(0U) = ((IData)(vlSelf->clk) & (~ (IData)(vlSelf->__Vtrigrprev__TOP__clk)));";
+    if !triggers.is_some_and(|t| squeeze(t).contains(&squeeze(rising))) {
+        return Some("the design's trigger is not the board clock's rising edge".into());
+    }
+    // Nothing else reads the clock's level (the debug build's assertion on it aside).
+    for c in code {
+        for (name, body) in functions(c) {
+            if name.ends_with("___eval_triggers__act") || name.ends_with("___eval_debug_assertions") {
+                continue;
+            }
+            if reads_clk(body) {
+                return Some("the design reads the board clock's level in its logic".into());
+            }
         }
     }
     None
+}
+
+/// The body names the top's `clk` (not merely a name that begins so).
+fn reads_clk(body: &str) -> bool {
+    body.match_indices("vlSelf->clk")
+        .any(|(i, m)| body[i + m.len()..].chars().next().map_or(true, |c| !(c.is_alphanumeric() || c == '_')))
+}
+
+/// The text without white space (Verilator breaks long expressions over lines).
+fn squeeze(s: &str) -> String {
+    s.chars().filter(|c| !c.is_whitespace()).collect()
+}
+
+/// The body of the function `name` defined in `code`.
+fn function<'a>(code: &'a str, name: &str) -> Option<&'a str> {
+    functions(code).into_iter().find(|(n, _)| *n == name).map(|(_, b)| b)
+}
+
+/// The functions defined in a generated file: (name, body), a definition being a line that
+/// ends with `{` and names a function, up to the next line that is `}`.
+fn functions(code: &str) -> Vec<(&str, &str)> {
+    let mut out = Vec::new();
+    let mut rest = code;
+    while let Some(open) = rest.find(") {\n") {
+        let line_start = rest[..open].rfind('\n').map_or(0, |i| i + 1);
+        let head = &rest[line_start..open];
+        let name = head.split('(').next().unwrap_or("").split_whitespace().last().unwrap_or("");
+        let body_start = open + 4;
+        let end = rest[body_start..].find("\n}\n").map_or(rest.len(), |i| body_start + i);
+        if !head.starts_with(' ') && !name.is_empty() {
+            out.push((name, &rest[body_start..end]));
+        }
+        rest = &rest[end.min(rest.len())..];
+        if rest.len() <= 3 {
+            break;
+        }
+        rest = &rest[3..];
+    }
+    out
 }
 
 /// Headers every build has: the model, its symbol table, its DPI imports, the root.
@@ -203,6 +324,24 @@ mod tests {
             dpi_blocker(&theirs).as_deref(),
             Some("the design calls a DPI function of its own (`uart_poll`, uart.v:3:5)")
         );
+    }
+
+    #[test]
+    fn one_rising_edge_trigger_lets_falling_edges_go() {
+        let root = "    VlTriggerVec<1> __VactTriggered;\n";
+        let triggers = "void Vboard___024root___eval_triggers__act(Vboard___024root* vlSelf) {\n    // Body\n    vlSelf->__VactTriggered.at(0U) = ((IData)(vlSelf->clk) \n                                      & (~ (IData)(vlSelf->__Vtrigrprev__TOP__clk)));\n    vlSelf->__Vtrigrprev__TOP__clk = vlSelf->clk;\n}\n";
+        let nba = "VL_INLINE_OPT void Vboard___024root___nba_sequent__TOP__0(Vboard___024root* vlSelf) {\n    vlSelf->x = (1U + vlSelf->x);\n}\n";
+        let assertions = "void Vboard___024root___eval_debug_assertions(Vboard___024root* vlSelf) {\n    if (VL_UNLIKELY((vlSelf->clk & 0xfeU))) {\n        Verilated::overWidthError(\"clk\");}\n}\n";
+        assert_eq!(edge_blocker(root, &[triggers, nba, assertions]), None);
+        // A second trigger (a negative edge, another clock).
+        let two = "    VlTriggerVec<2> __VactTriggered;\n";
+        assert!(edge_blocker(two, &[triggers, nba]).unwrap().contains("other triggers"));
+        // A falling-edge trigger.
+        let falling = triggers.replace("((IData)(vlSelf->clk) \n", "(~(IData)(vlSelf->clk) \n");
+        assert!(edge_blocker(root, &[&falling, nba]).unwrap().contains("not the board clock's rising edge"));
+        // Logic that reads the level (`assign led = {15'd0, clk}`).
+        let level = "void Vboard___024root___ico_sequent__TOP__0(Vboard___024root* vlSelf) {\n    vlSelf->led = (IData)(vlSelf->clk);\n}\n";
+        assert!(edge_blocker(root, &[triggers, nba, level]).unwrap().contains("level"));
     }
 
     #[test]

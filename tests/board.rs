@@ -1065,6 +1065,17 @@ fn rising_edges_only_change_nothing_the_board_shows() {
     assert_eq!((&rising.1, &rising.2, &rising.3), (&both.1, &both.2, &both.3));
     // One evaluation per clock against two (the reset's evaluation and the inputs' aside).
     assert!(rising.0 * 2 - both.0 < 10, "{} and {} evaluations", rising.0, both.0);
+    // The VGA example (the MMCM's 25 MHz beside the oscillator) too: its frames equal
+    // botsim's own (a_vga_frame_from_the_designs_pins_equals_botsim_frame_for_the_same_state).
+    let evaluations = |extra: &[&str]| {
+        let mut args = vec!["--seconds", "0.001", "--json"];
+        args.extend_from_slice(extra);
+        let o = example("examples/nexys4_vga", &args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        serde_json::from_slice::<serde_json::Value>(&o.stdout).unwrap()["evaluations"].as_u64().unwrap()
+    };
+    let (rising, both) = (evaluations(&[]), evaluations(&["--every-edge"]));
+    assert!(rising <= 100_002 && both >= 200_000, "{rising} and {both} evaluations");
 }
 
 #[test]

@@ -17,13 +17,13 @@
 //! [`fast_forward_blocker`] names the first such thing found, so the fast-forward stays off
 //! for that design and the run says why.
 //!
-//! **One evaluation per clock**: on a board whose only clock is the oscillator and whose
-//! logic all runs on its rising edge, a falling edge changes nothing but the clock's level.
-//! The harness then evaluates rising edges only and, at a falling edge, lets Verilator note
-//! the level (its trigger function) without evaluating the design.
-//! [`falling_edge_blocker`] says why a design needs its falling edges evaluated: another
-//! trigger than `posedge clk` (a negative edge, a second clock, a level), or logic that
-//! reads the clock's level.
+//! **One evaluation per clock edge that matters**: on a board whose logic all runs on rising
+//! clock edges, a moment at which clocks only fall changes nothing but their levels. The
+//! harness then evaluates at rising edges only and, at the other moments, lets Verilator
+//! note the levels (its trigger function) without evaluating the design.
+//! [`falling_edge_blocker`] says why a design needs its falling edges evaluated: a trigger
+//! that is not a rising edge (`negedge`, a level, `@*` on a clock), or logic that reads the
+//! board clock's level.
 //!
 //! ```
 //! let header = "class Vboard___024root final : public VerilatedModule {\n  public:\n    CData/*0:0*/ x;\n    std::string name;\n};\n";
@@ -116,16 +116,26 @@ pub fn falling_edge_blocker(obj: &Path) -> Option<String> {
 
 /// [`falling_edge_blocker`] on the root's header and the evaluation's files.
 fn edge_blocker(root: &str, code: &[&str]) -> Option<String> {
-    // One trigger, `posedge clk`: the clock's level and its value at the last evaluation.
-    if !root.contains("VlTriggerVec<1> __VactTriggered;") {
-        return Some("the design has other triggers than the board clock's rising edge".into());
+    // Every trigger a rising edge of a variable (the board clock, a generated clock, a
+    // clock made by the design's logic, which cannot change while nothing is evaluated).
+    let Some(n) = trigger_count(root) else {
+        return Some("Verilator's triggers were not found".into());
+    };
+    let triggers =
+        squeeze(code.iter().find_map(|c| function(c, "Vboard___024root___eval_triggers__act")).unwrap_or(""));
+    for i in 0..n {
+        let at = format!("vlSelf->__VactTriggered.at({i}U)=((IData)(vlSelf->");
+        let Some(start) = triggers.find(&at) else {
+            return Some(format!("the design's trigger {i} is not a rising clock edge"));
+        };
+        let rest = &triggers[start + at.len()..];
+        let var = rest.split(')').next().unwrap_or("");
+        let rising = format!("{var})&(~(IData)(vlSelf->__Vtrigrprev__TOP__{var})));");
+        if var.is_empty() || !rest.starts_with(&rising) {
+            return Some(format!("the design's trigger {i} is not a rising clock edge"));
+        }
     }
-    let triggers = code.iter().find_map(|c| function(c, "Vboard___024root___eval_triggers__act"));
-    let rising = "__VactTriggered.at(0U) = ((IData)(vlSelf->clk) & (~ (IData)(vlSelf->__Vtrigrprev__TOP__clk)));";
-    if !triggers.is_some_and(|t| squeeze(t).contains(&squeeze(rising))) {
-        return Some("the design's trigger is not the board clock's rising edge".into());
-    }
-    // Nothing else reads the clock's level (the debug build's assertion on it aside).
+    // Nothing else reads the board clock's level (the debug build's assertion on it aside).
     for c in code {
         for (name, body) in functions(c) {
             if name.ends_with("___eval_triggers__act") || name.ends_with("___eval_debug_assertions") {
@@ -137,6 +147,13 @@ fn edge_blocker(root: &str, code: &[&str]) -> Option<String> {
         }
     }
     None
+}
+
+/// How many triggers the root has (`VlTriggerVec<N> __VactTriggered;`).
+fn trigger_count(root: &str) -> Option<usize> {
+    let at = root.find("> __VactTriggered;")?;
+    let open = root[..at].rfind('<')?;
+    root[open + 1..at].trim().parse().ok()
 }
 
 /// The body names the top's `clk` (not merely a name that begins so).
@@ -333,12 +350,16 @@ mod tests {
         let nba = "VL_INLINE_OPT void Vboard___024root___nba_sequent__TOP__0(Vboard___024root* vlSelf) {\n    vlSelf->x = (1U + vlSelf->x);\n}\n";
         let assertions = "void Vboard___024root___eval_debug_assertions(Vboard___024root* vlSelf) {\n    if (VL_UNLIKELY((vlSelf->clk & 0xfeU))) {\n        Verilated::overWidthError(\"clk\");}\n}\n";
         assert_eq!(edge_blocker(root, &[triggers, nba, assertions]), None);
-        // A second trigger (a negative edge, another clock).
+        // A second clock's rising edge (a Clocking Wizard's output) too.
         let two = "    VlTriggerVec<2> __VactTriggered;\n";
-        assert!(edge_blocker(two, &[triggers, nba]).unwrap().contains("other triggers"));
-        // A falling-edge trigger.
+        let q = "botsim_board__DOT__user__DOT__CLKGEN__DOT__q";
+        let second = format!("    vlSelf->__VactTriggered.at(1U) = ((IData)(vlSelf->{q}) \n        & (~ (IData)(vlSelf->__Vtrigrprev__TOP__{q})));\n}}\n");
+        let both = triggers.replacen("    vlSelf->__Vtrigrprev__TOP__clk = vlSelf->clk;\n}\n", &second, 1);
+        assert_eq!(edge_blocker(two, &[&both, nba]), None);
+        // A trigger missing, or a falling edge.
+        assert!(edge_blocker(two, &[triggers, nba]).unwrap().contains("trigger 1 is not a rising clock edge"));
         let falling = triggers.replace("((IData)(vlSelf->clk) \n", "(~(IData)(vlSelf->clk) \n");
-        assert!(edge_blocker(root, &[&falling, nba]).unwrap().contains("not the board clock's rising edge"));
+        assert!(edge_blocker(root, &[&falling, nba]).unwrap().contains("trigger 0 is not a rising clock edge"));
         // Logic that reads the level (`assign led = {15'd0, clk}`).
         let level = "void Vboard___024root___ico_sequent__TOP__0(Vboard___024root* vlSelf) {\n    vlSelf->led = (IData)(vlSelf->clk);\n}\n";
         assert!(edge_blocker(root, &[triggers, nba, level]).unwrap().contains("level"));

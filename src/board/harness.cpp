@@ -151,7 +151,7 @@ struct Board {
     uint64_t evals = 0;
     uint8_t last_an = 0xFF, last_seg = 0x7F, last_dp = 1;
     uint16_t last_led = 0;
-    bool rising_only = false;  // evaluate rising edges only (one clock, nothing on falling)
+    bool rising_only = false;  // evaluate at rising clock edges only (nothing on falling ones)
     bool vga = false;  // record the VGA pins (only when frames are asked for)
     uint16_t last_vga = 0x3000;
     bool bot = false;  // record every change of the bot's outputs (lock-step runs)
@@ -283,10 +283,10 @@ static inline void record(BoardEvent* buf, uint32_t* n, uint64_t t, uint32_t kin
     e.c = c;
 }
 
-// Evaluate the oscillator's rising edges only (the build found that nothing happens on the
-// falling ones); a waveform still gets every edge. 0 when this board has several clocks.
+// Evaluate at rising clock edges only (the build found that nothing happens on the falling
+// ones); a waveform still gets every edge.
 int board_rising_edges_only(Board* b, int on) {
-    b->rising_only = on && b->clocks.size() == 1;
+    b->rising_only = on != 0;
     return b->rising_only;
 }
 
@@ -497,22 +497,24 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
             for (size_t i = 0; i < nc; i++) {
                 Clock& c = clocks[i];
                 if (c.stopped || c.next_t != t) continue;
+                rose |= c.next_high;
                 *c.q = c.next_high;
                 c.advance();
             }
         }
         b->now = t;
-        if (kOneClock && rising_only && !rose) {
+        // Clocks that only fall change nothing but their levels on a board whose logic all
+        // runs on rising edges: Verilator notes the levels, and nothing is evaluated.
+        const bool evaluate = rose || !rising_only;
+        if (!evaluate) {
             Vboard___024root___eval_triggers__act(top->rootp);
-            continue;
-        }
-        if (b->vcd) {
+        } else if (b->vcd) {
             top->eval();
             b->vcd->dump(t);
         } else {
             Vboard___024root___eval(top->rootp);
         }
-        s.evals++;
+        s.evals += evaluate;
         if (b->ctx.gotFinish()) {  // $finish, or vl_fatal
             why = BOARD_FINISHED;
             break;
@@ -530,6 +532,7 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
                 }
             }
         }
+        if (!evaluate) continue;
         uint8_t an = top->an, seg = top->seg, dp = top->dp;
         if (an != s.an || seg != s.seg || dp != s.dp) {
             s.an = an;

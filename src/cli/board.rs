@@ -120,9 +120,10 @@ pub struct Args {
     /// What stands for the bot: rtl (botsim's bot.v: its KCPSM6 as --cpu says, world_if and
     /// the map under Verilator) or model (the same firmware on the instruction-set simulator
     /// with Rust models of world_if and the map, behind the same ports: same results). With
-    /// --cpu lockstep, the ISS board's bot
-    #[arg(long, value_enum, default_value = "rtl")]
-    bot: BotArg,
+    /// --cpu lockstep, the ISS board's bot [default: model with --cpu iss and lockstep, but
+    /// rtl where the run looks inside the bot (--vcd, --cpu-trace, --break) or with --cpu rtl]
+    #[arg(long, value_enum)]
+    bot: Option<BotArg>,
     /// With --cpu iss --bot model the board skips the periods in which all of it repeats
     /// itself (the same results, edge for edge); this simulates every edge
     #[arg(long)]
@@ -470,9 +471,11 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     let maps = sources(&plan);
     let (cpu_breaks, bot_breaks) = breakpoints(&a.breaks, &plan, &maps)?;
     // The models' programs are known before anything is built.
-    let bot = match a.bot {
-        BotArg::Model => BotKind::Model,
-        BotArg::Rtl => BotKind::Rtl,
+    let looks_inside = a.vcd.is_some() || a.cpu_trace.is_some() || !a.breaks.is_empty();
+    let bot = match (a.bot, a.cpu) {
+        (Some(BotArg::Model), _) => BotKind::Model,
+        (None, CpuArg::Iss | CpuArg::Lockstep) if !looks_inside => BotKind::Model,
+        _ => BotKind::Rtl,
     };
     // The lock-step's RTL board is all RTL; --bot applies to its ISS board.
     let main_bot = if lockstep { BotKind::Rtl } else { bot };

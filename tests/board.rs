@@ -1117,4 +1117,10 @@ fn a_run_counted_in_samples_stops_when_the_bot_stops_sampling() {
         one_line_error(&o),
         "no bot sample in 1 s of board time after sample 2 at 54.138 ms (upd_sysregs never pulsed: is the bot held in reset, or its clock stopped?)"
     );
+    // A bot that keeps sampling runs on past 1 s (25 samples, 1.33 s), however long one call
+    // into the model runs (the Project 2 example shows little: the whole run is one call).
+    let o = example("examples/nexys4_proj2", &["--cpu", "iss", "--samples", "25", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(s["samples"], 26, "{s}");
 }

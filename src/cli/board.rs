@@ -724,7 +724,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
                 if t >= end_ps {
                     break Some("time");
                 }
-                if stall_at.is_some_and(|s| t >= s) {
+                if stall_at.is_some() && t >= last_sample_ps.saturating_add(NO_SAMPLE_PS) {
                     let after = match snapshots.last() {
                         None => "from the start".to_string(),
                         Some(s) => format!("after sample {} at {:.3} ms", s.sample, last_sample_ps as f64 / 1e9),

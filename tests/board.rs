@@ -761,7 +761,19 @@ fn waveforms_show_each_cpus_instruction_as_the_disassembler_writes_it() {
         let vcd = dir.path().join(format!("{cpu}.vcd"));
         let o = example(
             "examples/nexys4_proj2",
-            &["--timing", "fast", "--seconds", "0.0013", "--vcd", vcd.to_str().unwrap(), "--cpu", cpu, "-q"],
+            &[
+                "--timing",
+                "fast",
+                "--seconds",
+                "0.0013",
+                "--vcd",
+                vcd.to_str().unwrap(),
+                "--cpu",
+                cpu,
+                "--bot",
+                "rtl",
+                "-q",
+            ],
         );
         assert!(o.status.success(), "{cpu}: {}", stderr(&o));
         let team: &[&str] = &["TOP", "botsim_board", "user", "SYS", "APPCPU"];
@@ -1123,4 +1135,45 @@ fn a_run_counted_in_samples_stops_when_the_bot_stops_sampling() {
     assert!(o.status.success(), "{}", stderr(&o));
     let s: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!(s["samples"], 26, "{s}");
+}
+
+/// The signals a VCD file declares, named as GTKWave names them (`TOP.a.b.sig[7:0]`).
+fn vcd_signals(path: &Path) -> std::collections::BTreeSet<String> {
+    use std::io::BufRead;
+    let mut scopes: Vec<String> = Vec::new();
+    let mut out = std::collections::BTreeSet::new();
+    for line in std::io::BufReader::new(std::fs::File::open(path).unwrap()).lines().map_while(Result::ok) {
+        let f: Vec<&str> = line.split_whitespace().collect();
+        match f.first() {
+            Some(&"$scope") => scopes.push(f[2].to_string()),
+            Some(&"$upscope") => {
+                scopes.pop();
+            }
+            Some(&"$var") => {
+                let range = if f.len() > 6 { f[5] } else { "" };
+                out.insert(format!("{}.{}{range}", scopes.join("."), f[4]));
+            }
+            Some(&"$enddefinitions") => break,
+            _ => {}
+        }
+    }
+    out
+}
+
+#[test]
+fn the_save_file_lists_only_signals_the_waveform_has() {
+    // --cpu iss runs the bot as its model: the waveform has the bot's ports but no bot CPU,
+    // and the save file must not list one (GTKWave would open with missing signals).
+    let dir = tempfile::tempdir().unwrap();
+    for bot in ["model", "rtl"] {
+        let vcd = dir.path().join(format!("{bot}.vcd"));
+        let o = follower(&["--cpu", "iss", "--bot", bot, "--seconds", "0.0003", "--vcd", vcd.to_str().unwrap(), "-q"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let have = vcd_signals(&vcd);
+        let gtkw = std::fs::read_to_string(vcd.with_extension("gtkw")).unwrap();
+        let listed: Vec<&str> = gtkw.lines().filter(|l| l.starts_with("TOP.")).collect();
+        let missing: Vec<&&str> = listed.iter().filter(|l| !have.contains(**l)).collect();
+        assert!(missing.is_empty(), "{bot}: {} of {} listed signals missing: {missing:?}", missing.len(), listed.len());
+        assert_eq!(listed.iter().any(|l| l.contains("BOTSIMCPU")), bot == "rtl", "{bot}");
+    }
 }

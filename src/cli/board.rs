@@ -121,7 +121,7 @@ pub struct Args {
     /// the map under Verilator) or model (the same firmware on the instruction-set simulator
     /// with Rust models of world_if and the map, behind the same ports: same results). With
     /// --cpu lockstep, the ISS board's bot [default: model with --cpu iss and lockstep, but
-    /// rtl where the run looks inside the bot (--vcd, --cpu-trace, --break) or with --cpu rtl]
+    /// rtl where the run looks inside the bot's CPU (--cpu-trace, --break) or with --cpu rtl]
     #[arg(long, value_enum)]
     bot: Option<BotArg>,
     /// With --cpu iss --bot model the board skips the periods in which all of it repeats
@@ -471,7 +471,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     let maps = sources(&plan);
     let (cpu_breaks, bot_breaks) = breakpoints(&a.breaks, &plan, &maps)?;
     // The models' programs are known before anything is built.
-    let looks_inside = a.vcd.is_some() || a.cpu_trace.is_some() || !a.breaks.is_empty();
+    let looks_inside = a.cpu_trace.is_some() || !a.breaks.is_empty();
     let bot = match (a.bot, a.cpu) {
         (Some(BotArg::Model), _) => BotKind::Model,
         (None, CpuArg::Iss | CpuArg::Lockstep) if !looks_inside => BotKind::Model,
@@ -782,7 +782,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     model.main().close_vcd();
     if let (Some(v), Some((start, end))) = (&a.vcd, model.main().vcd_span()) {
         let view = save_file_view(start, end, stopped.as_ref());
-        write_save_file(v, &plan, &maps, cpu == CpuModel::RtlProbed, view)?;
+        write_save_file(v, &plan, &maps, cpu == CpuModel::RtlProbed, main_bot == BotKind::Model, view)?;
     }
 
     // Outputs.
@@ -887,12 +887,14 @@ fn save_file_view(start_ps: u64, end_ps: u64, stop: Option<&BreakStop>) -> View 
 /// The GTKWave save file beside a waveform (`w.vcd` -> `w.gtkw`), with its translate filters:
 /// the board pins, the bot's registers (BotInfo as heading and movement, MotCtl as movement)
 /// and every KCPSM6 (its address as `label+offset` where the program's source is known, the
-/// instruction text, the status, the registers, the port bus).
+/// instruction text, the status, the registers, the port bus); with `bot_model`, the bot has
+/// no KCPSM6 in the waveform.
 fn write_save_file(
     vcd: &Path,
     plan: &Plan,
     sources: &BTreeMap<String, SourceMap>,
     probed: bool,
+    bot_model: bool,
     view: View,
 ) -> Result<(), String> {
     use botsim::regs::{MotCtl, Registers};
@@ -950,7 +952,8 @@ fn write_save_file(
             (format!("{top}.bot_motctl[7:0]"), Format::Hex, Some(fm)),
         ],
     );
-    for site in &plan.cpus {
+    let in_bot = |path: &str| path.strip_prefix(plan.bot_path.as_str()).is_some_and(|r| r.starts_with('.'));
+    for site in plan.cpus.iter().filter(|c| !(bot_model && in_bot(&c.path))) {
         let at = format!("{top}.user.{}", site.path);
         let debug = if probed { format!("{at}.core") } else { at.clone() };
         let labels = match sources.get(&site.path) {

@@ -362,19 +362,20 @@ fn one_run(
         }
     }
     if let Some((_, k)) = &failure {
-        // The same run again, to the failure and its next sample, with the waveform of the
-        // samples around it.
+        // The same run again, to the failure and its next sample, with the waveform around it:
+        // from the sample before to the one after, at most 0.5 ms before and 1 ms after (at
+        // hw timing a sample is 53 ms of every signal: gigabytes).
+        let (from, to) = failure_window(&std::fs::read_to_string(file("trace.csv")).unwrap_or_default(), *k);
         let mut again = args;
-        let to = k + 1;
         again.extend([
             "--samples".into(),
-            to.to_string(),
+            (k + 1).to_string(),
             "--vcd".into(),
             file("failure.vcd"),
             "--trace-from".into(),
-            k.saturating_sub(1).to_string(),
+            format!("{from}c"),
             "--trace-to".into(),
-            to.to_string(),
+            format!("{to}c"),
             "-q".into(),
         ]);
         let _ = Command::new(exe).args(&again).current_dir(base).output();
@@ -388,6 +389,21 @@ fn one_run(
         end,
         summary,
     }
+}
+
+/// The failure waveform's window around sample `k`, in cycles of the 100 MHz clock, from a
+/// run's `--trace-csv` (`sample,cycle,...`): from sample `k - 1` to as far after `k`, at most
+/// 50,000 cycles before and 100,000 after.
+fn failure_window(trace_csv: &str, k: u64) -> (u64, u64) {
+    let cycle = |n: u64| {
+        trace_csv.lines().skip(1).find_map(|l| {
+            let mut f = l.split(',');
+            (f.next()?.parse::<u64>().ok()? == n).then(|| f.next()?.parse::<u64>().ok()).flatten()
+        })
+    };
+    let at = cycle(k).unwrap_or(0);
+    let gap = k.checked_sub(1).and_then(cycle).map_or(50_000, |before| at - before.min(at));
+    (at - gap.min(50_000).min(at), at + gap.min(100_000))
 }
 
 fn row(design: &str, map: &str, o: &Outcome) -> String {
@@ -452,6 +468,15 @@ fn junit(suite: &SuiteFile, runs: &[Run], outcomes: &[Outcome], wall: f64) -> St
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn the_failure_window_is_two_samples_or_1_5_ms() {
+        let fast = "sample,cycle,loc_x\n0,100293,64\n1,100539,64\n2,102600,64\n";
+        assert_eq!(super::failure_window(fast, 2), (100_539, 104_661));
+        let hw = "sample,cycle,loc_x\n0,100293,64\n1,100539,64\n2,5413799,64\n";
+        assert_eq!(super::failure_window(hw, 2), (5_363_799, 5_513_799));
+        assert_eq!(super::failure_window(hw, 0), (50_293, 100_293 + 50_000));
+    }
+
     use super::*;
 
     #[test]

@@ -624,6 +624,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     let mut at_end = false;
     let mut bot_stop: Option<BreakStop> = None;
     let mut last_sample_ps = 0u64;
+    let counted_in_samples = a.seconds.is_none();
     // A run repeated to a stop writes its other outputs up to the stop only.
     let past_stop = |t: u64| a.stopped_at.as_ref().is_some_and(|s| t > s.time_ps);
     let finished = loop {
@@ -633,9 +634,8 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         let now = model.main().time_ps();
         let mut until = stops.range(now + 1..).next().copied().unwrap_or(end_ps).min(end_ps);
         // A run counted in samples waits for the next one a bounded time.
-        let stall_at = a.seconds.is_none().then(|| last_sample_ps.saturating_add(NO_SAMPLE_PS));
-        if let Some(t) = stall_at {
-            until = until.min(t);
+        if counted_in_samples {
+            until = until.min(last_sample_ps.saturating_add(NO_SAMPLE_PS));
         }
         // A window given in samples: stop after sample s - 1 to open, after sample s to close.
         let window_limit = match (vcd_done, vcd_open, vcd_from, vcd_to) {
@@ -724,7 +724,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
                 if t >= end_ps {
                     break Some("time");
                 }
-                if stall_at.is_some() && t >= last_sample_ps.saturating_add(NO_SAMPLE_PS) {
+                if counted_in_samples && t >= last_sample_ps.saturating_add(NO_SAMPLE_PS) {
                     let after = match snapshots.last() {
                         None => "from the start".to_string(),
                         Some(s) => format!("after sample {} at {:.3} ms", s.sample, last_sample_ps as f64 / 1e9),

@@ -14,14 +14,14 @@
 //!   scheduler: the bytes of a `std::string` are a pointer);
 //! - has modules Verilator did not inline (their state lives in other objects).
 //!
-//! [`fast_forward_blocker`] names the first such thing found, so the fast-forward stays off
+//! [`Verdicts::fast_forward`] names the first such thing found, so the fast-forward stays off
 //! for that design and the run says why.
 //!
 //! **One evaluation per clock edge that matters**: on a board whose logic all runs on rising
 //! clock edges, a moment at which clocks only fall changes nothing but their levels. The
 //! harness then evaluates at rising edges only and, at the other moments, lets Verilator
 //! note the levels (its trigger function) without evaluating the design.
-//! [`falling_edge_blocker`] says why a design needs its falling edges evaluated: a trigger
+//! [`Verdicts::falling_edges`] says why a design needs its falling edges evaluated: a trigger
 //! that is not a rising edge (`negedge`, a level, `@*` on a clock), or logic that reads the
 //! board clock's level.
 //!
@@ -47,7 +47,13 @@ const FALLING_EDGES_FILE: &str = "falling-edges.txt";
 impl Verdicts {
     /// The verdicts on Verilator's output folder `obj`.
     pub fn of(obj: &Path) -> Verdicts {
-        Verdicts { fast_forward: fast_forward_blocker(obj), falling_edges: falling_edge_blocker(obj) }
+        match Generated::read(obj) {
+            Some(g) => Verdicts { fast_forward: fast_forward_blocker(&g), falling_edges: falling_edge_blocker(&g) },
+            None => {
+                let why = Some("Verilator's output could not be read".to_string());
+                Verdicts { fast_forward: why.clone(), falling_edges: why }
+            }
+        }
     }
 
     /// Keep them in the build folder `dir`.
@@ -67,54 +73,53 @@ impl Verdicts {
     }
 }
 
-/// The generated C++ of a design (Verilator's `--Mdir`): why the fast-forward cannot take its
-/// root object for its whole state, or `None` when it can.
-pub fn fast_forward_blocker(obj: &Path) -> Option<String> {
-    let Ok(entries) = std::fs::read_dir(obj) else {
-        return Some("Verilator's output could not be read".into());
-    };
-    let mut names: Vec<String> = entries.flatten().map(|e| e.file_name().to_string_lossy().into_owned()).collect();
-    names.sort();
-    let read = |n: &str| std::fs::read_to_string(obj.join(n)).unwrap_or_default();
-    for n in &names {
-        if n.ends_with(".h") && n.starts_with("Vboard_") && !KNOWN_HEADERS.contains(&n.as_str()) {
-            return Some(format!(
-                "Verilator kept a module apart (`{}`) instead of inlining it",
-                n.trim_start_matches("Vboard_").trim_end_matches(".h").trim_start_matches('_')
-            ));
-        }
-    }
-    if let Some(why) = root_blocker(&read("Vboard___024root.h")) {
-        return Some(why);
-    }
-    if let Some(why) = dpi_blocker(&read("Vboard__Dpi.h")) {
-        return Some(why);
-    }
-    eval_files(obj).iter().find_map(|code| eval_blocker(code))
+/// What the checks read of Verilator's output folder (`--Mdir`), read once.
+struct Generated {
+    /// Every file name, sorted.
+    names: Vec<String>,
+    root: String,
+    dpi: String,
+    /// The evaluation's source files (the `__Slow` ones hold the initial blocks and the
+    /// constructor), in name order.
+    eval: Vec<String>,
 }
 
-/// The evaluation's source files (the `__Slow` ones hold the initial blocks and the
-/// constructor), sorted by name.
-fn eval_files(obj: &Path) -> Vec<String> {
-    let Ok(entries) = std::fs::read_dir(obj) else { return Vec::new() };
-    let mut names: Vec<String> = entries
-        .flatten()
-        .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.starts_with("Vboard___024root__DepSet_") && !n.ends_with("__Slow.cpp"))
-        .collect();
-    names.sort();
-    names.iter().map(|n| std::fs::read_to_string(obj.join(n)).unwrap_or_default()).collect()
+impl Generated {
+    fn read(obj: &Path) -> Option<Generated> {
+        let mut names: Vec<String> =
+            std::fs::read_dir(obj).ok()?.flatten().map(|e| e.file_name().to_string_lossy().into_owned()).collect();
+        names.sort();
+        let read = |n: &str| std::fs::read_to_string(obj.join(n)).unwrap_or_default();
+        let eval = names
+            .iter()
+            .filter(|n| n.starts_with("Vboard___024root__DepSet_") && !n.ends_with("__Slow.cpp"))
+            .map(|n| read(n))
+            .collect();
+        Some(Generated { root: read("Vboard___024root.h"), dpi: read("Vboard__Dpi.h"), eval, names })
+    }
 }
 
-/// The generated C++ of a design: why the harness must evaluate its falling clock edges, or
-/// `None` when the rising ones are enough.
-pub fn falling_edge_blocker(obj: &Path) -> Option<String> {
-    let root = std::fs::read_to_string(obj.join("Vboard___024root.h")).unwrap_or_default();
-    let code = eval_files(obj);
-    edge_blocker(&root, &code.iter().map(String::as_str).collect::<Vec<_>>())
+/// Why the fast-forward cannot take the root object for the design's whole state, or `None`
+/// when it can.
+fn fast_forward_blocker(g: &Generated) -> Option<String> {
+    if let Some(n) =
+        g.names.iter().find(|n| n.ends_with(".h") && n.starts_with("Vboard_") && !KNOWN_HEADERS.contains(&n.as_str()))
+    {
+        return Some(format!(
+            "Verilator kept a module apart (`{}`) instead of inlining it",
+            n.trim_start_matches("Vboard_").trim_end_matches(".h").trim_start_matches('_')
+        ));
+    }
+    root_blocker(&g.root).or_else(|| dpi_blocker(&g.dpi)).or_else(|| g.eval.iter().find_map(|code| eval_blocker(code)))
 }
 
-/// [`falling_edge_blocker`] on the root's header and the evaluation's files.
+/// Why the harness must evaluate the design's falling clock edges, or `None` when the rising
+/// ones are enough.
+fn falling_edge_blocker(g: &Generated) -> Option<String> {
+    edge_blocker(&g.root, &g.eval.iter().map(String::as_str).collect::<Vec<_>>())
+}
+
+/// The falling-edge check on the root's header and the evaluation's files.
 fn edge_blocker(root: &str, code: &[&str]) -> Option<String> {
     // Every trigger a rising edge of a variable (the board clock, a generated clock, a
     // clock made by the design's logic, which cannot change while nothing is evaluated).

@@ -1171,3 +1171,22 @@ fn the_save_file_lists_only_signals_the_waveform_has() {
         assert_eq!(listed.iter().any(|l| l.contains("BOTSIMCPU")), bot == "rtl", "{bot}");
     }
 }
+
+#[test]
+fn a_run_stops_at_the_first_move_the_world_refuses_when_asked() {
+    // The demo firmware drives forward (its switches all off) until a wall stops the bot.
+    let demo = |extra: &[&str]| {
+        let mut args = vec!["--timing", "fast", "--compat", "botsim20", "--cpu", "iss", "--json"];
+        args.extend_from_slice(extra);
+        summary(&example("examples/nexys4_proj2", &args))
+    };
+    let whole = demo(&["--samples", "1500"]);
+    let k = whole["first_blocked_sample"].as_u64().expect("the demo drives into a wall within 1500 samples");
+    assert_eq!(whole["stopped_by"], "samples");
+    let stopped = demo(&["--samples", "1500", "--stop-when-blocked"]);
+    assert_eq!(stopped["stopped_by"], "blocked", "{stopped}");
+    assert_eq!(stopped["first_blocked_sample"], k);
+    // Sample k shows the forward move's event, sample k + 1 the bot still in place: 0..=k+1.
+    assert_eq!(stopped["samples"], k + 2);
+    assert_eq!(stopped["blocked_moves"], 1);
+}

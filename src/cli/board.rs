@@ -172,6 +172,10 @@ pub struct Args {
     /// with a wall straight ahead)
     #[arg(long)]
     stop_at_line_end: bool,
+    /// Stop at the first sample that shows a move the world refused (the bot drove into an
+    /// obstruction; the JSON's first_blocked_sample)
+    #[arg(long)]
+    stop_when_blocked: bool,
     /// Build the design (or find it built) and stop: for CI caches and suites
     #[arg(long)]
     build_only: bool,
@@ -622,6 +626,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     let mut buf = vec![RawEvent::default(); 4096];
     let mut last_led = 0u16;
     let mut at_end = false;
+    let mut blocked_now = false;
     let mut bot_stop: Option<BreakStop> = None;
     let mut last_sample_ps = 0u64;
     let counted_in_samples = a.seconds.is_none();
@@ -644,7 +649,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
             _ => None,
         };
         let mut limit = window_limit.map_or(sample_limit, |w| w.min(sample_limit));
-        if a.stop_at_line_end || !bot_breaks.is_empty() {
+        if a.stop_at_line_end || a.stop_when_blocked || !bot_breaks.is_empty() {
             limit = limit.min(snapshots.len() as u64 + 1);
         }
         let (stop, n) = model.run(until, limit, &mut buf)?;
@@ -669,6 +674,9 @@ fn run_once(a: Args) -> Result<Stopped, String> {
                     last_sample_ps = time_ps;
                     json.push_str(&json_row(&snapshot, motctl));
                     at_end = at_end || (a.stop_at_line_end && at_line_end(&snapshot));
+                    blocked_now = blocked_now
+                        || (a.stop_when_blocked
+                            && snapshots.last().is_some_and(|b| b.move_refused(&snapshot, fw.threshold)));
                     if bot_stop.is_none() {
                         let before = snapshots.last();
                         if let Some(b) = bot_breaks.iter().find(|b| b.hit(before, &snapshot, fw.threshold)) {
@@ -697,6 +705,9 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         }
         if at_end {
             break Some("line-end");
+        }
+        if blocked_now {
+            break Some("blocked");
         }
         if bot_stop.is_some() {
             break Some("break");

@@ -312,8 +312,13 @@ fn one_run(
     let file = |n: &str| r.dir.join(n).display().to_string();
     let mut run_args = args.clone();
     run_args.extend(["--samples".into(), suite.samples.to_string(), "--json".into()]);
+    // A run stops as soon as its outcome is known: at the end of the line, or at the first
+    // refused move when that fails the check (the rest of the budget would change nothing).
     if suite.expect.contains(&Expect::LineEnd) {
         run_args.push("--stop-at-line-end".into());
+    }
+    if suite.expect.contains(&Expect::NeverBlocked) {
+        run_args.push("--stop-when-blocked".into());
     }
     for (opt, name) in [("--trace-csv", "trace.csv"), ("--png", "path.png"), ("--display", "display.txt")] {
         run_args.extend([opt.into(), file(name)]);
@@ -351,6 +356,8 @@ fn one_run(
                     break;
                 }
             }
+            // A run stopped at a refused move has not used its budget: its failure is that.
+            Expect::LineEnd if summary["stopped_by"] == "blocked" => {}
             Expect::LineEnd => {
                 if summary["stopped_by"] != "line-end" {
                     let why =

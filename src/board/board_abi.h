@@ -25,10 +25,10 @@ typedef struct BoardEvent {
  * its functions (kcpsm6_iss.v packs the pins and unpacks the state). */
 typedef struct BoardCpuFns {
     uint64_t (*tick)(void* cpu, uint64_t pins);
-    uint64_t (*state)(const void* cpu);
+    uint64_t (*state)(void* cpu);
     /* Debug builds: the active bank's s0..sF (s0 in the low byte of regs[0]) and the flags
      * bank | zero << 1 | carry << 2 | ie << 3 | reset << 4 | sleep << 5 | entry << 6. */
-    void (*debug)(const void* cpu, uint32_t* regs, uint32_t* flags);
+    void (*debug)(void* cpu, uint32_t* regs, uint32_t* flags);
 } BoardCpuFns;
 
 /* A probe on one RTL KCPSM6's ports (the lock-step build), which begins with a pointer to

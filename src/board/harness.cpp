@@ -638,8 +638,8 @@ void board_bench_minimal(Board* b, uint64_t cycles) {
 // the design starts; every rising edge of its clock goes straight to the model's own tick.
 namespace {
 uint64_t no_tick(void*, uint64_t) { return 0; }
-uint64_t no_state(const void*) { return 0; }
-void no_debug(const void*, uint32_t* regs, uint32_t* flags) {
+uint64_t no_state(void*) { return 0; }
+void no_debug(void*, uint32_t* regs, uint32_t* flags) {
     for (int i = 0; i < 4; i++) regs[i] = 0;
     *flags = 0;
 }

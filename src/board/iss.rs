@@ -20,6 +20,8 @@ use kcpsm6::source::SourceMap;
 use kcpsm6::trace::Tracer;
 use kcpsm6::Image;
 
+use super::replay::Replay;
+
 use botsim_core::sim::iss::{IssBot, LazyBot};
 use botsim_core::World;
 
@@ -27,15 +29,15 @@ use botsim_core::World;
 #[repr(C)]
 struct CpuFns {
     tick: unsafe extern "C" fn(*mut IssCpu, u64) -> u64,
-    state: unsafe extern "C" fn(*const IssCpu) -> u64,
-    debug: unsafe extern "C" fn(*const IssCpu, *mut u32, *mut u32),
+    state: unsafe extern "C" fn(*mut IssCpu) -> u64,
+    debug: unsafe extern "C" fn(*mut IssCpu, *mut u32, *mut u32),
 }
 
 static FNS: CpuFns = CpuFns { tick: tick_ffi, state: state_ffi, debug: debug_ffi };
 
-unsafe extern "C" fn debug_ffi(cpu: *const IssCpu, regs: *mut u32, flags: *mut u32) {
+unsafe extern "C" fn debug_ffi(cpu: *mut IssCpu, regs: *mut u32, flags: *mut u32) {
     // SAFETY: the model pointer is one `Host::create` made; regs holds four words.
-    let (c, regs) = unsafe { (&(*cpu).cpu, std::slice::from_raw_parts_mut(regs, 4)) };
+    let (c, regs) = unsafe { (&*(*cpu).core(), std::slice::from_raw_parts_mut(regs, 4)) };
     for (w, word) in regs.iter_mut().enumerate() {
         *word = (0..4).map(|b| (c.reg(c.bank(), (4 * w + b) as u8) as u32) << (8 * b)).sum();
     }
@@ -75,6 +77,12 @@ impl Bus for Pinned {
     fn output_k(&mut self, _port: u8, _value: u8, _cycle: u64) {}
 }
 
+/// The reset, sleep and interrupt pins of kcpsm6_iss.v's packed inputs.
+#[inline(always)]
+fn unpack(pins: u64) -> Pins {
+    Pins { interrupt: pins >> 26 & 1 == 1, sleep: pins >> 27 & 1 == 1, reset: pins >> 28 & 1 == 1 }
+}
+
 /// A decoded word that was not the one on the `instruction` port.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct RomMismatch {
@@ -106,6 +114,10 @@ pub struct IssCpu {
     mark: Option<Box<Cpu>>,
     /// The state at each of the fast-forward's phase snapshots since the mark.
     phases: Vec<Cpu>,
+    /// Loops played back instead of simulated (not while the core is traced, has
+    /// breakpoints or is recorded): bring the core up to date ([`IssCpu::core`]) before
+    /// reading or changing it.
+    replay: Replay,
 }
 
 /// Where a run should stop, for one CPU: addresses, port writes (port, value or any).
@@ -161,9 +173,11 @@ impl CpuTrace {
 
 impl IssCpu {
     fn new(config: Config, program: &Image, record: bool) -> IssCpu {
+        let cpu = Cpu::new(config, &program.words[..]);
         IssCpu {
             fns: &FNS,
-            cpu: Cpu::new(config, &program.words[..]),
+            replay: Replay::new(&cpu),
+            cpu,
             bus: Pinned::default(),
             mismatch: None,
             record: record.then(Vec::new),
@@ -175,6 +189,16 @@ impl IssCpu {
             mark: None,
             phases: Vec::new(),
         }
+    }
+
+    /// The core, brought up to date with the cycles played back since it was last simulated.
+    fn core(&mut self) -> &mut Cpu {
+        let bus = &mut self.bus;
+        self.replay.catch_up(&mut self.cpu, |cpu, pins| {
+            bus.in_port = (pins >> 18) as u8;
+            cpu.tick(unpack(pins), bus);
+        });
+        &mut self.cpu
     }
 
     /// A breakpoint of this CPU that `r` hits.
@@ -219,6 +243,16 @@ impl IssCpu {
     /// One cycle with the inputs `pins` (kcpsm6_iss.v's packing); the next cycle's outputs.
     #[inline]
     fn tick(&mut self, pins: u64) -> u64 {
+        if self.replay.active() {
+            let before = self.record.is_some().then(|| self.replay.current());
+            if let Some(out) = self.replay.next(pins) {
+                if let (Some(r), Some(before)) = (&mut self.record, before) {
+                    r.push((pins, before));
+                }
+                return out;
+            }
+            self.core();
+        }
         if self.record.is_some() {
             let state = self.state();
             if let Some(r) = &mut self.record {
@@ -235,7 +269,7 @@ impl IssCpu {
             });
         }
         self.bus.in_port = (pins >> 18) as u8;
-        let p = Pins { interrupt: pins >> 26 & 1 == 1, sleep: pins >> 27 & 1 == 1, reset: pins >> 28 & 1 == 1 };
+        let p = unpack(pins);
         // Two copies of the inlined tick: the plain one builds no record.
         if self.trace.is_none() && self.breaks.is_none() {
             self.cpu.tick(p, &mut self.bus);
@@ -245,6 +279,7 @@ impl IssCpu {
                 // SAFETY: the host outlives its models.
                 unsafe { *self.activity += 1 };
             }
+            self.replay.observe(&self.cpu, pins, state);
             return state;
         }
         let mut hit = false;
@@ -263,9 +298,11 @@ unsafe extern "C" fn tick_ffi(cpu: *mut IssCpu, pins: u64) -> u64 {
     unsafe { (*cpu).tick(pins) }
 }
 
-unsafe extern "C" fn state_ffi(cpu: *const IssCpu) -> u64 {
+unsafe extern "C" fn state_ffi(cpu: *mut IssCpu) -> u64 {
     // SAFETY: as for tick_ffi.
-    unsafe { (*cpu).state() }
+    let cpu = unsafe { &mut *cpu };
+    cpu.core();
+    cpu.state()
 }
 
 /// The function a probe pointer starts with (`BoardProbeFns` in board_abi.h).
@@ -530,7 +567,7 @@ impl Host {
     /// mark are dropped).
     fn ff_mark(&mut self) {
         for (_, c) in &mut self.cpus {
-            c.mark = Some(Box::new(c.cpu.clone()));
+            c.mark = Some(Box::new(c.core().clone()));
             c.phases.clear();
         }
         for b in &mut self.bots {
@@ -542,7 +579,8 @@ impl Host {
     /// A phase snapshot: every model's state now, between the mark and its period's end.
     fn ff_snap(&mut self) {
         for (_, c) in &mut self.cpus {
-            c.phases.push(c.cpu.clone());
+            let now = c.core().clone();
+            c.phases.push(now);
         }
         for b in &mut self.bots {
             b.phases.push(b.bot.edges());
@@ -550,8 +588,11 @@ impl Host {
     }
 
     /// Every KCPSM6 model is in its marked state (its cycle count aside).
-    fn ff_same(&self) -> bool {
-        self.cpus.iter().all(|(_, c)| c.mark.as_ref().is_some_and(|m| c.cpu.same_state_as(m)))
+    fn ff_same(&mut self) -> bool {
+        self.cpus.iter_mut().all(|(_, c)| {
+            c.core();
+            c.mark.as_ref().is_some_and(|m| c.cpu.same_state_as(m))
+        })
     }
 
     /// How many periods (each as long as the time since the mark), at most `periods`, every
@@ -591,8 +632,9 @@ impl Host {
     /// then in.
     fn ff_skip(&mut self, periods: u64, phase: usize) -> u64 {
         for (_, c) in &mut self.cpus {
+            let now = c.core().cycle();
             let Some(mark) = c.mark.as_mut() else { continue };
-            let per = c.cpu.cycle() - mark.cycle();
+            let per = now - mark.cycle();
             let moved = (periods + 1) * per;
             mark.skip_period(moved);
             for p in &mut c.phases {
@@ -650,8 +692,8 @@ impl Host {
     }
 
     /// The models, by path.
-    pub fn cpus(&self) -> impl Iterator<Item = (&str, &Cpu)> {
-        self.cpus.iter().map(|(p, c)| (p.as_str(), &c.cpu))
+    pub fn cpus(&mut self) -> impl Iterator<Item = (&str, &Cpu)> {
+        self.cpus.iter_mut().map(|(p, c)| (p.as_str(), &*c.core()))
     }
 }
 
@@ -662,7 +704,7 @@ unsafe extern "C" fn ff_mark_ffi(ctx: *mut c_void) {
 
 unsafe extern "C" fn ff_same_ffi(ctx: *mut c_void) -> c_int {
     // SAFETY: as for ff_mark_ffi.
-    unsafe { (*(ctx as *const Host)).ff_same() as c_int }
+    unsafe { (*(ctx as *mut Host)).ff_same() as c_int }
 }
 
 unsafe extern "C" fn ff_snap_ffi(ctx: *mut c_void) {
@@ -771,5 +813,94 @@ impl Host {
             ));
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A team firmware's shape: wait for the interrupt routine's semaphore, then read a port,
+    /// write it and the count of interrupts out, and wait again; a loop that writes a port
+    /// on every trip; a countdown (its flops change on every trip: never replayed).
+    const FIRMWARE: &str = "
+        main:   LOAD sE, 00
+                ENABLE INTERRUPT
+        wait:   COMPARE sE, 00
+                JUMP Z, wait
+                LOAD sE, 00
+                INPUT s1, 05
+                OUTPUT s1, 06
+                ADD s2, 01
+                OUTPUT s2, 07
+                LOAD s3, 20
+        count:  SUB s3, 01
+                JUMP NZ, count
+                COMPARE s1, 80
+                JUMP C, wait
+        spin:   OUTPUT s1, 08
+                COMPARE sE, 00
+                JUMP Z, spin
+                JUMP wait
+        isr:    LOAD sE, 01
+                RETURNI ENABLE
+                ADDRESS 3FF
+                JUMP isr
+    ";
+
+    /// A little generator for the test's stimulus.
+    struct Rng(u64);
+    impl Rng {
+        fn below(&mut self, n: u64) -> u64 {
+            self.0 ^= self.0 << 13;
+            self.0 ^= self.0 >> 7;
+            self.0 ^= self.0 << 17;
+            self.0 % n
+        }
+    }
+
+    /// Two models of one core on the same design: one plays loops back, the other (with an
+    /// empty breakpoint list, which keeps every cycle simulated) does not. The design around
+    /// them: the program ROM (the word at the address of the cycle before, as a block RAM
+    /// gives it), an interrupt raised at random times and held until acknowledged, an input
+    /// port that changes at random, and a reset now and then.
+    #[test]
+    fn a_core_that_plays_loops_back_gives_the_outputs_of_one_simulated_every_cycle() {
+        let program = kcpsm6::asm::assemble_str(FIRMWARE).unwrap().image;
+        let now = 0u64;
+        let mut fast = IssCpu::new(Config::default(), &program, false);
+        let mut slow = IssCpu::new(Config::default(), &program, false);
+        slow.breaks = Some(Box::new((Breaks::default(), &now as *const u64)));
+        let mut rng = Rng(0x9E37_79B9_7F4A_7C15);
+        let (mut out, mut rom_out, mut irq, mut in_port, mut reset) = (fast.state(), 0u32, false, 0u8, 0u32);
+        let mut acks = 0;
+        for cycle in 0..400_000u64 {
+            if !irq && rng.below(3_000) == 0 {
+                irq = true;
+            }
+            if rng.below(5_000) == 0 {
+                in_port = rng.below(256) as u8;
+            }
+            if reset == 0 && rng.below(100_000) == 0 {
+                reset = 1 + rng.below(4) as u32;
+            }
+            let pins = rom_out as u64 | (in_port as u64) << 18 | (irq as u64) << 26 | ((reset > 0) as u64) << 28;
+            reset = reset.saturating_sub(1);
+            let next = fast.tick(pins);
+            assert_eq!(next, slow.tick(pins), "cycle {cycle}");
+            // The block RAM's register takes the word at this cycle's address.
+            if out >> 12 & 1 == 1 {
+                rom_out = program.words[(out & 0xFFF) as usize];
+            }
+            if next >> 32 & 1 == 1 {
+                irq = false;
+                acks += 1;
+            }
+            out = next;
+        }
+        assert!(acks > 50, "{acks} interrupts");
+        assert!(fast.replay.total > 200_000, "{} cycles played back", fast.replay.total);
+        assert!(fast.core().same_state_as(slow.core()));
+        assert_eq!(fast.core().cycle(), slow.core().cycle());
     }
 }

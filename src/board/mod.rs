@@ -7,5 +7,6 @@ pub mod checks;
 pub mod iss;
 pub mod lockstep;
 pub mod model;
+mod replay;
 
 pub use botsim_core::board::*;

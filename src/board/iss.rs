@@ -20,7 +20,7 @@ use kcpsm6::source::SourceMap;
 use kcpsm6::trace::Tracer;
 use kcpsm6::Image;
 
-use super::replay::Replay;
+use super::replay::{DebugWords, Replay};
 
 use botsim_core::sim::iss::{IssBot, LazyBot};
 use botsim_core::World;
@@ -36,20 +36,28 @@ struct CpuFns {
 static FNS: CpuFns = CpuFns { tick: tick_ffi, state: state_ffi, debug: debug_ffi };
 
 unsafe extern "C" fn debug_ffi(cpu: *mut IssCpu, regs: *mut u32, flags: *mut u32) {
-    // SAFETY: the model pointer is one `Host::create` made; regs holds four words.
-    let (c, regs) = unsafe { (&*(*cpu).core(), std::slice::from_raw_parts_mut(regs, 4)) };
-    for (w, word) in regs.iter_mut().enumerate() {
+    // SAFETY: the model pointer is one `Host::create` made; regs holds four words, flags one.
+    let (cpu, regs, flags) = unsafe { (&mut *cpu, std::slice::from_raw_parts_mut(regs, 4), &mut *flags) };
+    let words = cpu.debug_now();
+    regs.copy_from_slice(&words[..4]);
+    *flags = words[4];
+}
+
+/// What a debug build shows of a core (board_abi.h's `debug`): the active bank's s0..sF in
+/// four words (s0 in the low byte of the first), then the flags.
+fn debug_words(c: &Cpu) -> DebugWords {
+    let mut words = [0; 5];
+    for (w, word) in words[..4].iter_mut().enumerate() {
         *word = (0..4).map(|b| (c.reg(c.bank(), (4 * w + b) as u8) as u32) << (8 * b)).sum();
     }
-    let f = c.bank() as u32
+    words[4] = c.bank() as u32
         | (c.zero() as u32) << 1
         | (c.carry() as u32) << 2
         | (c.interrupt_enabled() as u32) << 3
         | ((c.in_reset() || !c.running()) as u32) << 4
         | ((c.phase() == Phase::Idle) as u32) << 5
         | (c.interrupt_entry() as u32) << 6;
-    // SAFETY: flags is one word.
-    unsafe { *flags = f };
+    words
 }
 
 /// The disassembly of `word` into 20 characters, padded with spaces (the longest,
@@ -114,6 +122,8 @@ pub struct IssCpu {
     mark: Option<Box<Cpu>>,
     /// The state at each of the fast-forward's phase snapshots since the mark.
     phases: Vec<Cpu>,
+    /// A debug build (its waveform shows the registers): the replay keeps them too.
+    debug: bool,
     /// Loops played back instead of simulated (not while the core is traced, has
     /// breakpoints or is recorded): bring the core up to date ([`IssCpu::core`]) before
     /// reading or changing it.
@@ -177,6 +187,7 @@ impl IssCpu {
         IssCpu {
             fns: &FNS,
             replay: Replay::new(&cpu),
+            debug: false,
             cpu,
             bus: Pinned::default(),
             mismatch: None,
@@ -189,6 +200,16 @@ impl IssCpu {
             mark: None,
             phases: Vec::new(),
         }
+    }
+
+    /// What a debug build's waveform shows of the core now. The first call makes this a
+    /// debug build: from then on the replay keeps these words with each cycle it records.
+    fn debug_now(&mut self) -> DebugWords {
+        if !self.debug {
+            self.debug = true;
+            self.core(); // a trip recorded without them is not replayed
+        }
+        self.replay.debug().unwrap_or_else(|| debug_words(&self.cpu))
     }
 
     /// The core, brought up to date with the cycles played back since it was last simulated.
@@ -279,7 +300,8 @@ impl IssCpu {
                 // SAFETY: the host outlives its models.
                 unsafe { *self.activity += 1 };
             }
-            self.replay.observe(&self.cpu, pins, state);
+            let words = self.debug.then(|| debug_words(&self.cpu));
+            self.replay.observe(&self.cpu, pins, state, words);
             return state;
         }
         let mut hit = false;
@@ -825,6 +847,7 @@ mod tests {
     /// on every trip; a countdown (its flops change on every trip: never replayed).
     const FIRMWARE: &str = "
         main:   LOAD sE, 00
+                LOAD sA, 5A
                 ENABLE INTERRUPT
         wait:   COMPARE sE, 00
                 JUMP Z, wait
@@ -888,6 +911,8 @@ mod tests {
             reset = reset.saturating_sub(1);
             let next = fast.tick(pins);
             assert_eq!(next, slow.tick(pins), "cycle {cycle}");
+            // What a debug build's waveform shows after the cycle (registers and flags).
+            assert_eq!(fast.debug_now(), slow.debug_now(), "cycle {cycle}");
             // The block RAM's register takes the word at this cycle's address.
             if out >> 12 & 1 == 1 {
                 rom_out = program.words[(out & 0xFFF) as usize];

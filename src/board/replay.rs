@@ -28,6 +28,9 @@ const MAX_TRIP: usize = 64;
 /// The `interrupt_ack` bit of kcpsm6_iss.v's packed outputs.
 const INTERRUPT_ACK: u64 = 1 << 32;
 
+/// A debug build's view of a core after a cycle: its registers and flags (board_abi.h).
+pub(crate) type DebugWords = [u32; 5];
+
 /// One core's loop replay: a candidate loop head with the trip recorded since it, or a trip
 /// being replayed.
 pub(crate) struct Replay {
@@ -40,6 +43,8 @@ pub(crate) struct Replay {
     /// The trip since the head: each cycle's pins and the outputs it gave.
     pins: [u64; MAX_TRIP],
     outs: [u64; MAX_TRIP],
+    /// In a debug build, what the waveform shows after each cycle of the trip.
+    debug: [DebugWords; MAX_TRIP],
     len: usize,
     /// Replaying: the next cycle's place in the trip, and the cycles replayed in all.
     active: bool,
@@ -58,6 +63,7 @@ impl Replay {
             last_pc: 0,
             pins: [0; MAX_TRIP],
             outs: [0; MAX_TRIP],
+            debug: [[0; 5]; MAX_TRIP],
             len: 0,
             active: false,
             pos: 0,
@@ -89,6 +95,11 @@ impl Replay {
         self.outs[(self.pos + self.len - 1) % self.len]
     }
 
+    /// A debug build's words of the last cycle played back, if replaying.
+    pub fn debug(&self) -> Option<DebugWords> {
+        self.active.then(|| self.debug[(self.pos + self.len - 1) % self.len])
+    }
+
     /// Cycles are being played back: the core is behind.
     #[inline(always)]
     pub fn active(&self) -> bool {
@@ -112,17 +123,21 @@ impl Replay {
         self.len = 0;
     }
 
-    /// After a simulated cycle with `pins` that gave `out`, `cpu` as it left it: the cycle
-    /// joins the trip; at a jump back to the candidate head with its flops unchanged, the
-    /// replay starts; at another jump back, the candidate is the new place.
+    /// After a simulated cycle with `pins` that gave `out` (and in a debug build `debug`),
+    /// `cpu` as it left it: the cycle joins the trip; at a jump back to the candidate head
+    /// with its flops unchanged, the replay starts; at another jump back, the candidate is
+    /// the new place.
     #[inline(always)]
-    pub fn observe(&mut self, cpu: &Cpu, pins: u64, out: u64) {
+    pub fn observe(&mut self, cpu: &Cpu, pins: u64, out: u64, debug: Option<DebugWords>) {
         if self.head_pc.is_some() {
             if self.len == MAX_TRIP || out & INTERRUPT_ACK != 0 {
                 self.head_pc = None;
             } else {
                 self.pins[self.len] = pins;
                 self.outs[self.len] = out;
+                if let Some(words) = debug {
+                    self.debug[self.len] = words;
+                }
                 self.len += 1;
             }
         }

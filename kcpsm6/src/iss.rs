@@ -22,6 +22,8 @@
 //! assert_eq!(r.port.unwrap().cycle, 10);
 //! ```
 
+use std::sync::Arc;
+
 use crate::isa::{Cond, Opcode, ROM_WORDS, WORD_MASK};
 
 /// Usable call-stack depth (an interrupt uses one level). One more level leaves the wrapping
@@ -209,7 +211,9 @@ pub struct Timeout(pub u64);
 #[derive(Clone, PartialEq, Eq)]
 pub struct Cpu {
     config: Config,
-    rom: Box<[u32; ROM_WORDS]>,
+    /// The program, shared between copies of the core (copying a core does not copy it; a
+    /// write does), so comparing copies compares it by identity first.
+    rom: Arc<[u32; ROM_WORDS]>,
     /// s0..sF of bank A, then of bank B.
     regs: [u8; 32],
     spm: [u8; 256],
@@ -254,7 +258,7 @@ impl Cpu {
         }
         Cpu {
             config,
-            rom: image,
+            rom: Arc::from(image),
             regs: [0; 32],
             spm: [0; 256],
             stack: [StackEntry::default(); 32],
@@ -290,6 +294,20 @@ impl Cpu {
     /// Everything that decides what the core does next is as in `other`, whatever their
     /// cycle counts: with the same pins from now on, both do the same thing. A board's
     /// fast-forward takes a core whose state repeats as repeating ([`Cpu::skip_period`]).
+    /// Cheap: copies of a core share its ROM, which is compared by identity first.
+    ///
+    /// ```
+    /// use kcpsm6::iss::{Config, Cpu, NullBus, Pins};
+    /// let program = kcpsm6::asm::assemble_str("top: ADD s0, 00\nJUMP top\n").unwrap();
+    /// let mut cpu = Cpu::new(Config::default(), &program.image.words[..]);
+    /// let mut bus = NullBus::default();
+    /// cpu.run_instructions(10, &mut bus).unwrap();
+    /// let before = cpu.clone();
+    /// cpu.run_instructions(2, &mut bus).unwrap(); // once around the loop: s0 stays 0
+    /// assert!(cpu.same_state_as(&before) && cpu.cycle() == before.cycle() + 4);
+    /// cpu.tick(Pins::default(), &mut bus);
+    /// assert!(!cpu.same_state_as(&before));
+    /// ```
     pub fn same_state_as(&self, other: &Cpu) -> bool {
         // The one behind, moved on to the other's cycle count, equal in every flop: a field
         // added to the core is compared without anyone remembering to.
@@ -297,123 +315,6 @@ impl Cpu {
         let mut moved = behind.clone();
         moved.skip_period(ahead.cycle - behind.cycle);
         moved == *ahead
-    }
-
-    /// Every flop as in `other`, the ROM and the cycle count aside: with the same pins from
-    /// now on, both do the same thing. Cheaper than [`Cpu::same_state_as`] (no copy, no
-    /// ROM compare): for a caller that checks it often and keeps the ROM fixed.
-    ///
-    /// ```
-    /// use kcpsm6::iss::{Config, Cpu, NullBus, Pins};
-    /// let program = kcpsm6::asm::assemble_str("top: ADD s0, 01\nJUMP top\n").unwrap();
-    /// let mut cpu = Cpu::new(Config::default(), &program.image.words[..]);
-    /// cpu.run_instructions(10, &mut NullBus::default()).unwrap();
-    /// let mut copy = Cpu::new(Config::default(), &[]); // made once, its ROM never read
-    /// copy.load_flops(&cpu);
-    /// assert!(copy.same_flops(&cpu));
-    /// cpu.tick(Pins::default(), &mut NullBus::default());
-    /// assert!(!copy.same_flops(&cpu));
-    /// ```
-    pub fn same_flops(&self, other: &Cpu) -> bool {
-        // Named field by field: a flop added to the core does not compile here until it is
-        // compared (and copied in `load_flops`).
-        let Cpu {
-            config: _,
-            rom: _,
-            regs,
-            spm,
-            stack,
-            depth,
-            pc,
-            c,
-            z,
-            ie,
-            bank,
-            xb,
-            phase,
-            run,
-            internal_reset,
-            sleep_reg,
-            irq_reg,
-            active_interrupt,
-            interrupt_ack,
-            instr,
-            pending,
-            cycle: _,
-        } = self;
-        let same_pending = match (pending, &other.pending) {
-            (None, None) => true,
-            (Some(a), Some(b)) => Pending { cycle: b.cycle, ..*a } == *b,
-            _ => false,
-        };
-        *regs == other.regs
-            && *spm == other.spm
-            && *stack == other.stack
-            && *depth == other.depth
-            && *pc == other.pc
-            && *c == other.c
-            && *z == other.z
-            && *ie == other.ie
-            && *bank == other.bank
-            && *xb == other.xb
-            && *phase == other.phase
-            && *run == other.run
-            && *internal_reset == other.internal_reset
-            && *sleep_reg == other.sleep_reg
-            && *irq_reg == other.irq_reg
-            && *active_interrupt == other.active_interrupt
-            && *interrupt_ack == other.interrupt_ack
-            && *instr == other.instr
-            && same_pending
-    }
-
-    /// Copy every flop and the cycle count of `other` (a core with the same ROM): a snapshot
-    /// into a core made once, without copying its ROM.
-    pub fn load_flops(&mut self, other: &Cpu) {
-        let Cpu {
-            config: _,
-            rom: _,
-            regs,
-            spm,
-            stack,
-            depth,
-            pc,
-            c,
-            z,
-            ie,
-            bank,
-            xb,
-            phase,
-            run,
-            internal_reset,
-            sleep_reg,
-            irq_reg,
-            active_interrupt,
-            interrupt_ack,
-            instr,
-            pending,
-            cycle,
-        } = other;
-        self.regs = *regs;
-        self.spm = *spm;
-        self.stack = *stack;
-        self.depth = *depth;
-        self.pc = *pc;
-        self.c = *c;
-        self.z = *z;
-        self.ie = *ie;
-        self.bank = *bank;
-        self.xb = *xb;
-        self.phase = *phase;
-        self.run = *run;
-        self.internal_reset = *internal_reset;
-        self.sleep_reg = *sleep_reg;
-        self.irq_reg = *irq_reg;
-        self.active_interrupt = *active_interrupt;
-        self.interrupt_ack = *interrupt_ack;
-        self.instr = *instr;
-        self.pending = *pending;
-        self.cycle = *cycle;
     }
 
     /// Count `cycles` more without simulating them: only for a core whose state repeats
@@ -508,7 +409,7 @@ impl Cpu {
 
     /// Replace one program word (for self-modifying test set-ups and ROM loading).
     pub fn write_rom(&mut self, addr: u16, word: u32) {
-        self.rom[addr as usize & 0xFFF] = word & WORD_MASK;
+        Arc::make_mut(&mut self.rom)[addr as usize & 0xFFF] = word & WORD_MASK;
     }
 
     /// The `interrupt_ack` output in the current cycle.

@@ -9,7 +9,7 @@
 //!
 //! Exactness rests on the core being a function of its flops and its pins alone (its ROM is
 //! fixed; the bus of a pin-level core is `in_port`, one of the pins): if the flops at a loop
-//! head equal those one trip earlier ([`Cpu::same_flops`], cycle count aside), the trip's
+//! head equal those one trip earlier ([`Cpu::same_state_as`], cycle count aside), the trip's
 //! pins give the trip's outputs again and end in the same flops. A cycle whose pins differ
 //! from the recorded ones ends the replay: the core is brought to where the replayed cycles
 //! left it ([`Replay::catch_up`], by simulating the part trip from the head) and simulated.
@@ -34,7 +34,7 @@ pub(crate) type DebugWords = [u32; 5];
 /// One core's loop replay: a candidate loop head with the trip recorded since it, or a trip
 /// being replayed.
 pub(crate) struct Replay {
-    /// The flops at the candidate head (a core made once: no ROM copy per head).
+    /// The core at the candidate head (a copy shares the ROM: copying is cheap).
     head: Cpu,
     /// The candidate head's address; none: no candidate.
     head_pc: Option<u16>,
@@ -55,10 +55,10 @@ pub(crate) struct Replay {
 }
 
 impl Replay {
-    /// A replay for a core like `cpu` (its configuration; the ROM is not used).
+    /// A replay for `cpu`.
     pub fn new(cpu: &Cpu) -> Replay {
         Replay {
-            head: Cpu::new(cpu.config(), &[]),
+            head: cpu.clone(),
             head_pc: None,
             last_pc: 0,
             pins: [0; MAX_TRIP],
@@ -151,13 +151,13 @@ impl Replay {
         if !back {
             return;
         }
-        if self.head_pc == Some(pc) && self.len > 0 && cpu.same_flops(&self.head) {
+        if self.head_pc == Some(pc) && self.len > 0 && cpu.same_state_as(&self.head) {
             self.active = true;
             self.pos = 0;
             self.replayed = 0;
             return;
         }
-        self.head.load_flops(cpu);
+        self.head.clone_from(cpu);
         self.head_pc = Some(pc);
         self.len = 0;
     }

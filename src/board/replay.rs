@@ -50,7 +50,8 @@ pub(crate) struct Replay {
     active: bool,
     pos: usize,
     replayed: u64,
-    /// Cycles played back since the core was made (for tests and curiosity).
+    /// Cycles played back since the core was made (tests).
+    #[cfg(test)]
     pub total: u64,
 }
 
@@ -68,6 +69,7 @@ impl Replay {
             active: false,
             pos: 0,
             replayed: 0,
+            #[cfg(test)]
             total: 0,
         }
     }
@@ -85,7 +87,10 @@ impl Replay {
             self.pos = 0;
         }
         self.replayed += 1;
-        self.total += 1;
+        #[cfg(test)]
+        {
+            self.total += 1;
+        }
         Some(out)
     }
 

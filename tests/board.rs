@@ -906,6 +906,21 @@ fn the_fast_forward_skips_what_repeats_and_changes_nothing_the_board_shows() {
     // The Project 2 example at the bot's hw timing (a sample every 5.3 M clocks), its own
     // firmware showing the bot's registers, a button pressed, the switches changed and the CPU
     // reset pressed along the way: every edge simulated, then with the fast-forward.
+    fast_forward_against_every_edge("examples/nexys4_proj2");
+}
+
+#[test]
+fn a_vga_design_skips_what_repeats_of_what_the_run_records() {
+    // The VGA example: the same system beside a 25 MHz pixel clock, a display timing generator
+    // and a colour pipeline, whose frame (1.68 M clocks) and display refresh (2^20) repeat
+    // together only every 13.7 G clocks. Nothing the run records reads the VGA part, so the
+    // fast-forward compares and puts back the rest (src/board/observed.rs) and skips as on the
+    // one-clock design, with the same samples, display and pins as every edge simulated.
+    fast_forward_against_every_edge("examples/nexys4_vga");
+}
+
+/// Run an example design with and without the fast-forward; the same records, pin for pin.
+fn fast_forward_against_every_edge(example_dir: &str) {
     let dir = tempfile::tempdir().unwrap();
     let stim = dir.path().join("stim.txt");
     std::fs::write(&stim, "80ms press btnU 5ms\n120ms switches 00A5\n170ms press btnCpuReset 2ms\n").unwrap();
@@ -933,7 +948,7 @@ fn the_fast_forward_skips_what_repeats_and_changes_nothing_the_board_shows() {
         if !ff {
             args.push("--no-fast-forward");
         }
-        let o = example("examples/nexys4_proj2", &args);
+        let o = example(example_dir, &args);
         let s = summary(&o);
         let skipped = s["fast_forward"]["skipped_seconds"].as_f64().unwrap();
         if ff {
@@ -965,6 +980,61 @@ fn the_fast_forward_skips_what_repeats_and_changes_nothing_the_board_shows() {
             a.len(),
             b.len()
         );
+    }
+}
+
+#[test]
+fn a_second_clock_lets_the_board_skip_only_while_it_drives_nothing_the_run_records() {
+    // tests/board_designs/pixel_clock: a CPU waiting beside a refresh counter of 2^16 clocks,
+    // and a frame counter of 1,000 clocks of 25 MHz, which repeat together only every 8.2 M
+    // clocks. FEEDBACK 0: the frame counter drives VGA pins alone, and the board skips; 1: each
+    // frame toggles LED 15 (through a condition, the counter's wrap), so every edge is
+    // simulated and the run says why. Either way the pins equal every edge simulated.
+    let dir = tempfile::tempdir().unwrap();
+    for feedback in ["0", "1"] {
+        let mut logs = Vec::new();
+        for ff in [false, true] {
+            let pins = dir.path().join(format!("{feedback}-{ff}.csv"));
+            let param = format!("FEEDBACK={feedback}");
+            let mut args = vec![
+                "tests/board_designs/pixel_clock",
+                "--program",
+                "tests/board_designs/phases/phases.psm",
+                "--param",
+                &param,
+                "--cpu",
+                "iss",
+                "--bot",
+                "model",
+                "--samples",
+                "4",
+                "--pins",
+                pins.to_str().unwrap(),
+                "--json",
+            ];
+            if !ff {
+                args.push("--no-fast-forward");
+            }
+            let s = summary(&board(&args));
+            assert_eq!(s["leds"], 4, "an interrupt at every sample: {s}");
+            let skipped = s["fast_forward"]["skipped_seconds"].as_f64().unwrap();
+            match (ff, feedback) {
+                (true, "0") => assert!(skipped > 0.1, "{s}"),
+                (true, _) => {
+                    let why = s["fast_forward"]["off_because"].as_str().unwrap_or("");
+                    assert!(
+                        why.contains("2 clocks, and one besides the oscillator drives what the run records"),
+                        "{s}"
+                    );
+                    assert_eq!(skipped, 0.0, "{s}");
+                }
+                _ => assert_eq!(skipped, 0.0, "{s}"),
+            }
+            logs.push(std::fs::read_to_string(&pins).unwrap());
+        }
+        // LED 15 toggles every 40 us with FEEDBACK 1: thousands of rows.
+        assert!(logs[0].lines().count() > 1000, "{}", logs[0].lines().count());
+        assert!(logs[0] == logs[1], "FEEDBACK={feedback}: --pins differ with the fast-forward");
     }
 }
 

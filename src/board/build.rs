@@ -75,11 +75,11 @@ const VERILATOR_FLAGS: &[&str] = &[
     "-fPIC -O2 -fvisibility-inlines-hidden -fno-semantic-interposition -DVL_USER_FINISH -DVL_USER_FATAL -I..",
     "-LDFLAGS",
     "-shared -Wl,-Bsymbolic",
-    // Verilator's makefile compiles with -Os after CFLAGS; -O2 makes boards about twice as
-    // fast (docs/PERFORMANCE.md).
-    "-MAKEFLAGS",
-    "OPT_FAST=-O2 OPT_GLOBAL=-O2 OPT_SLOW=-O1",
 ];
+
+/// The variables of Verilator's makefile for every board build (part of the cache key): it
+/// compiles with -Os after CFLAGS; -O2 makes boards about twice as fast (docs/PERFORMANCE.md).
+const MAKE_VARS: &[&str] = &["OPT_FAST=-O2", "OPT_GLOBAL=-O2", "OPT_SLOW=-O1"];
 
 /// A built design.
 #[derive(Clone, Debug)]
@@ -178,6 +178,8 @@ pub fn build(
     env!("CARGO_PKG_VERSION").hash(&mut h);
     HARNESS.hash(&mut h);
     VERILATOR_FLAGS.hash(&mut h);
+    MAKE_VARS.hash(&mut h);
+    include_str!("observed.rs").hash(&mut h);
     ABI.hash(&mut h);
     // The check whose verdict the build keeps.
     include_str!("checks.rs").hash(&mut h);
@@ -245,10 +247,10 @@ pub fn build(
         );
     }
     let jobs = std::thread::available_parallelism().map_or(2, |n| n.get());
+    let budget = build_budget();
     let mut cmd = Command::new(std::env::var_os("VERILATOR").unwrap_or_else(|| "verilator".into()));
     cmd.current_dir(&tmp)
-        .args(["--cc", "--exe", "--build", "-j"])
-        .arg(jobs.to_string())
+        .args(["--cc", "--exe"])
         .args(["--prefix", "Vboard", "--top-module", wrapper::TOP, "--Mdir", "obj", "-o", "libboard.so"])
         .args(VERILATOR_FLAGS);
     if debug {
@@ -272,17 +274,29 @@ pub fn build(
         }
     }
     cmd.arg("harness.cpp");
-    let out = run_with_budget(&mut cmd, build_budget()).inspect_err(|_| {
+    let fail = |e| {
         let _ = std::fs::remove_dir_all(&tmp);
-    })?;
-    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        e
+    };
+    let out = run_with_budget(&mut cmd, budget, t0).map_err(fail)?;
+    let mut stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    if !out.status.success() {
+        return Err(fail(first_error(&stderr, &stdout, &f)));
+    }
+    // What the harness may assume of the design (BoardModel::load reads the verdicts; the
+    // harness compiles in which variables a run observes), then the C++.
+    let checked = super::checks::Checked::of(&tmp.join("obj"));
+    write("botsim_observed.h", &super::observed::header(&checked.members))?;
+    let mut make = Command::new("make");
+    make.current_dir(tmp.join("obj")).args(["-f", "Vboard.mk", "-j"]).arg(jobs.to_string()).args(MAKE_VARS);
+    let out = run_with_budget(&mut make, budget, t0).map_err(fail)?;
+    stderr.push_str(&String::from_utf8_lossy(&out.stderr));
     let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
     if !out.status.success() || !tmp.join("obj/libboard.so").exists() {
-        let _ = std::fs::remove_dir_all(&tmp);
-        return Err(first_error(&stderr, &stdout, &f));
+        return Err(fail(first_error(&stderr, &stdout, &f)));
     }
-    // What the harness may assume of the design (BoardModel::load reads it).
-    let verdicts = super::checks::Verdicts::of(&tmp.join("obj"));
+    let verdicts = checked.verdicts;
     std::fs::rename(tmp.join("obj/libboard.so"), tmp.join("libboard.so"))
         .and_then(|_| std::fs::write(tmp.join("warnings.txt"), &stderr))
         .and_then(|_| verdicts.save(&tmp))
@@ -299,16 +313,14 @@ fn build_budget() -> Duration {
     Duration::from_secs(secs)
 }
 
-/// Run the build within `budget`; past it, stop the whole build (Verilator's make and its
-/// compilers: the process group) and say so.
-fn run_with_budget(cmd: &mut Command, budget: Duration) -> Result<Output, BoardError> {
+/// Run a step of the build that began at `start` within the build's `budget`; past it, stop
+/// the whole step (Verilator, or make and its compilers: the process group) and say so.
+fn run_with_budget(cmd: &mut Command, budget: Duration, start: Instant) -> Result<Output, BoardError> {
     use std::os::unix::process::CommandExt;
-    let mut child = cmd
-        .process_group(0)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .map_err(|e| BoardError::plain(format!("cannot run verilator: {e} (install it: scripts/setup.sh)")))?;
+    let mut child = cmd.process_group(0).stdout(Stdio::piped()).stderr(Stdio::piped()).spawn().map_err(|e| {
+        let program = cmd.get_program().to_string_lossy().into_owned();
+        BoardError::plain(format!("cannot run {program}: {e} (install it: scripts/setup.sh)"))
+    })?;
     let read = |r: Option<Box<dyn Read + Send>>| {
         std::thread::spawn(move || {
             let mut v = Vec::new();
@@ -320,7 +332,6 @@ fn run_with_budget(cmd: &mut Command, budget: Duration) -> Result<Output, BoardE
     };
     let out_reader = read(child.stdout.take().map(|s| Box::new(s) as Box<dyn Read + Send>));
     let err_reader = read(child.stderr.take().map(|s| Box::new(s) as Box<dyn Read + Send>));
-    let start = Instant::now();
     let status = loop {
         match child.try_wait() {
             Ok(Some(status)) => break status,

@@ -33,33 +33,63 @@
 
 use std::path::Path;
 
+use super::observed::Member;
+
 /// What a build may assume, kept in its folder: for each, why not (`None`: it may).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Verdicts {
     pub fast_forward: Option<String>,
     pub falling_edges: Option<String>,
+    /// Why the variables a run observes are not known (super::observed): the fast-forward
+    /// then compares the whole state, which a board with a second clock never repeats.
+    pub observed: Option<String>,
 }
 
 /// The files of a build folder that keep the verdicts (empty: none against).
 const FAST_FORWARD_FILE: &str = "fast-forward.txt";
 const FALLING_EDGES_FILE: &str = "falling-edges.txt";
+const OBSERVED_FILE: &str = "observed.txt";
 
-impl Verdicts {
-    /// The verdicts on Verilator's output folder `obj`.
-    pub fn of(obj: &Path) -> Verdicts {
+/// Everything the build learns from Verilator's output: the verdicts, and the root's
+/// variables with whether a run observes each (or why that is not known).
+pub struct Checked {
+    pub verdicts: Verdicts,
+    pub members: Result<Vec<Member>, String>,
+}
+
+impl Checked {
+    /// The checks on Verilator's output folder `obj`.
+    pub fn of(obj: &Path) -> Checked {
         match Generated::read(obj) {
-            Some(g) => Verdicts { fast_forward: fast_forward_blocker(&g), falling_edges: falling_edge_blocker(&g) },
+            Some(g) => {
+                let code: Vec<&str> = g.eval.iter().chain(&g.slow).map(String::as_str).collect();
+                let members = super::observed::members(&g.root, &code);
+                let verdicts = Verdicts {
+                    fast_forward: fast_forward_blocker(&g),
+                    falling_edges: falling_edge_blocker(&g),
+                    observed: members.as_ref().err().cloned(),
+                };
+                Checked { verdicts, members }
+            }
             None => {
-                let why = Some("Verilator's output could not be read".to_string());
-                Verdicts { fast_forward: why.clone(), falling_edges: why }
+                let why = "Verilator's output could not be read".to_string();
+                let verdicts = Verdicts {
+                    fast_forward: Some(why.clone()),
+                    falling_edges: Some(why.clone()),
+                    observed: Some(why.clone()),
+                };
+                Checked { verdicts, members: Err(why) }
             }
         }
     }
+}
 
+impl Verdicts {
     /// Keep them in the build folder `dir`.
     pub fn save(&self, dir: &Path) -> std::io::Result<()> {
         std::fs::write(dir.join(FAST_FORWARD_FILE), self.fast_forward.as_deref().unwrap_or(""))?;
-        std::fs::write(dir.join(FALLING_EDGES_FILE), self.falling_edges.as_deref().unwrap_or(""))
+        std::fs::write(dir.join(FALLING_EDGES_FILE), self.falling_edges.as_deref().unwrap_or(""))?;
+        std::fs::write(dir.join(OBSERVED_FILE), self.observed.as_deref().unwrap_or(""))
     }
 
     /// The verdicts kept in the build folder `dir` (a missing file says no).
@@ -69,7 +99,11 @@ impl Verdicts {
             Ok(t) => Some(t.trim().to_string()),
             Err(_) => Some(format!("{name} is missing from the build folder {}", dir.display())),
         };
-        Verdicts { fast_forward: read(FAST_FORWARD_FILE), falling_edges: read(FALLING_EDGES_FILE) }
+        Verdicts {
+            fast_forward: read(FAST_FORWARD_FILE),
+            falling_edges: read(FALLING_EDGES_FILE),
+            observed: read(OBSERVED_FILE),
+        }
     }
 }
 
@@ -79,9 +113,10 @@ struct Generated {
     names: Vec<String>,
     root: String,
     dpi: String,
-    /// The evaluation's source files (the `__Slow` ones hold the initial blocks and the
-    /// constructor), in name order.
+    /// The evaluation's source files but the `__Slow` ones, in name order.
     eval: Vec<String>,
+    /// The `__Slow` ones (the initial blocks, the settling, the constructor).
+    slow: Vec<String>,
 }
 
 impl Generated {
@@ -95,7 +130,12 @@ impl Generated {
             .filter(|n| n.starts_with("Vboard___024root__DepSet_") && !n.ends_with("__Slow.cpp"))
             .map(|n| read(n))
             .collect();
-        Some(Generated { root: read("Vboard___024root.h"), dpi: read("Vboard__Dpi.h"), eval, names })
+        let slow = names
+            .iter()
+            .filter(|n| n.starts_with("Vboard___024root__DepSet_") && n.ends_with("__Slow.cpp"))
+            .map(|n| read(n))
+            .collect();
+        Some(Generated { root: read("Vboard___024root.h"), dpi: read("Vboard__Dpi.h"), eval, slow, names })
     }
 }
 
@@ -179,7 +219,7 @@ fn function<'a>(code: &'a str, name: &str) -> Option<&'a str> {
 
 /// The functions defined in a generated file: (name, body), a definition being a line that
 /// ends with `{` and names a function, up to the next line that is `}`.
-fn functions(code: &str) -> Vec<(&str, &str)> {
+pub(super) fn functions(code: &str) -> Vec<(&str, &str)> {
     let mut out = Vec::new();
     let mut rest = code;
     while let Some(open) = rest.find(") {\n") {
@@ -253,7 +293,7 @@ fn only_plain_vl_types(code: &str) -> bool {
     })
 }
 
-fn strip_comments(line: &str) -> String {
+pub(super) fn strip_comments(line: &str) -> String {
     let mut out = String::new();
     let mut rest = line;
     while let Some(i) = rest.find("/*") {

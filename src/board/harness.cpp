@@ -13,6 +13,7 @@
 #include "verilated_vcd_c.h"
 #include "svdpi.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -21,6 +22,14 @@
 extern "C" {
 #include "board_abi.h"
 }
+
+// One variable of the root object: its bytes, and whether a run without a waveform or VGA
+// frames observes it (src/board/observed.rs decides; botsim_observed.h lists them).
+struct BoardMember {
+    size_t off, len;
+    bool observed;
+};
+#include "botsim_observed.h"
 
 // The model's evaluation proper, which Vboard::eval() wraps (Verilator 5's generated name).
 // eval() also marks activity for the waveform and does a single-threaded model's thread
@@ -116,6 +125,16 @@ struct Clock {
 // period (display and LED changes) is repeated into the records, so the records are the same
 // as the edge-by-edge run's. The build checks that Verilator's state is all in its root
 // object (src/board/checks.rs).
+//
+// A run that records only what the board shows (no waveform later, no VGA frames) compares
+// and puts back only the variables it observes (src/board/observed.rs): the parts nothing
+// recorded reads (a VGA timing generator and its pixel clock) run on out of step. That lets
+// a VGA design skip ahead too: its frame and its display refresh never repeat together
+// within a sample, but its display refresh and firmware do.
+struct Span {
+    uint32_t off, len;  // bytes of the root object
+};
+
 struct Phase {
     uint64_t at = 0;            // ps after the mark
     std::vector<uint8_t> root;  // Verilator's state then
@@ -132,7 +151,8 @@ struct FastForward {
     uint64_t quiet_from = 0;
     uint64_t patience = 0;      // how long the mark waits for its period
     uint64_t last_period = 0;   // the period found last (the next is likely the same)
-    size_t hint = 0;             // the word that differed last
+    std::vector<Span> spans;     // what is compared and put back
+    size_t hint_off = 0, hint_len = 0;  // the bytes that differed last (within a span)
     size_t bot_cycles = 0;       // where the wrapper's bot_cycles counter is (not compared)
     std::vector<BoardEvent> shown;  // what the board showed in the period, times from the mark
     bool overflow = false;          // too much for `shown`: no skip from this mark
@@ -290,11 +310,43 @@ int board_rising_edges_only(Board* b, int on) {
     return b->rising_only;
 }
 
-// Turn the fast-forward on or off (the caller knows when the run allows it: no waveform, no
-// VGA capture, no traces, breakpoints or lock-step); 0 when this board cannot.
-int board_fast_forward(Board* b, int on) {
+// The fast-forward off (0), comparing the whole state (1: a run that opens a waveform later),
+// or what a run observes (2: a run that records only what the board shows); the caller knows
+// when the run allows it (no VGA capture, no traces, breakpoints or lock-step). Returns
+// whether it is on: the board's KCPSM6s and bot are models, and it has one clock, or only the
+// oscillator drives what the run observes.
+int board_fast_forward(Board* b, int mode) {
     FastForward& f = b->ff;
-    f.on = on && b->host && b->host->ff_same && b->clocks.size() == 1;
+    const bool observed = mode == 2 && kObservedKnown;
+    f.spans.clear();
+    if (observed) {
+        std::vector<BoardMember> ms;
+        botsim_members(b->top->rootp, ms);
+        std::sort(ms.begin(), ms.end(), [](const BoardMember& x, const BoardMember& y) { return x.off < y.off; });
+        // Observed variables, neighbours merged across padding (no variable between them).
+        bool open = false;  // the last span may grow: no unobserved variable since it began
+        for (const BoardMember& m : ms) {
+            if (!m.observed) {
+                open = false;
+            } else if (open) {
+                f.spans.back().len = (uint32_t)(m.off + m.len - f.spans.back().off);
+            } else {
+                f.spans.push_back({(uint32_t)m.off, (uint32_t)m.len});
+                open = true;
+            }
+        }
+    } else {
+        f.spans.push_back({0, (uint32_t)sizeof(Vboard___024root)});
+    }
+    // A second clock may run on out of step only if it drives nothing observed.
+    bool clocks_ok = true;
+    for (size_t i = 1; i < b->clocks.size(); i++) {
+        const size_t q = (size_t)((const uint8_t*)b->clocks[i].q - (const uint8_t*)b->top->rootp);
+        clocks_ok &= observed;
+        for (const Span& x : f.spans) clocks_ok &= !(q >= x.off && q < x.off + x.len);
+    }
+    f.on = mode != 0 && b->host && b->host->ff_same && clocks_ok && !f.spans.empty();
+    f.hint_off = f.hint_len = 0;
     f.mark.assign(sizeof(Vboard___024root), 0);
     f.marked = false;
     f.activity = ~0ull;
@@ -387,17 +439,21 @@ uint64_t ff_step(Board* b, uint64_t t, uint64_t until_ps, BoardEvent* buf, uint3
     }
     uint8_t* root = (uint8_t*)b->top->rootp;
     uint8_t* m = f.mark.data();
-    const size_t size = f.mark.size();
-    // The word that differed last is the cheap test; most edges end here.
-    if (std::memcmp(root + 8 * f.hint, m + 8 * f.hint, 8) != 0) {
+    const Span* spans = f.spans.data();
+    const size_t nspans = f.spans.size();
+    std::memcpy(m + f.bot_cycles, root + f.bot_cycles, 8);  // a counter, not state
+    // The bytes that differed last are the cheap test; most edges end here.
+    if (std::memcmp(root + f.hint_off, m + f.hint_off, f.hint_len) != 0) {
         ff_snap(b, t);
         return 0;
     }
-    std::memcpy(m + f.bot_cycles, root + f.bot_cycles, 8);  // a counter, not state
-    if (std::memcmp(root, m, size) != 0) {
-        size_t w = 0;
-        while (std::memcmp(root + 8 * w, m + 8 * w, 8) == 0) w++;
-        f.hint = w;
+    for (size_t i = 0; i < nspans; i++) {
+        const Span& x = spans[i];
+        if (std::memcmp(root + x.off, m + x.off, x.len) == 0) continue;
+        size_t o = x.off;
+        while (o + 8 < x.off + x.len && std::memcmp(root + o, m + o, 8) == 0) o += 8;
+        f.hint_off = o;
+        f.hint_len = std::min<size_t>(8, x.off + x.len - o);
         ff_snap(b, t);
         return 0;
     }
@@ -439,11 +495,14 @@ uint64_t ff_step(Board* b, uint64_t t, uint64_t until_ps, BoardEvent* buf, uint3
     const uint64_t bot_cycles = b->top->rootp->bot_cycles;
     if (phase) {
         const Phase& p = f.phases[phase - 1];
-        std::memcpy(root, p.root.data(), size);
+        for (size_t i = 0; i < nspans; i++) std::memcpy(root + spans[i].off, p.root.data() + spans[i].off, spans[i].len);
         skipped += p.at;
     }
     f.mark_t += (k + 1) * period;  // the start of the period the board is now in
     b->clocks[0].skip(skipped / b->clocks[0].num);
+    // Clocks that drive nothing observed go on from the new time.
+    for (size_t i = 1; i < b->clocks.size(); i++)
+        if (!b->clocks[i].stopped) b->clocks[i].schedule_from(t + skipped + 1);
     b->top->rootp->bot_cycles = bot_cycles + edges;
     b->now = t + skipped;
     b->ctx.time(b->now);
@@ -465,9 +524,9 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
     const size_t nc = b->clocks.size();
     Clock* clocks = b->clocks.data();
     const bool vga = b->vga, watch_bot = b->bot;
-    // The fast-forward, on one-clock boards without a waveform (the oscillator's period is a
-    // whole number of picoseconds).
-    const bool ff = kOneClock && b->ff.on && !b->vcd && clocks[0].den == 1;
+    // The fast-forward, without a waveform (the oscillator's period is a whole number of
+    // picoseconds), after the oscillator's rising edges.
+    const bool ff = b->ff.on && !b->vcd && clocks[0].den == 1;
     const bool rising_only = b->rising_only && !b->vcd;
     Shown s{b->last_an, b->last_seg, b->last_dp, b->last_led, b->last_vga, b->last_bot, b->last_upd, b->samples, b->evals};
     uint32_t why = BOARD_BUFFER_FULL;
@@ -488,9 +547,9 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
         }
         b->ctx.time(t);
         const uint32_t n0 = *n;
-        bool rose = false;
+        bool rose = false, osc_rose = false;
         if (kOneClock) {
-            rose = clocks[0].next_high;
+            rose = osc_rose = clocks[0].next_high;
             *clocks[0].q = clocks[0].next_high;
             clocks[0].advance();
         } else {
@@ -498,6 +557,7 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
                 Clock& c = clocks[i];
                 if (c.stopped || c.next_t != t) continue;
                 rose |= c.next_high;
+                osc_rose |= i == 0 && c.next_high;
                 *c.q = c.next_high;
                 c.advance();
             }
@@ -587,7 +647,7 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
                     }
                 }
             }
-            if (rose) s.evals += (rising_only ? 1 : 2) * ff_step(b, t, until_ps, buf, cap, n, s);
+            if (osc_rose) s.evals += (rising_only ? 1 : 2) * ff_step(b, t, until_ps, buf, cap, n, s);
         }
     }
     b->last_an = s.an;

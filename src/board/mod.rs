@@ -7,6 +7,7 @@ pub mod checks;
 pub mod iss;
 pub mod lockstep;
 pub mod model;
+pub mod observed;
 mod replay;
 
 pub use botsim_core::board::*;

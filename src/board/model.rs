@@ -117,6 +117,21 @@ struct Api {
     fast_forwarded: unsafe extern "C" fn(*mut Opaque, *mut u64, *mut u64),
 }
 
+/// What the fast-forward compares to find a period, and so what a run that uses it keeps
+/// exact (harness.cpp).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C)]
+pub enum FastForward {
+    /// Every clock edge simulated.
+    Off = 0,
+    /// The whole state (a run that opens a waveform later, which shows every variable).
+    Whole = 1,
+    /// What a run records (the display, the LEDs, the bot, the models): the parts nothing
+    /// recorded reads (a VGA timing generator and its pixel clock) run on out of step
+    /// (src/board/observed.rs). For runs without a waveform or VGA frames.
+    Recorded = 2,
+}
+
 /// A running board simulation.
 pub struct BoardModel {
     api: Api,
@@ -127,6 +142,7 @@ pub struct BoardModel {
     vcd_span: Option<(u64, Option<u64>)>,
     /// Why the build found this design cannot fast-forward (src/board/checks.rs).
     fast_forward_blocker: Option<String>,
+    observed_unknown: Option<String>,
     // Dropped last: the functions above live in it.
     _lib: libloading::Library,
 }
@@ -184,7 +200,15 @@ impl BoardModel {
         let verdicts = Verdicts::load(path.parent().unwrap_or(Path::new(".")));
         // SAFETY: ptr is live.
         unsafe { (api.rising_edges_only)(ptr, verdicts.falling_edges.is_none() as c_int) };
-        Ok(BoardModel { api, ptr, host, vcd_span: None, fast_forward_blocker: verdicts.fast_forward, _lib: lib })
+        Ok(BoardModel {
+            api,
+            ptr,
+            host,
+            vcd_span: None,
+            fast_forward_blocker: verdicts.fast_forward,
+            observed_unknown: verdicts.observed,
+            _lib: lib,
+        })
     }
 
     /// Evaluate both clock edges, even where the build found the falling ones change nothing
@@ -215,14 +239,22 @@ impl BoardModel {
         unsafe { (self.api.set_inputs)(self.ptr, reset_pressed as u32, buttons as u32, switches as u32) }
     }
 
-    /// Skip the periods in which the whole board repeats itself (harness.cpp's fast-forward):
-    /// for a one-clock board whose KCPSM6s and bot are models, and only while nothing needs
-    /// every edge (a waveform is written edge by edge whatever this says; VGA capture, CPU
-    /// traces, breakpoints and lock-step need it off). Returns whether it is on.
-    pub fn fast_forward(&mut self, on: bool) -> bool {
-        let on = on && self.fast_forward_blocker.is_none();
+    /// Skip the periods in which the board repeats itself (harness.cpp's fast-forward): for a
+    /// board whose KCPSM6s and bot are models, and only while nothing needs every edge (a
+    /// waveform is written edge by edge whatever this says; VGA capture, CPU traces,
+    /// breakpoints and lock-step need it off). Returns whether it is on: with
+    /// [`FastForward::Whole`] a board with one clock; with [`FastForward::Recorded`] also one
+    /// whose other clocks drive nothing the run records (a VGA pixel clock).
+    pub fn fast_forward(&mut self, mode: FastForward) -> bool {
+        let mode = if self.fast_forward_blocker.is_some() { FastForward::Off } else { mode };
         // SAFETY: ptr is live.
-        unsafe { (self.api.fast_forward)(self.ptr, on as c_int) != 0 }
+        unsafe { (self.api.fast_forward)(self.ptr, mode as c_int) != 0 }
+    }
+
+    /// Why the variables a run observes are not known for this design (the build's analysis of
+    /// Verilator's output, src/board/observed.rs), or `None`.
+    pub fn observed_unknown(&self) -> Option<&str> {
+        self.observed_unknown.as_deref()
     }
 
     /// The skips so far and the simulated time they covered (ps).

@@ -7,7 +7,7 @@ use std::time::Instant;
 use botsim::board::build::{build, BotKind, CpuModel};
 use botsim::board::iss::{Breaks, Host, TraceRequest};
 use botsim::board::lockstep::Lockstep;
-use botsim::board::model::{BoardModel, Event, RawEvent, Stop};
+use botsim::board::model::{BoardModel, Event, FastForward, RawEvent, Stop};
 use botsim::files::{check_writable, write_atomic};
 use botsim::firmware::{SOURCE, SOURCE_PATH};
 use botsim::kcpsm6::loader;
@@ -204,7 +204,7 @@ enum BotArg {
 
 /// The board being run: one model, or the RTL and ISS boards in lock-step.
 enum Sim {
-    One(BoardModel),
+    One(Box<BoardModel>),
     Pair(Box<Lockstep>),
 }
 
@@ -559,7 +559,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
             }
             Sim::Pair(Box::new(Lockstep::new(first, iss)))
         }
-        None => Sim::One(first),
+        None => Sim::One(Box::new(first)),
     };
     // The waveform: open from the start, or at its --trace-from mark.
     let (mut vcd_open, mut vcd_done, mut vcd_close_at) = (false, a.vcd.is_none(), None);
@@ -580,10 +580,17 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     let mut fast_forward_off: Option<String> = None;
     if let Sim::One(m) = &mut model {
         if fast_forward {
+            // A waveform window later shows every variable: compare them all until then.
+            let mode = if a.vcd.is_some() { FastForward::Whole } else { FastForward::Recorded };
             fast_forward_off = m.fast_forward_blocker().map(str::to_string);
-            if fast_forward_off.is_none() && !m.fast_forward(true) {
+            if fast_forward_off.is_none() && !m.fast_forward(mode) {
+                let why = match (mode, m.observed_unknown()) {
+                    (FastForward::Whole, _) => "a waveform later shows every variable".to_string(),
+                    (_, Some(unknown)) => format!("what a run observes of it is not known: {unknown}"),
+                    _ => "one besides the oscillator drives what the run records".to_string(),
+                };
                 fast_forward_off = Some(format!(
-                    "the board has {} clocks (the fast-forward needs a board with one)",
+                    "the board has {} clocks, and {why} (the fast-forward needs one clock, or others that drive only what the run does not record)",
                     m.clocks().len()
                 ));
             }
@@ -591,7 +598,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
                 say(format!("note: no fast-forward: {why}; every clock edge is simulated"));
             }
         } else {
-            m.fast_forward(false);
+            m.fast_forward(FastForward::Off);
         }
     }
     let mut vga = Capture::default();
@@ -1170,7 +1177,7 @@ fn board_rate(
 ) -> Result<f64, String> {
     let mut m = load(library, world, roms, host)?;
     m.set_inputs(false, 0, 0);
-    m.fast_forward(fast_forward);
+    m.fast_forward(if fast_forward { FastForward::Recorded } else { FastForward::Off });
     let mut buf = vec![RawEvent::default(); 4096];
     let mut display = Display::default();
     let t = Instant::now();

@@ -1,0 +1,800 @@
+//! Which of Verilator's root variables a run can observe, read from the generated C++.
+//!
+//! A run without a waveform or VGA frames sees the board through a few of the top's outputs
+//! (the display, the LEDs, the bot's registers: [`HARNESS_READS`]) and through the KCPSM6 and
+//! bot models (their DPI calls). A variable is *observed* when one of those reads it, or when
+//! it feeds, through any chain of assignments and conditions, a variable that is. The rest
+//! (a VGA design's timing generator and colour pipeline, its pixel clock) can run on with any
+//! value without changing anything the run records. The fast-forward compares and puts back
+//! the observed variables only (harness.cpp), which lets a VGA design, whose frame and display
+//! refresh never repeat together within a sample, skip ahead as a one-clock design does.
+//!
+//! The analysis is conservative: every variable named on the right of an assignment, in its
+//! indices, in an enclosing condition, or in the condition under which its function is called,
+//! feeds the assigned one; a call to anything but Verilator's value macros and the model's own
+//! functions is an observation of everything it names; a construct the analysis does not
+//! know ends it (no part of the state is left out). Verilator's scheduler (`___eval`, which
+//! loops over the trigger vectors) is modelled rather than read: a function called under
+//! trigger `k` runs when trigger `k` fired, and trigger `k` is computed from the variables
+//! its expression names; the scheduler's own counters are scratch, written before they are
+//! read in every evaluation.
+//!
+//! ```
+//! let root = "class Vboard___024root final : public VerilatedModule {\n  public:\n    struct {\n        VL_IN8(clk,0,0);\n        VL_OUT16(led,15,0);\n        CData/*0:0*/ a;\n        CData/*0:0*/ b;\n        CData/*0:0*/ __Vtrigrprev__TOP__clk;\n    };\n    VlTriggerVec<1> __VactTriggered;\n    VlTriggerVec<1> __VnbaTriggered;\n\n    // INTERNAL VARIABLES\n    Vboard__Syms* const vlSymsp;\n};\n";
+//! let eval = "void Vboard___024root___eval_triggers__act(Vboard___024root* vlSelf) {\n    vlSelf->__VactTriggered.at(0U) = ((IData)(vlSelf->clk) & (~ (IData)(vlSelf->__Vtrigrprev__TOP__clk)));\n    vlSelf->__Vtrigrprev__TOP__clk = vlSelf->clk;\n}\n\nVL_INLINE_OPT void Vboard___024root___nba_sequent__TOP__0(Vboard___024root* vlSelf) {\n    vlSelf->led = vlSelf->a;\n    vlSelf->a = (1U & (~ (IData)(vlSelf->a)));\n    vlSelf->b = (1U & (~ (IData)(vlSelf->b)));\n}\n\nvoid Vboard___024root___eval_nba(Vboard___024root* vlSelf) {\n    if (vlSelf->__VnbaTriggered.at(0U)) {\n        Vboard___024root___nba_sequent__TOP__0(vlSelf);\n    }\n}\n\nvoid Vboard___024root___eval(Vboard___024root* vlSelf) {\n    Vboard___024root___eval_triggers__act(vlSelf);\n    Vboard___024root___eval_nba(vlSelf);\n}\n";
+//! let members = botsim::board::observed::members(root, &[eval]).unwrap();
+//! let seen = |n: &str| members.iter().find(|m| m.name == n).unwrap().observed;
+//! // The LEDs show `a`, which the clock's trigger runs; nothing reads `b`.
+//! assert!(seen("led") && seen("a") && seen("clk") && seen("__Vtrigrprev__TOP__clk"));
+//! assert!(!seen("b"));
+//! ```
+
+use std::collections::{HashMap, HashSet};
+
+/// The top's outputs the harness reads on every evaluation of a run (harness.cpp's records and
+/// the fast-forward's counter); the VGA pins are read only when frames are recorded, and such
+/// runs compare the whole state.
+pub const HARNESS_READS: &[&str] = &[
+    "an",
+    "seg",
+    "dp",
+    "led",
+    "bot_upd",
+    "bot_locx",
+    "bot_locy",
+    "bot_info",
+    "bot_sensors",
+    "bot_lmdist",
+    "bot_rmdist",
+    "bot_motctl",
+    "bot_cycles",
+];
+
+/// One variable of the root object.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Member {
+    pub name: String,
+    /// A run without a waveform or frames can observe it.
+    pub observed: bool,
+}
+
+/// Every variable of the root (from its header `root`), each with whether a run observes it,
+/// from the evaluation's files `code`; or why the analysis cannot tell.
+pub fn members(root: &str, code: &[&str]) -> Result<Vec<Member>, String> {
+    let names = root_members(root)?;
+    let mut bodies: HashMap<&str, &str> = HashMap::new();
+    for c in code {
+        for (name, body) in super::checks::functions(c) {
+            bodies.insert(name, body);
+        }
+    }
+    let eval = *bodies.get("Vboard___024root___eval").ok_or("Verilator's evaluation function was not found")?;
+    let mut g = Graph::default();
+    // The scheduler: the functions it calls, which run in every evaluation (each decides on
+    // its triggers what else runs).
+    let entries = scheduler_calls(eval)?;
+    let mut todo: Vec<String> = entries.iter().map(|s| s.to_string()).collect();
+    let mut done: HashSet<String> = HashSet::new();
+    while let Some(f) = todo.pop() {
+        if !done.insert(f.clone()) {
+            continue;
+        }
+        let body = *bodies.get(f.as_str()).ok_or_else(|| format!("Verilator's function `{f}` was not found"))?;
+        let toks = tokens(body)?;
+        let mut p = Parser { g: &mut g, toks: &toks, fun: &f, locals: HashSet::new(), calls: Vec::new() };
+        let mut at = 0;
+        let ctrl = vec![p.g.node(&fun_node(&f))];
+        p.block(&mut at, &ctrl, false)?;
+        todo.append(&mut p.calls);
+    }
+    for r in HARNESS_READS {
+        if names.iter().any(|n| n == r) {
+            let id = g.node(&member_node(r));
+            g.roots.push(id);
+        }
+    }
+    let seen = g.ancestors();
+    Ok(names
+        .into_iter()
+        .map(|name| {
+            let observed = g.ids.get(&member_node(&name)).is_some_and(|&i| seen[i]);
+            Member { name, observed }
+        })
+        .collect())
+}
+
+/// The functions `___eval` calls (the scheduler's regions), checking that it touches nothing
+/// but its own counters and trigger vectors.
+fn scheduler_calls(eval: &str) -> Result<Vec<String>, String> {
+    const SCRATCH: &[&str] = &[
+        "__VicoIterCount",
+        "__VactIterCount",
+        "__VactContinue",
+        "__VicoTriggered",
+        "__VactTriggered",
+        "__VnbaTriggered",
+        "vlSymsp",
+    ];
+    const REGIONS: &[&str] = &[
+        "Vboard___024root___eval_triggers__ico",
+        "Vboard___024root___eval_ico",
+        "Vboard___024root___eval_triggers__act",
+        "Vboard___024root___eval_act",
+        "Vboard___024root___eval_nba",
+    ];
+    let toks = tokens(eval)?;
+    let mut calls = Vec::new();
+    for (i, t) in toks.iter().enumerate() {
+        match t {
+            Tok::Id("vlSelf") if toks.get(i + 1) == Some(&Tok::P("->")) => {
+                if let Some(Tok::Id(m)) = toks.get(i + 2) {
+                    if !SCRATCH.contains(m) {
+                        return Err(format!("Verilator's scheduler reads `{m}`"));
+                    }
+                }
+            }
+            Tok::Id(f) if f.starts_with("Vboard___024root___") && toks.get(i + 1) == Some(&Tok::P("(")) => {
+                if f.starts_with("Vboard___024root___dump_triggers__") {
+                    continue;
+                }
+                if !REGIONS.contains(f) {
+                    return Err(format!("Verilator's scheduler calls `{f}`"));
+                }
+                calls.push(f.to_string());
+            }
+            _ => {}
+        }
+    }
+    Ok(calls)
+}
+
+/// The C++ the harness includes (`botsim_observed.h`): `botsim_members` lists every variable
+/// of the root with its bytes and whether a run observes it; `kObservedKnown` is false (and
+/// the list empty) when the analysis could not tell, and the comment says why.
+pub fn header(members: &Result<Vec<Member>, String>) -> String {
+    let mut h = String::from(
+        "// botsim_observed.h: generated by botsim (src/board/observed.rs) for this design: every\n\
+         // variable of Verilator's root object, its bytes, and whether a run observes it.\n",
+    );
+    match members {
+        Ok(ms) => {
+            h.push_str("static const bool kObservedKnown = true;\n");
+            h.push_str("static void botsim_members(const Vboard___024root* r, std::vector<BoardMember>& out) {\n");
+            for m in ms {
+                h.push_str(&format!(
+                    "    out.push_back({{(size_t)((const char*)&r->{n} - (const char*)r), sizeof(r->{n}), {o}}});\n",
+                    n = m.name,
+                    o = m.observed
+                ));
+            }
+        }
+        Err(why) => {
+            h.push_str(&format!("// Not known: {}\n", why.replace('\n', " ")));
+            h.push_str("static const bool kObservedKnown = false;\n");
+            h.push_str("static void botsim_members(const Vboard___024root*, std::vector<BoardMember>&) {\n");
+        }
+    }
+    h.push_str("}\n");
+    h
+}
+
+/// The root's variables, by name, in the header's order.
+fn root_members(header: &str) -> Result<Vec<String>, String> {
+    let start = header.find("class Vboard___024root").ok_or("Verilator's root class was not found")?;
+    let mut out = Vec::new();
+    for line in header[start..].lines().skip(1) {
+        let code = super::checks::strip_comments(line);
+        let code = code.trim();
+        if code.starts_with("// INTERNAL VARIABLES") || line.contains("INTERNAL VARIABLES") {
+            break;
+        }
+        if !code.ends_with(';') || code == "};" {
+            continue;
+        }
+        let name = if code.starts_with("VL_IN") || code.starts_with("VL_OUT") {
+            code.split(['(', ',']).nth(1).unwrap_or("").trim()
+        } else if code.contains('(') {
+            continue;
+        } else {
+            code.trim_end_matches(';')
+                .split(|c: char| !(c.is_alphanumeric() || c == '_'))
+                .rfind(|s| !s.is_empty())
+                .unwrap_or("")
+        };
+        if !name.is_empty() {
+            out.push(name.to_string());
+        }
+    }
+    if out.is_empty() {
+        return Err("the root's variables were not found".into());
+    }
+    Ok(out)
+}
+
+fn member_node(name: &str) -> String {
+    format!("m:{name}")
+}
+
+fn fun_node(name: &str) -> String {
+    format!("f:{name}")
+}
+
+/// Who feeds whom: `preds[i]` are the nodes node `i`'s value depends on.
+#[derive(Default)]
+struct Graph {
+    ids: HashMap<String, usize>,
+    preds: Vec<Vec<usize>>,
+    roots: Vec<usize>,
+}
+
+impl Graph {
+    fn node(&mut self, key: &str) -> usize {
+        if let Some(&i) = self.ids.get(key) {
+            return i;
+        }
+        let i = self.preds.len();
+        self.ids.insert(key.to_string(), i);
+        self.preds.push(Vec::new());
+        i
+    }
+
+    /// Every node a root depends on, the roots included.
+    fn ancestors(&self) -> Vec<bool> {
+        let mut seen = vec![false; self.preds.len()];
+        let mut stack = self.roots.clone();
+        while let Some(i) = stack.pop() {
+            if std::mem::replace(&mut seen[i], true) {
+                continue;
+            }
+            stack.extend(self.preds[i].iter().copied().filter(|&p| !seen[p]));
+        }
+        seen
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Tok<'a> {
+    Id(&'a str),
+    Num(&'a str),
+    Str,
+    P(&'a str),
+}
+
+/// A function body as tokens; comments, strings and `#ifdef VL_DEBUG` blocks dropped.
+fn tokens(src: &str) -> Result<Vec<Tok<'_>>, String> {
+    const PUNCT: &[&str] = &[
+        "<<=", ">>=", "->", "::", "<<", ">>", "==", "!=", "<=", ">=", "&&", "||", "|=", "&=", "^=", "+=", "-=", "*=",
+        "/=", "%=", "++", "--",
+    ];
+    let b = src.as_bytes();
+    let mut out = Vec::new();
+    let mut i = 0;
+    let mut line_start = true;
+    while i < b.len() {
+        let c = b[i];
+        if c == b'\n' {
+            line_start = true;
+            i += 1;
+            continue;
+        }
+        if c.is_ascii_whitespace() {
+            i += 1;
+            continue;
+        }
+        if line_start && c == b'#' {
+            // A directive; a debug-only block goes whole.
+            let end = src[i..].find('\n').map_or(b.len(), |e| i + e);
+            let line = src[i..end].trim();
+            i = end;
+            if line.starts_with("#if") {
+                let mut depth = 1;
+                while depth > 0 && i < b.len() {
+                    let next = src[i + 1..].find('\n').map_or(b.len(), |e| i + 1 + e);
+                    let l = src[(i + 1).min(b.len())..next].trim();
+                    if l.starts_with("#if") {
+                        depth += 1;
+                    } else if l.starts_with("#endif") {
+                        depth -= 1;
+                    } else if depth == 1 && l.starts_with("#el") {
+                        return Err(format!("a preprocessor branch in Verilator's output (`{l}`)"));
+                    }
+                    i = next;
+                }
+                if !line.contains("VL_DEBUG") {
+                    return Err(format!("a preprocessor block in Verilator's output (`{line}`)"));
+                }
+            }
+            continue;
+        }
+        line_start = false;
+        if src[i..].starts_with("//") {
+            i = src[i..].find('\n').map_or(b.len(), |e| i + e);
+            continue;
+        }
+        if src[i..].starts_with("/*") {
+            i = src[i + 2..].find("*/").map_or(b.len(), |e| i + 2 + e + 2);
+            continue;
+        }
+        if c == b'"' || c == b'\'' {
+            let mut j = i + 1;
+            while j < b.len() && b[j] != c {
+                j += if b[j] == b'\\' { 2 } else { 1 };
+            }
+            out.push(Tok::Str);
+            i = j + 1;
+            continue;
+        }
+        if c.is_ascii_alphabetic() || c == b'_' {
+            let mut j = i;
+            while j < b.len() && (b[j].is_ascii_alphanumeric() || b[j] == b'_') {
+                j += 1;
+            }
+            out.push(Tok::Id(&src[i..j]));
+            i = j;
+            continue;
+        }
+        if c.is_ascii_digit() {
+            let mut j = i;
+            while j < b.len() && (b[j].is_ascii_alphanumeric() || b[j] == b'.') {
+                j += 1;
+            }
+            out.push(Tok::Num(&src[i..j]));
+            i = j;
+            continue;
+        }
+        let p = PUNCT.iter().find(|p| src[i..].starts_with(**p)).copied().unwrap_or(&src[i..i + 1]);
+        if !p.is_ascii() {
+            return Err("a character the analysis does not know in Verilator's output".into());
+        }
+        out.push(Tok::P(p));
+        i += p.len();
+    }
+    Ok(out)
+}
+
+/// Types a local declaration begins with.
+const TYPES: &[&str] = &[
+    "CData",
+    "SData",
+    "IData",
+    "QData",
+    "EData",
+    "VlWide",
+    "VlUnpacked",
+    "Vboard__Syms",
+    "const",
+    "bool",
+    "int",
+    "size_t",
+    "char",
+    "long",
+    "unsigned",
+    "void",
+    "uint8_t",
+    "uint16_t",
+    "uint32_t",
+    "uint64_t",
+];
+
+/// The assignment operators.
+const ASSIGN: &[&str] = &["=", "|=", "&=", "^=", "+=", "-=", "*=", "/=", "%=", "<<=", ">>="];
+
+/// What a statement names.
+#[derive(Default)]
+struct Named {
+    /// Variables (and triggers) read or written.
+    vars: Vec<usize>,
+    /// Variables that a macro with an output argument may write.
+    outputs: Vec<usize>,
+    /// It calls something outside the model (a DPI function, the runtime).
+    outside: bool,
+    /// The model's own functions it calls with `vlSelf` alone.
+    calls: Vec<String>,
+}
+
+struct Parser<'a, 'g> {
+    g: &'g mut Graph,
+    toks: &'a [Tok<'a>],
+    fun: &'a str,
+    locals: HashSet<&'a str>,
+    calls: Vec<String>,
+}
+
+impl<'a> Parser<'a, '_> {
+    fn tok(&self, i: usize) -> Tok<'a> {
+        self.toks.get(i).copied().unwrap_or(Tok::P(""))
+    }
+
+    fn unknown(&self, at: usize) -> String {
+        let near: Vec<String> = self.toks[at.min(self.toks.len())..(at + 6).min(self.toks.len())]
+            .iter()
+            .map(|t| match t {
+                Tok::Id(s) | Tok::Num(s) | Tok::P(s) => s.to_string(),
+                Tok::Str => "\"…\"".into(),
+            })
+            .collect();
+        format!("a construct the analysis does not know in `{}` (`{}`)", self.fun, near.join(" "))
+    }
+
+    /// The index just past the bracket that closes the one at `open`.
+    fn close(&self, open: usize) -> Result<usize, String> {
+        let mut depth = 0usize;
+        for i in open..self.toks.len() {
+            match self.tok(i) {
+                Tok::P("(" | "[" | "{") => depth += 1,
+                Tok::P(")" | "]" | "}") => {
+                    depth -= 1;
+                    if depth == 0 {
+                        return Ok(i + 1);
+                    }
+                }
+                _ => {}
+            }
+        }
+        Err(self.unknown(open))
+    }
+
+    /// Statements up to the end of the body or (in a block) its closing brace; `ctrl`: what
+    /// decides whether they run.
+    fn block(&mut self, at: &mut usize, ctrl: &[usize], braced: bool) -> Result<(), String> {
+        while *at < self.toks.len() {
+            if self.tok(*at) == Tok::P("}") {
+                if braced {
+                    *at += 1;
+                    return Ok(());
+                }
+                return Err(self.unknown(*at));
+            }
+            self.statement(at, ctrl)?;
+        }
+        if braced {
+            return Err(self.unknown(*at));
+        }
+        Ok(())
+    }
+
+    /// A block or a single statement.
+    fn body(&mut self, at: &mut usize, ctrl: &[usize]) -> Result<(), String> {
+        if self.tok(*at) == Tok::P("{") {
+            *at += 1;
+            self.block(at, ctrl, true)
+        } else {
+            self.statement(at, ctrl)
+        }
+    }
+
+    fn statement(&mut self, at: &mut usize, ctrl: &[usize]) -> Result<(), String> {
+        match self.tok(*at) {
+            Tok::P("{") => self.body(at, ctrl),
+            Tok::P(";") => {
+                *at += 1;
+                Ok(())
+            }
+            Tok::Id("if") | Tok::Id("while") => {
+                let mut inner = ctrl.to_vec();
+                loop {
+                    if self.tok(*at + 1) != Tok::P("(") {
+                        return Err(self.unknown(*at));
+                    }
+                    let end = self.close(*at + 1)?;
+                    let cond = self.named(*at + 2, end - 1)?;
+                    self.effects(&cond, &[], ctrl);
+                    inner.extend(cond.vars.iter().copied());
+                    *at = end;
+                    self.body(at, &inner)?;
+                    if self.tok(*at) != Tok::Id("else") {
+                        return Ok(());
+                    }
+                    *at += 1;
+                    if self.tok(*at) != Tok::Id("if") {
+                        return self.body(at, &inner);
+                    }
+                }
+            }
+            Tok::Id("for") => {
+                if self.tok(*at + 1) != Tok::P("(") {
+                    return Err(self.unknown(*at));
+                }
+                let end = self.close(*at + 1)?;
+                // The loop's own variables are declared in its head; each depends on all of it.
+                let mut i = *at + 2;
+                while i < end - 1 {
+                    if let Tok::Id(t) = self.tok(i) {
+                        if TYPES.contains(&t) {
+                            if let Tok::Id(n) = self.tok(i + 1) {
+                                self.locals.insert(n);
+                            }
+                        }
+                    }
+                    i += 1;
+                }
+                let head = self.named(*at + 2, end - 1)?;
+                let vars = head.vars.clone();
+                self.effects(&head, &vars, ctrl);
+                let mut inner = ctrl.to_vec();
+                inner.extend(head.vars.iter().copied());
+                *at = end;
+                self.body(at, &inner)
+            }
+            Tok::Id("return") => {
+                let end = self.end(*at)?;
+                let named = self.named(*at + 1, end - 1)?;
+                let ret = self.g.node(&format!("r:{}", self.fun));
+                self.effects(&named, &[ret], ctrl);
+                *at = end;
+                Ok(())
+            }
+            Tok::Id("VL_DEBUG_IF") => {
+                *at = self.end(*at)?;
+                Ok(())
+            }
+            Tok::Id("else" | "switch" | "case" | "default" | "do" | "goto" | "break" | "continue") => {
+                Err(self.unknown(*at))
+            }
+            _ => {
+                let end = self.end(*at)?;
+                self.simple(*at, end - 1, ctrl)?;
+                *at = end;
+                Ok(())
+            }
+        }
+    }
+
+    /// The index just past the `;` that ends the statement at `from`.
+    fn end(&self, from: usize) -> Result<usize, String> {
+        let mut i = from;
+        while i < self.toks.len() {
+            match self.tok(i) {
+                Tok::P("(" | "[" | "{") => i = self.close(i)?,
+                Tok::P(";") => return Ok(i + 1),
+                Tok::P("}") => return Err(self.unknown(from)),
+                _ => i += 1,
+            }
+        }
+        Err(self.unknown(from))
+    }
+
+    /// A declaration, an assignment or a call: tokens `from..to` (the `;` excluded).
+    fn simple(&mut self, from: usize, to: usize, ctrl: &[usize]) -> Result<(), String> {
+        // The top-level assignment operator, if any.
+        let mut op = None;
+        let mut i = from;
+        while i < to {
+            match self.tok(i) {
+                Tok::P("(" | "[" | "{") => {
+                    i = self.close(i)?;
+                    continue;
+                }
+                Tok::P(p) if ASSIGN.contains(&p) => {
+                    op = Some(i);
+                    break;
+                }
+                _ => {}
+            }
+            i += 1;
+        }
+        let declaration = matches!(self.tok(from), Tok::Id(t) if TYPES.contains(&t));
+        if declaration {
+            let name_end = op.unwrap_or(to);
+            let name = self.toks[from..name_end]
+                .iter()
+                .rev()
+                .find_map(|t| match t {
+                    Tok::Id(n) if !n.starts_with("VL_") && *n != "__restrict" && *n != "const" => Some(*n),
+                    _ => None,
+                })
+                .ok_or_else(|| self.unknown(from))?;
+            self.locals.insert(name);
+            if let Some(op) = op {
+                let target = self.g.node(&format!("l:{}:{name}", self.fun));
+                let rhs = self.named(op + 1, to)?;
+                self.effects(&rhs, &[target], ctrl);
+            }
+            return Ok(());
+        }
+        match op {
+            Some(op) => {
+                let lhs = self.named(from, op)?;
+                let target = *lhs.vars.first().ok_or_else(|| self.unknown(from))?;
+                let mut rhs = self.named(op + 1, to)?;
+                rhs.vars.extend(lhs.vars[1..].iter().copied());
+                rhs.outputs.extend(lhs.outputs.iter().copied());
+                rhs.outside |= lhs.outside;
+                rhs.calls.extend(lhs.calls);
+                self.effects(&rhs, &[target], ctrl);
+            }
+            None => {
+                let named = self.named(from, to)?;
+                // A member function on a variable (`x.clear()`) writes it.
+                let targets = named.vars.clone();
+                self.effects(&named, &targets, ctrl);
+            }
+        }
+        Ok(())
+    }
+
+    /// Record a statement: `targets` (and any macro outputs) depend on everything it names and
+    /// on `ctrl`; a call outside the model observes all of that; the model's functions it
+    /// calls run under `ctrl`.
+    fn effects(&mut self, named: &Named, targets: &[usize], ctrl: &[usize]) {
+        let sources: Vec<usize> = named.vars.iter().chain(ctrl).copied().collect();
+        for &t in targets.iter().chain(&named.outputs) {
+            self.g.preds[t].extend(sources.iter().copied().filter(|&s| s != t));
+        }
+        if named.outside {
+            self.g.roots.extend(sources.iter().copied());
+            self.g.roots.extend(targets.iter().copied());
+        }
+        for f in &named.calls {
+            let node = self.g.node(&fun_node(f));
+            self.g.preds[node].extend(ctrl.iter().copied());
+            self.g.preds[node].extend(named.vars.iter().copied());
+            self.calls.push(f.clone());
+        }
+    }
+
+    /// What tokens `from..to` name.
+    fn named(&mut self, from: usize, to: usize) -> Result<Named, String> {
+        let mut n = Named::default();
+        let mut i = from;
+        while i < to {
+            match self.tok(i) {
+                Tok::Id("vlSelf") if self.tok(i + 1) == Tok::P("->") => {
+                    let Tok::Id(m) = self.tok(i + 2) else { return Err(self.unknown(i)) };
+                    i += 3;
+                    if m.ends_with("Triggered") {
+                        // A trigger, one bit at a time: `.at(k)`; the NBA region's are the
+                        // active region's.
+                        let kind = match m {
+                            "__VactTriggered" | "__VnbaTriggered" => "act",
+                            "__VicoTriggered" => "ico",
+                            _ => return Err(format!("Verilator's trigger vector `{m}` in `{}`", self.fun)),
+                        };
+                        let (Tok::P("."), Tok::Id("at"), Tok::P("("), Tok::Num(k), Tok::P(")")) =
+                            (self.tok(i), self.tok(i + 1), self.tok(i + 2), self.tok(i + 3), self.tok(i + 4))
+                        else {
+                            return Err(self.unknown(i - 3));
+                        };
+                        let k = k.trim_end_matches(['U', 'L']);
+                        n.vars.push(self.g.node(&format!("t:{kind}:{k}")));
+                        i += 5;
+                    } else if m == "vlSymsp" {
+                        // The symbol table's pointer, kept in a local (its uses are below).
+                    } else {
+                        n.vars.push(self.g.node(&member_node(m)));
+                    }
+                }
+                Tok::Id("vlSymsp") if self.tok(i + 1) == Tok::P("->") => {
+                    n.outside = true;
+                    i += 2;
+                }
+                Tok::P(".") | Tok::P("->") => {
+                    // A member function or field of what came before (`.at`, `.m_storage`).
+                    i += 2;
+                }
+                Tok::Id(f) if self.tok(i + 1) == Tok::P("(") => {
+                    let end = self.close(i + 1)?;
+                    if f.starts_with("Vboard___024root___")
+                        && end == i + 4
+                        && self.tok(i + 2) == Tok::Id("vlSelf")
+                        && !f.contains("__Vdpi")
+                    {
+                        n.calls.push(f.to_string());
+                        let ret = self.g.node(&format!("r:{f}"));
+                        n.vars.push(ret);
+                    } else if let Some(rest) = f.strip_prefix("VL_") {
+                        const SIDE: &[&str] = &[
+                            "FINISH", "FATAL", "STOP", "WRITE", "READ", "PRINT", "DBG", "FOPEN", "FCLOSE", "FFLUSH",
+                            "SYSTEM", "TIME", "RAND", "SFORMAT", "SCANF", "PLUSARGS",
+                        ];
+                        if SIDE.iter().any(|s| rest.contains(s)) {
+                            n.outside = true;
+                        } else if rest.rsplit('_').next().is_some_and(|s| s.contains('W'))
+                            || ["ASSIGN", "CONST", "ZERO", "SET", "ALLONES"].iter().any(|s| rest.starts_with(s))
+                        {
+                            // Wide results are written through an argument: any of them.
+                            let args = self.named(i + 2, end - 1)?;
+                            n.outputs.extend(args.vars.iter().copied());
+                        }
+                    } else if !TYPES.contains(&f) && !matches!(f, "static_cast" | "sizeof") {
+                        n.outside = true;
+                    }
+                    // The arguments are named like any expression.
+                    i += 1;
+                }
+                Tok::Id(l) if self.locals.contains(l) => {
+                    n.vars.push(self.g.node(&format!("l:{}:{l}", self.fun)));
+                    i += 1;
+                }
+                _ => i += 1,
+            }
+        }
+        Ok(n)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const ROOT: &str = "class Vboard___024root final : public VerilatedModule {\n  public:\n    struct {\n        VL_IN8(clk,0,0);\n        VL_OUT8(an,7,0);\n        VL_OUT8(vga_r,3,0);\n        CData/*0:0*/ q25;\n        CData/*0:0*/ __Vtrigrprev__TOP__clk;\n        CData/*0:0*/ __Vtrigrprev__TOP__q25;\n        SData/*9:0*/ col;\n        CData/*7:0*/ digit;\n        CData/*0:0*/ en;\n        CData/*7:0*/ frames;\n        QData/*63:0*/ cpu;\n        VlUnpacked<CData/*1:0*/, 16> cells;\n    };\n    VlTriggerVec<2> __VactTriggered;\n    VlTriggerVec<2> __VnbaTriggered;\n\n    // INTERNAL VARIABLES\n    Vboard__Syms* const vlSymsp;\n};\n";
+
+    /// A board: the display from a counter on the system clock, a VGA column counter and pixel
+    /// on a second clock; `extra` is added to the system clock's function.
+    fn code(extra: &str) -> String {
+        format!(
+            "void Vboard___024root___eval_triggers__act(Vboard___024root* vlSelf) {{\n    vlSelf->__VactTriggered.at(0U) = ((IData)(vlSelf->clk) & (~ (IData)(vlSelf->__Vtrigrprev__TOP__clk)));\n    vlSelf->__VactTriggered.at(1U) = ((IData)(vlSelf->q25) & (~ (IData)(vlSelf->__Vtrigrprev__TOP__q25)));\n    vlSelf->__Vtrigrprev__TOP__clk = vlSelf->clk;\n    vlSelf->__Vtrigrprev__TOP__q25 = vlSelf->q25;\n}}\n\nVL_INLINE_OPT void Vboard___024root___nba_sequent__TOP__0(Vboard___024root* vlSelf) {{\n    // Init\n    QData/*63:0*/ __Vfunc_tick__1__Vfuncout;\n    __Vfunc_tick__1__Vfuncout = 0;\n    // Body\n    Vboard___024root____Vdpiimwrap_tick_TOP(vlSelf->cpu, (IData)(vlSelf->en), __Vfunc_tick__1__Vfuncout);\n    vlSelf->digit = (0xffU & (IData)(__Vfunc_tick__1__Vfuncout));\n    vlSelf->an = vlSelf->digit;\n{extra}}}\n\nVL_INLINE_OPT void Vboard___024root___nba_sequent__TOP__1(Vboard___024root* vlSelf) {{\n    if ((0x31fU == (IData)(vlSelf->col))) {{\n        vlSelf->col = 0U;\n    }} else {{\n        vlSelf->col = (0x3ffU & ((IData)(1U) + (IData)(vlSelf->col)));\n    }}\n    vlSelf->vga_r = vlSelf->cells[(0xfU & (IData)(vlSelf->col))];\n}}\n\nvoid Vboard___024root___eval_nba(Vboard___024root* vlSelf) {{\n    if (vlSelf->__VnbaTriggered.at(0U)) {{\n        Vboard___024root___nba_sequent__TOP__0(vlSelf);\n    }}\n    if (vlSelf->__VnbaTriggered.at(1U)) {{\n        Vboard___024root___nba_sequent__TOP__1(vlSelf);\n    }}\n}}\n\nvoid Vboard___024root___eval(Vboard___024root* vlSelf) {{\n    // Init\n    CData/*0:0*/ __VnbaContinue;\n    // Body\n    __VnbaContinue = 1U;\n    while (__VnbaContinue) {{\n        __VnbaContinue = 0U;\n        vlSelf->__VnbaTriggered.clear();\n        vlSelf->__VactIterCount = 0U;\n        Vboard___024root___eval_triggers__act(vlSelf);\n        if (vlSelf->__VactTriggered.any()) {{\n            vlSelf->__VnbaTriggered.set(vlSelf->__VactTriggered);\n        }}\n        if (vlSelf->__VnbaTriggered.any()) {{\n            Vboard___024root___eval_nba(vlSelf);\n        }}\n    }}\n}}\n"
+        )
+    }
+
+    fn observed(extra: &str) -> Vec<String> {
+        let c = code(extra);
+        let m = members(ROOT, &[&c]).unwrap();
+        m.into_iter().filter(|m| m.observed).map(|m| m.name).collect()
+    }
+
+    #[test]
+    fn a_vga_part_that_nothing_recorded_reads_is_not_observed() {
+        let seen = observed("");
+        for n in ["clk", "an", "digit", "en", "cpu", "__Vtrigrprev__TOP__clk"] {
+            assert!(seen.iter().any(|s| s == n), "{n} not observed: {seen:?}");
+        }
+        for n in ["vga_r", "col", "cells", "q25", "__Vtrigrprev__TOP__q25", "frames", "__VactTriggered"] {
+            assert!(!seen.iter().any(|s| s == n), "{n} observed: {seen:?}");
+        }
+    }
+
+    #[test]
+    fn whatever_feeds_what_is_recorded_is_observed() {
+        // Through a condition: the display counts frames.
+        let seen = observed("    if ((0U == (IData)(vlSelf->col))) {\n        vlSelf->frames = (0xffU & ((IData)(1U) + (IData)(vlSelf->frames)));\n    }\n    vlSelf->an = vlSelf->frames;\n");
+        for n in ["frames", "col", "q25", "__Vtrigrprev__TOP__q25"] {
+            assert!(seen.iter().any(|s| s == n), "{n} not observed: {seen:?}");
+        }
+        // Through an index, and through a model's pins.
+        let seen = observed("    vlSelf->an = vlSelf->cells[(0xfU & (IData)(vlSelf->frames))];\n");
+        assert!(seen.iter().any(|s| s == "cells") && seen.iter().any(|s| s == "frames"), "{seen:?}");
+        let seen = observed("    Vboard___024root____Vdpiimwrap_tick_TOP(vlSelf->cpu, (IData)(vlSelf->col), __Vfunc_tick__1__Vfuncout);\n");
+        assert!(seen.iter().any(|s| s == "col"), "{seen:?}");
+        // Through a local.
+        let seen =
+            observed("    CData/*7:0*/ __Vtemp;\n    __Vtemp = (IData)(vlSelf->col);\n    vlSelf->an = __Vtemp;\n");
+        assert!(seen.iter().any(|s| s == "col"), "{seen:?}");
+        // A call to anything outside the model ($finish) observes what it names and its condition.
+        let seen =
+            observed("    if ((5U == (IData)(vlSelf->frames))) {\n        VL_FINISH_MT(\"top.v\", 9, \"\");\n    }\n");
+        assert!(seen.iter().any(|s| s == "frames"), "{seen:?}");
+    }
+
+    #[test]
+    fn what_the_analysis_does_not_know_ends_it() {
+        let c = code("    switch (vlSelf->col) { case 1: vlSelf->an = 0U; }\n");
+        let why = members(ROOT, &[&c]).unwrap_err();
+        assert!(why.contains("does not know") && why.contains("switch"), "{why}");
+        let c = code("    vlSelf->an = vlSelf->__VactTriggered.word(0);\n");
+        assert!(members(ROOT, &[&c]).is_err());
+        let c = code("").replace("vlSelf->__VactIterCount = 0U;", "vlSelf->frames = 0U;");
+        assert!(members(ROOT, &[&c]).unwrap_err().contains("scheduler reads `frames`"));
+    }
+
+    #[test]
+    fn the_harness_reads_only_what_the_analysis_counts_as_observed() {
+        // Every output the run loop reads of the top, but for the VGA pins (read only when
+        // frames are recorded) and the inputs it drives.
+        let harness = include_str!("harness.cpp");
+        let mut read: Vec<&str> = harness
+            .match_indices("top->")
+            .map(|(i, m)| {
+                let rest = &harness[i + m.len()..];
+                &rest[..rest.find(|c: char| !(c.is_alphanumeric() || c == '_')).unwrap_or(rest.len())]
+            })
+            .collect();
+        read.sort();
+        read.dedup();
+        for r in read {
+            let driven = ["clk", "reset_pressed", "btn", "sw", "rootp", "eval", "final", "trace"].contains(&r);
+            let vga = ["vga_r", "vga_g", "vga_b", "hsync", "vsync"].contains(&r);
+            assert!(driven || vga || HARNESS_READS.contains(&r), "the harness reads `{r}`: add it to HARNESS_READS");
+        }
+    }
+}

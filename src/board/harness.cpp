@@ -152,7 +152,9 @@ struct FastForward {
     uint64_t patience = 0;      // how long the mark waits for its period
     uint64_t last_period = 0;   // the period found last (the next is likely the same)
     std::vector<Span> spans;     // what is compared and put back
-    size_t hint_off = 0, hint_len = 0;  // the bytes that differed last (within a span)
+    bool observed_only = false;  // the spans are what a run observes (no VGA pins)
+    size_t hint = 0;             // the aligned word that differed last, and its compared bytes
+    uint64_t hint_mask = 0;
     size_t bot_cycles = 0;       // where the wrapper's bot_cycles counter is (not compared)
     std::vector<BoardEvent> shown;  // what the board showed in the period, times from the mark
     bool overflow = false;          // too much for `shown`: no skip from this mark
@@ -346,7 +348,9 @@ int board_fast_forward(Board* b, int mode) {
         for (const Span& x : f.spans) clocks_ok &= !(q >= x.off && q < x.off + x.len);
     }
     f.on = mode != 0 && b->host && b->host->ff_same && clocks_ok && !f.spans.empty();
-    f.hint_off = f.hint_len = 0;
+    f.observed_only = observed;
+    f.hint = 0;
+    f.hint_mask = 0;
     f.mark.assign(sizeof(Vboard___024root), 0);
     f.marked = false;
     f.activity = ~0ull;
@@ -384,6 +388,13 @@ constexpr uint64_t kSettlePs = (1ull << 14) * 10000;
 constexpr uint64_t kFirstPatiencePs = (1ull << 16) * 10000;
 constexpr size_t kMaxPhases = 64;
 
+// Eight bytes of the root (or its copy, of the same size: a multiple of the cache line).
+inline uint64_t load64(const uint8_t* p) {
+    uint64_t v;
+    std::memcpy(&v, p, 8);
+    return v;
+}
+
 // Mark the state the fast-forward compares with.
 void ff_mark(Board* b, uint64_t t) {
     FastForward& f = b->ff;
@@ -398,12 +409,19 @@ void ff_mark(Board* b, uint64_t t) {
     b->host->ff_mark(b->host->ctx);
 }
 
-// While the period is proved: a snapshot of every model, now and then.
-void ff_snap(Board* b, uint64_t t) {
+// While the period is proved: a snapshot of every model, now and then (inline: most edges
+// end at its first tests).
+__attribute__((noinline)) void ff_snap_take(Board* b, uint64_t t);
+inline __attribute__((always_inline)) void ff_snap(Board* b, uint64_t t) {
     FastForward& f = b->ff;
     if (f.proven || f.nphases == kMaxPhases) return;
     const uint64_t last = f.nphases ? f.phases[f.nphases - 1].at : 0;
     if (t - f.mark_t - last < f.phase_every) return;
+    ff_snap_take(b, t);
+}
+
+void ff_snap_take(Board* b, uint64_t t) {
+    FastForward& f = b->ff;
     if (f.phases.size() == f.nphases) f.phases.emplace_back();
     Phase& p = f.phases[f.nphases++];
     p.at = t - f.mark_t;
@@ -413,10 +431,30 @@ void ff_snap(Board* b, uint64_t t) {
     b->host->ff_snap(b->host->ctx);
 }
 
+uint64_t ff_compare(Board* b, uint64_t t, uint64_t until_ps, BoardEvent* buf, uint32_t cap, uint32_t* n, Shown& s);
+uint64_t ff_restart(Board* b, uint64_t t);
+
 // After the rising edge at `t`: mark, or compare with the mark and skip what repeats. The
 // records of the skipped time go to `buf` (room permitting) and `s` is what the board shows
-// after it; returns the cycles skipped.
-uint64_t ff_step(Board* b, uint64_t t, uint64_t until_ps, BoardEvent* buf, uint32_t cap, uint32_t* n, Shown& s) {
+// after it; returns the cycles skipped. Inline in the run loop: most edges end at the word
+// that differed last.
+inline __attribute__((always_inline)) uint64_t ff_step(Board* b, uint64_t t, uint64_t until_ps, BoardEvent* buf,
+                                                       uint32_t cap, uint32_t* n, Shown& s) {
+    FastForward& f = b->ff;
+    if (b->host->activity != f.activity || !f.marked || f.overflow || t - f.mark_t > f.patience)
+        return ff_restart(b, t);
+    uint8_t* root = (uint8_t*)b->top->rootp;
+    uint8_t* m = f.mark.data();
+    std::memcpy(m + f.bot_cycles, root + f.bot_cycles, 8);  // a counter, not state
+    if ((load64(root + f.hint) ^ load64(m + f.hint)) & f.hint_mask) {
+        ff_snap(b, t);
+        return 0;
+    }
+    return ff_compare(b, t, until_ps, buf, cap, n, s);
+}
+
+// Models active, no mark yet, or a mark that waited too long.
+__attribute__((noinline)) uint64_t ff_restart(Board* b, uint64_t t) {
     FastForward& f = b->ff;
     BoardHost* h = b->host;
     if (h->activity != f.activity) {
@@ -435,25 +473,29 @@ uint64_t ff_step(Board* b, uint64_t t, uint64_t until_ps, BoardEvent* buf, uint3
         // Marked too early (the firmware was still at work) or the period is longer.
         f.patience = std::min(2 * f.patience, kMaxPeriodPs);
         ff_mark(b, t);
-        return 0;
     }
+    return 0;
+}
+
+// The word that differed last is as marked: compare the rest, and skip if all of it is.
+__attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t until_ps, BoardEvent* buf, uint32_t cap,
+                                              uint32_t* n, Shown& s) {
+    FastForward& f = b->ff;
+    BoardHost* h = b->host;
     uint8_t* root = (uint8_t*)b->top->rootp;
     uint8_t* m = f.mark.data();
     const Span* spans = f.spans.data();
     const size_t nspans = f.spans.size();
-    std::memcpy(m + f.bot_cycles, root + f.bot_cycles, 8);  // a counter, not state
-    // The bytes that differed last are the cheap test; most edges end here.
-    if (std::memcmp(root + f.hint_off, m + f.hint_off, f.hint_len) != 0) {
-        ff_snap(b, t);
-        return 0;
-    }
     for (size_t i = 0; i < nspans; i++) {
         const Span& x = spans[i];
         if (std::memcmp(root + x.off, m + x.off, x.len) == 0) continue;
-        size_t o = x.off;
-        while (o + 8 < x.off + x.len && std::memcmp(root + o, m + o, 8) == 0) o += 8;
-        f.hint_off = o;
-        f.hint_len = std::min<size_t>(8, x.off + x.len - o);
+        size_t p = x.off;
+        while (root[p] == m[p]) p++;
+        f.hint = p & ~(size_t)7;
+        f.hint_mask = 0;
+        for (size_t j = 0; j < 8; j++)
+            for (size_t k = 0; k < nspans; k++)
+                if (f.hint + j >= spans[k].off && f.hint + j < spans[k].off + spans[k].len) f.hint_mask |= 0xFFull << (8 * j);
         ff_snap(b, t);
         return 0;
     }
@@ -526,7 +568,7 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
     const bool vga = b->vga, watch_bot = b->bot;
     // The fast-forward, without a waveform (the oscillator's period is a whole number of
     // picoseconds), after the oscillator's rising edges.
-    const bool ff = b->ff.on && !b->vcd && clocks[0].den == 1;
+    const bool ff = b->ff.on && !b->vcd && clocks[0].den == 1 && !(vga && b->ff.observed_only);
     const bool rising_only = b->rising_only && !b->vcd;
     Shown s{b->last_an, b->last_seg, b->last_dp, b->last_led, b->last_vga, b->last_bot, b->last_upd, b->samples, b->evals};
     uint32_t why = BOARD_BUFFER_FULL;

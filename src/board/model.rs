@@ -143,6 +143,7 @@ pub struct BoardModel {
     /// Why the build found this design cannot fast-forward (src/board/checks.rs).
     fast_forward_blocker: Option<String>,
     observed_unknown: Option<String>,
+    fast_forward_mode: FastForward,
     // Dropped last: the functions above live in it.
     _lib: libloading::Library,
 }
@@ -207,6 +208,7 @@ impl BoardModel {
             vcd_span: None,
             fast_forward_blocker: verdicts.fast_forward,
             observed_unknown: verdicts.observed,
+            fast_forward_mode: FastForward::Off,
             _lib: lib,
         })
     }
@@ -248,7 +250,9 @@ impl BoardModel {
     pub fn fast_forward(&mut self, mode: FastForward) -> bool {
         let mode = if self.fast_forward_blocker.is_some() { FastForward::Off } else { mode };
         // SAFETY: ptr is live.
-        unsafe { (self.api.fast_forward)(self.ptr, mode as c_int) != 0 }
+        let on = unsafe { (self.api.fast_forward)(self.ptr, mode as c_int) != 0 };
+        self.fast_forward_mode = if on { mode } else { FastForward::Off };
+        on
     }
 
     /// Why the variables a run observes are not known for this design (the build's analysis of
@@ -344,6 +348,12 @@ impl BoardModel {
 
     /// Start a waveform of the whole design.
     pub fn open_vcd(&mut self, path: &Path) -> Result<(), BoardError> {
+        if self.fast_forward_mode == FastForward::Recorded && self.fast_forwarded().0 > 0 {
+            return Err(BoardError::plain(
+                "a waveform cannot begin after the fast-forward skipped ahead keeping only what the run records \
+                 (parts nothing recorded reads ran on out of step)",
+            ));
+        }
         let c = CString::new(path.as_os_str().as_encoded_bytes())
             .map_err(|_| BoardError::at(path, 0, 0, "bad file name"))?;
         // SAFETY: ptr is live; the path is copied.

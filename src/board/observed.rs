@@ -674,14 +674,16 @@ impl<'a> Parser<'a, '_> {
                 }
                 Tok::Id(f) if self.tok(i + 1) == Tok::P("(") => {
                     let end = self.close(i + 1)?;
-                    if f.starts_with("Vboard___024root___")
-                        && end == i + 4
-                        && self.tok(i + 2) == Tok::Id("vlSelf")
-                        && !f.contains("__Vdpi")
-                    {
+                    // The model itself as an argument (not one of its variables).
+                    let passes_self =
+                        (i + 2..end).any(|j| self.tok(j) == Tok::Id("vlSelf") && self.tok(j + 1) != Tok::P("->"));
+                    if f.starts_with("Vboard___024root___") && end == i + 4 && passes_self {
                         n.calls.push(f.to_string());
                         let ret = self.g.node(&format!("r:{f}"));
                         n.vars.push(ret);
+                    } else if passes_self {
+                        // A function given the model and more: its writes are not read here.
+                        return Err(self.unknown(i));
                     } else if let Some(rest) = f.strip_prefix("VL_") {
                         const SIDE: &[&str] = &[
                             "FINISH", "FATAL", "STOP", "WRITE", "READ", "PRINT", "DBG", "FOPEN", "FCLOSE", "FFLUSH",
@@ -773,6 +775,8 @@ mod tests {
         assert!(why.contains("does not know") && why.contains("switch"), "{why}");
         let c = code("    vlSelf->an = vlSelf->__VactTriggered.word(0);\n");
         assert!(members(ROOT, &[&c]).is_err());
+        let c = code("    Vboard___024root____VnoInFunc_count(vlSelf, 3U);\n");
+        assert!(members(ROOT, &[&c]).unwrap_err().contains("VnoInFunc_count"));
         let c = code("").replace("vlSelf->__VactIterCount = 0U;", "vlSelf->frames = 0U;");
         assert!(members(ROOT, &[&c]).unwrap_err().contains("scheduler reads `frames`"));
     }

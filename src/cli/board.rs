@@ -124,8 +124,8 @@ pub struct Args {
     /// rtl where the run looks inside the bot's CPU (--cpu-trace, --break) or with --cpu rtl]
     #[arg(long, value_enum)]
     bot: Option<BotArg>,
-    /// With --cpu iss --bot model the board skips the periods in which all of it repeats
-    /// itself (the same results, edge for edge); this simulates every edge
+    /// With --cpu iss --bot model the board skips the periods in which all the run records
+    /// repeats itself (the same results, edge for edge); this simulates every edge
     #[arg(long)]
     no_fast_forward: bool,
     /// Evaluate the design at both edges of the clock even where the build found that nothing

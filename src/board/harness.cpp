@@ -61,6 +61,7 @@ struct Clock {
     bool next_high = true;
     uint64_t next_t = 0;
     bool stopped = false;
+    bool parked = false;       // not run: it drives nothing a fast-forwarding run observes
 
     Clock(CData* q_, const CData* run_, uint64_t num_, uint64_t den_, uint64_t phase_num_, uint64_t duty_permille)
         : q(q_), run(run_), num(num_), den(den_), phase_num(phase_num_),
@@ -127,10 +128,11 @@ struct Clock {
 // object (src/board/checks.rs).
 //
 // A run that records only what the board shows (no waveform later, no VGA frames) compares
-// and puts back only the variables it observes (src/board/observed.rs): the parts nothing
-// recorded reads (a VGA timing generator and its pixel clock) run on out of step. That lets
-// a VGA design skip ahead too: its frame and its display refresh never repeat together
-// within a sample, but its display refresh and firmware do.
+// and puts back only the variables it observes (src/board/observed.rs); the parts nothing
+// recorded reads (a VGA timing generator) are left as they are, and clocks that drive only
+// such parts (its pixel clock) are not run. That lets a VGA design skip ahead too, as a
+// one-clock board: its frame and its display refresh never repeat together within a sample,
+// but its display refresh and firmware do.
 struct Span {
     uint32_t off, len;  // bytes of the root object
 };
@@ -340,7 +342,7 @@ int board_fast_forward(Board* b, int mode) {
     } else {
         f.spans.push_back({0, (uint32_t)sizeof(Vboard___024root)});
     }
-    // A second clock may run on out of step only if it drives nothing observed.
+    // A second clock may be left out only if it drives nothing observed.
     bool clocks_ok = true;
     for (size_t i = 1; i < b->clocks.size(); i++) {
         const size_t q = (size_t)((const uint8_t*)b->clocks[i].q - (const uint8_t*)b->top->rootp);
@@ -349,6 +351,15 @@ int board_fast_forward(Board* b, int mode) {
     }
     f.on = mode != 0 && b->host && b->host->ff_same && clocks_ok && !f.spans.empty();
     f.observed_only = observed;
+    // The other clocks drive only what the run does not observe: they are not run at all
+    // (what they drive stays as it is), and the board runs as a one-clock board. A clock
+    // taken back goes on from now.
+    for (size_t i = 1; i < b->clocks.size(); i++) {
+        Clock& c = b->clocks[i];
+        const bool park = f.on && observed;
+        if (c.parked && !park && !c.stopped) c.schedule_from(b->now + 1);
+        c.parked = park;
+    }
     f.hint = 0;
     f.hint_mask = 0;
     f.mark.assign(sizeof(Vboard___024root), 0);
@@ -542,9 +553,6 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
     }
     f.mark_t += (k + 1) * period;  // the start of the period the board is now in
     b->clocks[0].skip(skipped / b->clocks[0].num);
-    // Clocks that drive nothing observed go on from the new time.
-    for (size_t i = 1; i < b->clocks.size(); i++)
-        if (!b->clocks[i].stopped) b->clocks[i].schedule_from(t + skipped + 1);
     b->top->rootp->bot_cycles = bot_cycles + edges;
     b->now = t + skipped;
     b->ctx.time(b->now);
@@ -568,7 +576,7 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
     const bool vga = b->vga, watch_bot = b->bot;
     // The fast-forward, without a waveform (the oscillator's period is a whole number of
     // picoseconds), after the oscillator's rising edges.
-    const bool ff = b->ff.on && !b->vcd && clocks[0].den == 1 && !(vga && b->ff.observed_only);
+    const bool ff = kOneClock && b->ff.on && !b->vcd && clocks[0].den == 1 && !(vga && b->ff.observed_only);
     const bool rising_only = b->rising_only && !b->vcd;
     Shown s{b->last_an, b->last_seg, b->last_dp, b->last_led, b->last_vga, b->last_bot, b->last_upd, b->samples, b->evals};
     uint32_t why = BOARD_BUFFER_FULL;
@@ -589,9 +597,9 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
         }
         b->ctx.time(t);
         const uint32_t n0 = *n;
-        bool rose = false, osc_rose = false;
+        bool rose = false;
         if (kOneClock) {
-            rose = osc_rose = clocks[0].next_high;
+            rose = clocks[0].next_high;
             *clocks[0].q = clocks[0].next_high;
             clocks[0].advance();
         } else {
@@ -599,7 +607,6 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
                 Clock& c = clocks[i];
                 if (c.stopped || c.next_t != t) continue;
                 rose |= c.next_high;
-                osc_rose |= i == 0 && c.next_high;
                 *c.q = c.next_high;
                 c.advance();
             }
@@ -689,7 +696,7 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
                     }
                 }
             }
-            if (osc_rose) s.evals += (rising_only ? 1 : 2) * ff_step(b, t, until_ps, buf, cap, n, s);
+            if (rose) s.evals += (rising_only ? 1 : 2) * ff_step(b, t, until_ps, buf, cap, n, s);
         }
     }
     b->last_an = s.an;
@@ -712,7 +719,10 @@ uint32_t board_run(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boa
                    uint32_t* n) {
     enter(b);
     *n = 0;
-    return b->clocks.size() == 1 ? run_loop<true>(b, until_ps, stop_after_samples, buf, cap, n)
+    // Parked clocks are not run: the oscillator alone is then the one-clock loop's.
+    bool one = true;
+    for (size_t i = 1; i < b->clocks.size(); i++) one &= b->clocks[i].parked;
+    return one ? run_loop<true>(b, until_ps, stop_after_samples, buf, cap, n)
                                  : run_loop<false>(b, until_ps, stop_after_samples, buf, cap, n);
 }
 

@@ -127,8 +127,9 @@ pub enum FastForward {
     /// The whole state (a run that opens a waveform later, which shows every variable).
     Whole = 1,
     /// What a run records (the display, the LEDs, the bot, the models): the parts nothing
-    /// recorded reads (a VGA timing generator and its pixel clock) run on out of step
-    /// (src/board/observed.rs). For runs without a waveform or VGA frames.
+    /// recorded reads (a VGA timing generator) are left as they are, and clocks that drive
+    /// only such parts (its pixel clock) are not run (src/board/observed.rs). For runs
+    /// without a waveform or VGA frames.
     Recorded = 2,
 }
 
@@ -348,10 +349,10 @@ impl BoardModel {
 
     /// Start a waveform of the whole design.
     pub fn open_vcd(&mut self, path: &Path) -> Result<(), BoardError> {
-        if self.fast_forward_mode == FastForward::Recorded && self.fast_forwarded().0 > 0 {
+        if self.fast_forward_mode == FastForward::Recorded {
             return Err(BoardError::plain(
-                "a waveform cannot begin after the fast-forward skipped ahead keeping only what the run records \
-                 (parts nothing recorded reads ran on out of step)",
+                "a waveform cannot begin in a run whose fast-forward keeps only what the run records \
+                 (the parts nothing recorded reads are not simulated)",
             ));
         }
         let c = CString::new(path.as_os_str().as_encoded_bytes())

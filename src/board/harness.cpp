@@ -565,7 +565,8 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
     return skipped / b->clocks[0].num;
 }
 
-// The run loop. kOneClock: the oscillator is the only clock (most designs), so the scheduler
+// The run loop. kOneClock: the oscillator is the only clock run (most designs have no other;
+// a fast-forwarding run parks those that drive nothing it observes), so the scheduler
 // reduces to stepping it.
 template <bool kOneClock>
 uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, BoardEvent* buf, uint32_t cap,

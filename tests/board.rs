@@ -985,57 +985,50 @@ fn fast_forward_against_every_edge(example_dir: &str) {
 
 #[test]
 fn a_second_clock_lets_the_board_skip_only_while_it_drives_nothing_the_run_records() {
-    // tests/board_designs/pixel_clock: a CPU waiting beside a refresh counter of 2^16 clocks,
-    // and a frame counter of 1,000 clocks of 25 MHz, which repeat together only every 8.2 M
-    // clocks. FEEDBACK 0: the frame counter drives VGA pins alone, and the board skips; 1: each
-    // frame toggles LED 15 (through a condition, the counter's wrap), so every edge is
-    // simulated and the run says why. Either way the pins equal every edge simulated.
-    let dir = tempfile::tempdir().unwrap();
+    // tests/board_designs/pixel_clock: the phases design (a CPU waiting beside a refresh
+    // counter of 2^16 clocks) and a frame counter of 1,000 clocks of 25 MHz, which repeat
+    // together only every 8.2 M clocks. FEEDBACK 0: the frame counter drives VGA pins alone,
+    // and the board skips; 1: each frame toggles LED 15 (through a condition, the counter's
+    // wrap), so every edge is simulated and the run says why. Either way the pins equal
+    // every edge simulated.
+    let sources = ["tests/board_designs/pixel_clock", "tests/board_designs/phases", "examples/nexys4_vga/clk_wiz_0.v"];
     for feedback in ["0", "1"] {
-        let mut logs = Vec::new();
-        for ff in [false, true] {
-            let pins = dir.path().join(format!("{feedback}-{ff}.csv"));
-            let param = format!("FEEDBACK={feedback}");
-            let mut args = vec![
-                "tests/board_designs/pixel_clock",
-                "--program",
-                "tests/board_designs/phases/phases.psm",
-                "--param",
-                &param,
-                "--cpu",
-                "iss",
-                "--bot",
-                "model",
-                "--samples",
-                "4",
-                "--pins",
-                pins.to_str().unwrap(),
-                "--json",
-            ];
-            if !ff {
-                args.push("--no-fast-forward");
-            }
-            let s = summary(&board(&args));
-            assert_eq!(s["leds"], 4, "an interrupt at every sample: {s}");
-            let skipped = s["fast_forward"]["skipped_seconds"].as_f64().unwrap();
-            match (ff, feedback) {
-                (true, "0") => assert!(skipped > 0.1, "{s}"),
-                (true, _) => {
-                    let why = s["fast_forward"]["off_because"].as_str().unwrap_or("");
-                    assert!(
-                        why.contains("2 clocks, and one besides the oscillator drives what the run records"),
-                        "{s}"
-                    );
-                    assert_eq!(skipped, 0.0, "{s}");
-                }
-                _ => assert_eq!(skipped, 0.0, "{s}"),
-            }
-            logs.push(std::fs::read_to_string(&pins).unwrap());
+        let param = format!("FEEDBACK={feedback}");
+        let (every_edge, _) = phases_pins(&sources, &["--param", &param], false);
+        let (skipping, s) = phases_pins(&sources, &["--param", &param], true);
+        let skipped = s["fast_forward"]["skipped_seconds"].as_f64().unwrap();
+        if feedback == "0" {
+            assert!(skipped > 0.1, "{s}");
+        } else {
+            let why = s["fast_forward"]["off_because"].as_str().unwrap_or("");
+            assert!(why.contains("2 clocks, and one besides the oscillator drives what the run records"), "{s}");
+            assert_eq!(skipped, 0.0, "{s}");
         }
         // LED 15 toggles every 40 us with FEEDBACK 1: thousands of rows.
-        assert!(logs[0].lines().count() > 1000, "{}", logs[0].lines().count());
-        assert!(logs[0] == logs[1], "FEEDBACK={feedback}: --pins differ with the fast-forward");
+        assert!(every_edge.lines().count() > 1000, "{}", every_edge.lines().count());
+        assert!(every_edge == skipping, "FEEDBACK={feedback}: --pins differ with the fast-forward");
     }
+}
+
+/// A design around tests/board_designs/phases (its program in the ROM; the bot a model)
+/// for four samples: its `--pins` log and summary, with the fast-forward or without.
+fn phases_pins(sources: &[&str], extra: &[&str], fast_forward: bool) -> (String, serde_json::Value) {
+    let dir = tempfile::tempdir().unwrap();
+    let pins = dir.path().join("pins.csv");
+    let mut args = sources.to_vec();
+    args.extend(["--program", "tests/board_designs/phases/phases.psm", "--cpu", "iss", "--bot", "model"]);
+    args.extend(["--samples", "4", "--pins", pins.to_str().unwrap(), "--json"]);
+    args.extend(extra);
+    if !fast_forward {
+        args.push("--no-fast-forward");
+    }
+    let s = summary(&board(&args));
+    // Samples 1 to 4 pulse upd_sysregs (sample 0 is the registers after reset): four
+    // interrupts, each counted on the LEDs.
+    assert_eq!(s["leds"], 4, "an interrupt at every sample: {s}");
+    let skipped = s["fast_forward"]["skipped_seconds"].as_f64().unwrap();
+    assert!(fast_forward || skipped == 0.0, "{s}");
+    (std::fs::read_to_string(&pins).unwrap(), s)
 }
 
 #[test]
@@ -1073,38 +1066,11 @@ fn the_fast_forward_puts_every_model_back_at_the_phase_it_skips_to() {
     // counter of 2^16 clocks repeats itself every 3 x 2^16 clocks; the skips end part-way
     // into a period (a snapshot of that phase put back), where the CPU is not where it was
     // at the period's start: with the CPU left at the wrong phase its ROM check stops the run.
-    let dir = tempfile::tempdir().unwrap();
-    let mut logs = Vec::new();
-    for ff in [false, true] {
-        let pins = dir.path().join(format!("{ff}.csv"));
-        let mut args = vec![
-            "tests/board_designs/phases",
-            "--program",
-            "tests/board_designs/phases/phases.psm",
-            "--cpu",
-            "iss",
-            "--bot",
-            "model",
-            "--samples",
-            "4",
-            "--pins",
-            pins.to_str().unwrap(),
-            "--json",
-        ];
-        if !ff {
-            args.push("--no-fast-forward");
-        }
-        let o = board(&args);
-        let s = summary(&o);
-        // Samples 1 to 4 pulse upd_sysregs (sample 0 is the registers after reset): four
-        // interrupts, each counted.
-        assert_eq!(s["leds"], 4, "an interrupt at every sample: {s}");
-        let skipped = s["fast_forward"]["skipped_seconds"].as_f64().unwrap();
-        assert!(if ff { skipped > 0.14 } else { skipped == 0.0 }, "{s}");
-        logs.push(std::fs::read_to_string(&pins).unwrap());
-    }
-    assert!(logs[0].lines().count() > 1000, "{}", logs[0].lines().count());
-    assert!(logs[0] == logs[1], "--pins differ with the fast-forward");
+    let (every_edge, _) = phases_pins(&["tests/board_designs/phases"], &[], false);
+    let (skipping, s) = phases_pins(&["tests/board_designs/phases"], &[], true);
+    assert!(s["fast_forward"]["skipped_seconds"].as_f64().unwrap() > 0.14, "{s}");
+    assert!(every_edge.lines().count() > 1000, "{}", every_edge.lines().count());
+    assert!(every_edge == skipping, "--pins differ with the fast-forward");
 }
 
 #[test]

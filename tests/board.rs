@@ -919,6 +919,110 @@ fn a_vga_design_skips_what_repeats_of_what_the_run_records() {
     fast_forward_against_every_edge("examples/nexys4_vga");
 }
 
+#[test]
+fn a_late_waveform_of_a_vga_design_skips_ahead_and_shows_x_for_what_the_run_did_not_simulate() {
+    // The same window of the VGA example's waveform, the last 200 us of 120.2 ms, two ways:
+    // skipping ahead as a run without a waveform does (the pixel clock not run, what nothing
+    // recorded reads left behind; all of it before the window, which is simulated edge by
+    // edge), and with every edge simulated up to it (--vcd-all-signals). Every signal the
+    // first shows equals the second's at every change; the VGA part reads x.
+    let dir = tempfile::tempdir().unwrap();
+    let mut changes = Vec::new();
+    for all in [false, true] {
+        let vcd = dir.path().join(format!("{all}.vcd"));
+        let mut args = vec![
+            "--cpu",
+            "iss",
+            "--seconds",
+            "0.1202",
+            "--vcd",
+            vcd.to_str().unwrap(),
+            "--trace-from",
+            "120ms",
+            "--json",
+        ];
+        if all {
+            args.push("--vcd-all-signals");
+        }
+        let s = summary(&example("examples/nexys4_vga", &args));
+        let skipped = s["fast_forward"]["skipped_seconds"].as_f64().unwrap();
+        assert_eq!(skipped > 0.04, !all, "{s}");
+        changes.push(vcd_changes(&vcd));
+    }
+    let (skipping, every_edge) = (&changes[0], &changes[1]);
+    let x: Vec<&String> =
+        skipping.iter().filter(|(_, c)| c.len() == 1 && c[0].1.contains('x')).map(|(n, _)| n).collect();
+    let is_x = |name: &str| x.iter().any(|n| n.ends_with(name));
+    // The VGA part (the pixel clock's): x; the board's pins and registers, the bot, each
+    // KCPSM6's debug view, a parameter: shown.
+    for n in ["TOP.vga_r[3:0]", "TOP.hsync", ".DTG.pixel_row[9:0]", ".CLKGEN.clk_out1"] {
+        assert!(is_x(n), "{n} is not x: {x:?}");
+    }
+    for n in
+        ["TOP.led[15:0]", "TOP.an[7:0]", "TOP.bot_locx[7:0]", ".APPCPU.sim_s0[7:0]", ".APPCPU.kcpsm6_opcode[1:160]"]
+    {
+        assert!(skipping.keys().any(|k| k.ends_with(n)) && !is_x(n), "{n} is x or missing: {x:?}");
+    }
+    // A parameter, and a variable nothing writes after the initial blocks (the clock's period).
+    for n in [".SIMULATE[31:0]", ".out0.botsim_period_num[31:0]"] {
+        assert!(skipping.keys().any(|k| k.ends_with(n)) && !is_x(n), "{n} is x or missing");
+    }
+    // A model's handle and a temporary file's name differ from run to run.
+    let per_process = ["cpu[63:0]", "model[63:0]", "rom_file[32767:0]", "world_path[32767:0]"];
+    let mut compared = 0;
+    for (name, c) in skipping {
+        if x.contains(&name) || per_process.iter().any(|p| name.ends_with(&format!(".{p}"))) {
+            continue;
+        }
+        assert_eq!(Some(c), every_edge.get(name), "{name}");
+        compared += 1;
+    }
+    assert!(compared > 100 && x.len() > 20, "{compared} signals compared, {} x", x.len());
+}
+
+/// Every signal of a VCD file (named as GTKWave names them) with its value changes (time,
+/// value), an alias listed under each of its names.
+fn vcd_changes(path: &Path) -> std::collections::BTreeMap<String, Vec<(u64, String)>> {
+    let mut parser = vcd::Parser::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let header = parser.parse_header().unwrap();
+    let mut names: std::collections::HashMap<vcd::IdCode, Vec<String>> = Default::default();
+    fn walk(items: &[vcd::ScopeItem], path: &str, names: &mut std::collections::HashMap<vcd::IdCode, Vec<String>>) {
+        for item in items {
+            match item {
+                vcd::ScopeItem::Scope(s) => walk(&s.items, &format!("{path}{}.", s.identifier), names),
+                vcd::ScopeItem::Var(v) => {
+                    let range = match v.index {
+                        Some(vcd::ReferenceIndex::Range(a, b)) => format!("[{a}:{b}]"),
+                        Some(vcd::ReferenceIndex::BitSelect(a)) => format!("[{a}]"),
+                        None => String::new(),
+                    };
+                    names.entry(v.code).or_default().push(format!("{path}{}{range}", v.reference));
+                }
+                _ => {}
+            }
+        }
+    }
+    walk(&header.items, "", &mut names);
+    let mut by_code: std::collections::HashMap<vcd::IdCode, Vec<(u64, String)>> = Default::default();
+    let mut t = 0;
+    for cmd in parser {
+        match cmd.unwrap() {
+            vcd::Command::Timestamp(ts) => t = ts,
+            vcd::Command::ChangeScalar(id, v) => by_code.entry(id).or_default().push((t, v.to_string())),
+            vcd::Command::ChangeVector(id, v) => by_code.entry(id).or_default().push((t, v.to_string())),
+            vcd::Command::ChangeReal(id, v) => by_code.entry(id).or_default().push((t, v.to_string())),
+            _ => {}
+        }
+    }
+    let mut out = std::collections::BTreeMap::new();
+    for (code, ns) in names {
+        for n in ns {
+            out.insert(n, by_code.get(&code).cloned().unwrap_or_default());
+        }
+    }
+    out
+}
+
 /// Run an example design with and without the fast-forward; the same records, pin for pin.
 fn fast_forward_against_every_edge(example_dir: &str) {
     let dir = tempfile::tempdir().unwrap();

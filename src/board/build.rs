@@ -300,6 +300,7 @@ pub fn build(
     std::fs::rename(tmp.join("obj/libboard.so"), tmp.join("libboard.so"))
         .and_then(|_| std::fs::write(tmp.join("warnings.txt"), &stderr))
         .and_then(|_| verdicts.save(&tmp))
+        .and_then(|_| super::checks::save_unshown(&tmp, &checked.unshown))
         .map_err(|e| BoardError::at(&tmp, 0, 0, format!("cannot keep the build: {e}")))?;
     let _ = std::fs::remove_dir_all(tmp.join("obj"));
     let _ = std::fs::remove_dir_all(&dir);

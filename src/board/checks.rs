@@ -33,7 +33,7 @@
 
 use std::path::Path;
 
-use super::observed::Member;
+use super::observed::{Member, Unshown};
 
 /// What a build may assume, kept in its folder: for each, why not (`None`: it may).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -49,12 +49,44 @@ pub struct Verdicts {
 const FAST_FORWARD_FILE: &str = "fast-forward.txt";
 const FALLING_EDGES_FILE: &str = "falling-edges.txt";
 const OBSERVED_FILE: &str = "observed.txt";
+/// The waveform's signals a run that keeps only what it records cannot show: a line
+/// `code width` each, or a line `? why` when that is not known.
+const UNSHOWN_FILE: &str = "unshown.txt";
 
-/// Everything the build learns from Verilator's output: the verdicts, and the root's
-/// variables with whether a run observes each (or why that is not known).
+/// Keep the waveform's unshown signals in the build folder `dir`.
+pub fn save_unshown(dir: &Path, unshown: &Result<Vec<Unshown>, String>) -> std::io::Result<()> {
+    let text = match unshown {
+        Ok(list) => list.iter().map(|u| format!("{} {}\n", u.code, u.width)).collect(),
+        Err(why) => format!("? {}\n", why.replace('\n', " ")),
+    };
+    std::fs::write(dir.join(UNSHOWN_FILE), text)
+}
+
+/// The waveform's unshown signals kept in the build folder `dir`, or why they are not known.
+pub fn load_unshown(dir: &Path) -> Result<Vec<Unshown>, String> {
+    let text = std::fs::read_to_string(dir.join(UNSHOWN_FILE))
+        .map_err(|_| format!("{UNSHOWN_FILE} is missing from the build folder {}", dir.display()))?;
+    if let Some(why) = text.strip_prefix("? ") {
+        return Err(why.trim().to_string());
+    }
+    text.lines()
+        .map(|l| {
+            let mut f = l.split(' ').map(str::parse::<u32>);
+            match (f.next(), f.next()) {
+                (Some(Ok(code)), Some(Ok(width))) => Ok(Unshown { code, width }),
+                _ => Err(format!("{UNSHOWN_FILE} in {} has a line `{l}`", dir.display())),
+            }
+        })
+        .collect()
+}
+
+/// Everything the build learns from Verilator's output: the verdicts, the root's variables
+/// with whether a run observes each, and the waveform's signals a run that keeps only what it
+/// records cannot show (or why either is not known).
 pub struct Checked {
     pub verdicts: Verdicts,
     pub members: Result<Vec<Member>, String>,
+    pub unshown: Result<Vec<Unshown>, String>,
 }
 
 impl Checked {
@@ -64,12 +96,14 @@ impl Checked {
             Some(g) => {
                 let code: Vec<&str> = g.eval.iter().chain(&g.slow).map(String::as_str).collect();
                 let members = super::observed::members(&g.root, &code);
+                let trace: Vec<&str> = g.trace.iter().map(String::as_str).collect();
+                let unshown = super::observed::unshown(&g.root, &code, &trace, &g.syms);
                 let verdicts = Verdicts {
                     fast_forward: fast_forward_blocker(&g),
                     falling_edges: falling_edge_blocker(&g),
                     observed: members.as_ref().err().cloned(),
                 };
-                Checked { verdicts, members }
+                Checked { verdicts, members, unshown }
             }
             None => {
                 let why = "Verilator's output could not be read".to_string();
@@ -78,7 +112,7 @@ impl Checked {
                     falling_edges: Some(why.clone()),
                     observed: Some(why.clone()),
                 };
-                Checked { verdicts, members: Err(why) }
+                Checked { verdicts, members: Err(why.clone()), unshown: Err(why) }
             }
         }
     }
@@ -117,6 +151,10 @@ struct Generated {
     eval: Vec<String>,
     /// The `__Slow` ones (the initial blocks, the settling, the constructor).
     slow: Vec<String>,
+    /// The waveform's functions (`Vboard__Trace__*`).
+    trace: Vec<String>,
+    /// The symbol table's source (the public variables).
+    syms: String,
 }
 
 impl Generated {
@@ -135,7 +173,16 @@ impl Generated {
             .filter(|n| n.starts_with("Vboard___024root__DepSet_") && n.ends_with("__Slow.cpp"))
             .map(|n| read(n))
             .collect();
-        Some(Generated { root: read("Vboard___024root.h"), dpi: read("Vboard__Dpi.h"), eval, slow, names })
+        let trace = names.iter().filter(|n| n.starts_with("Vboard__Trace__")).map(|n| read(n)).collect();
+        Some(Generated {
+            root: read("Vboard___024root.h"),
+            dpi: read("Vboard__Dpi.h"),
+            syms: read("Vboard__Syms.cpp"),
+            eval,
+            slow,
+            trace,
+            names,
+        })
     }
 }
 
@@ -208,7 +255,7 @@ fn reads_clk(body: &str) -> bool {
 }
 
 /// The text without white space (Verilator breaks long expressions over lines).
-fn squeeze(s: &str) -> String {
+pub(super) fn squeeze(s: &str) -> String {
     s.chars().filter(|c| !c.is_whitespace()).collect()
 }
 

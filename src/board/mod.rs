@@ -9,5 +9,6 @@ pub mod lockstep;
 pub mod model;
 pub mod observed;
 mod replay;
+pub mod waveform;
 
 pub use botsim_core::board::*;

@@ -2,13 +2,15 @@
 //! `board_abi.h` behind a safe type that frees the model on drop.
 
 use std::ffi::{c_char, c_int, CStr, CString};
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use botsim_core::board::BoardError;
 use botsim_core::{MotCtl, Registers, Snapshot};
 
-use super::checks::Verdicts;
+use super::checks::{self, Verdicts};
 use super::iss::{Host, RawHost};
+use super::observed::Unshown;
+use super::waveform;
 
 /// One record of the harness's buffer, as `board_abi.h` lays it out; [`Event::of`] reads it.
 #[repr(C)]
@@ -145,6 +147,13 @@ pub struct BoardModel {
     fast_forward_blocker: Option<String>,
     observed_unknown: Option<String>,
     fast_forward_mode: FastForward,
+    /// The waveform's signals a [`FastForward::Recorded`] run cannot show, or why they are
+    /// not known (src/board/observed.rs).
+    unshown: Result<Vec<Unshown>, String>,
+    /// A waveform opened in such a run: its file and the one Verilator writes.
+    vcd_marking: Option<(PathBuf, PathBuf)>,
+    /// How many signals of the last waveform closed read `x`.
+    vcd_unshown: usize,
     // Dropped last: the functions above live in it.
     _lib: libloading::Library,
 }
@@ -210,6 +219,9 @@ impl BoardModel {
             fast_forward_blocker: verdicts.fast_forward,
             observed_unknown: verdicts.observed,
             fast_forward_mode: FastForward::Off,
+            unshown: checks::load_unshown(path.parent().unwrap_or(Path::new("."))),
+            vcd_marking: None,
+            vcd_unshown: 0,
             _lib: lib,
         })
     }
@@ -347,32 +359,61 @@ impl BoardModel {
         self.vcd_span.map(|(a, b)| (a, b.unwrap_or_else(|| self.time_ps())))
     }
 
-    /// Start a waveform of the whole design.
+    /// Start a waveform of the whole design. In a [`FastForward::Recorded`] run, the signals
+    /// that read what the run did not simulate are `x` in it (src/board/waveform.rs); Verilator
+    /// writes it under a temporary name until [`BoardModel::close_vcd`].
     pub fn open_vcd(&mut self, path: &Path) -> Result<(), BoardError> {
+        let mut target = path.to_path_buf();
         if self.fast_forward_mode == FastForward::Recorded {
-            return Err(BoardError::plain(
-                "a waveform cannot begin in a run whose fast-forward keeps only what the run records \
-                 (the parts nothing recorded reads are not simulated)",
-            ));
+            if let Err(why) = &self.unshown {
+                return Err(BoardError::plain(format!(
+                    "a waveform cannot begin in a run whose fast-forward keeps only what the run records: \
+                     which of its signals such a run can show is not known ({why})"
+                )));
+            }
+            let name = path.file_name().unwrap_or_default().to_string_lossy();
+            target = path.with_file_name(format!(".{name}.part"));
         }
-        let c = CString::new(path.as_os_str().as_encoded_bytes())
+        let c = CString::new(target.as_os_str().as_encoded_bytes())
             .map_err(|_| BoardError::at(path, 0, 0, "bad file name"))?;
         // SAFETY: ptr is live; the path is copied.
         if unsafe { (self.api.open_vcd)(self.ptr, c.as_ptr()) } == 0 {
             return Err(BoardError::at(path, 0, 0, "cannot open the waveform file"));
+        }
+        if target != path {
+            self.vcd_marking = Some((path.to_path_buf(), target));
         }
         self.vcd_span = Some((self.time_ps(), None));
         Ok(())
     }
 
     /// Stop the waveform (flushes and closes the file).
-    pub fn close_vcd(&mut self) {
+    pub fn close_vcd(&mut self) -> Result<(), BoardError> {
         let now = self.time_ps();
         if let Some((_, end @ None)) = &mut self.vcd_span {
             *end = Some(now);
         }
         // SAFETY: ptr is live.
         unsafe { (self.api.close_vcd)(self.ptr) }
+        if let Some((path, part)) = self.vcd_marking.take() {
+            let unshown = self.unshown.as_deref().unwrap_or_default();
+            let marked = waveform::mark_unshown(&part, &path, unshown);
+            let _ = std::fs::remove_file(&part);
+            self.vcd_unshown = marked.map_err(|e| BoardError::at(&path, 0, 0, e))?;
+        }
+        Ok(())
+    }
+
+    /// Why a waveform in a [`FastForward::Recorded`] run cannot be written (which of its
+    /// signals such a run can show is not known), or `None`.
+    pub fn unshown_unknown(&self) -> Option<&str> {
+        self.unshown.as_ref().err().map(String::as_str)
+    }
+
+    /// How many signals of the last waveform closed are `x` (they read what a
+    /// [`FastForward::Recorded`] run did not simulate).
+    pub fn vcd_unshown(&self) -> usize {
+        self.vcd_unshown
     }
 }
 
@@ -380,5 +421,9 @@ impl Drop for BoardModel {
     fn drop(&mut self) {
         // SAFETY: created by board_new, freed once.
         unsafe { (self.api.free)(self.ptr) }
+        // A waveform never closed (an error ended the run) leaves no file.
+        if let Some((_, part)) = self.vcd_marking.take() {
+            let _ = std::fs::remove_file(part);
+        }
     }
 }

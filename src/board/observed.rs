@@ -31,6 +31,8 @@
 
 use std::collections::{HashMap, HashSet};
 
+use super::checks::squeeze;
+
 /// The top's outputs the harness reads on every evaluation of a run (harness.cpp's records and
 /// the fast-forward's counter); the VGA pins are read only when frames are recorded, and such
 /// runs compare the whole state.
@@ -50,6 +52,11 @@ pub const HARNESS_READS: &[&str] = &[
     "bot_cycles",
 ];
 
+/// A debug build's variables of each KCPSM6 that a waveform shows (the instruction text, the
+/// registers and flags, in rtl/board/kcpsm6_iss.v), which a run keeps exact as if recorded:
+/// the ends of their names, the first one naming the core.
+const DEBUG_READS: &[&str] = &["__DOT__kcpsm6_opcode", "__DOT__active_registers", "__DOT__flags"];
+
 /// One variable of the root object.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Member {
@@ -61,46 +68,177 @@ pub struct Member {
 /// Every variable of the root (from its header `root`), each with whether a run observes it,
 /// from the evaluation's files `code`; or why the analysis cannot tell.
 pub fn members(root: &str, code: &[&str]) -> Result<Vec<Member>, String> {
-    let names = root_members(root)?;
-    let mut bodies: HashMap<&str, &str> = HashMap::new();
-    for c in code {
-        for (name, body) in super::checks::functions(c) {
-            bodies.insert(name, body);
+    let a = Analysis::of(root, code)?;
+    Ok(a.names.iter().map(|name| Member { name: name.clone(), observed: a.observed(name) }).collect())
+}
+
+/// A signal of the waveform (a code of Verilator's trace, as its tracing functions number it)
+/// that a run keeping only what it records cannot show.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Unshown {
+    pub code: u32,
+    pub width: u32,
+}
+
+/// The waveform's signals that a run which compares and puts back only the observed variables
+/// (and does not run the clocks that drive only the rest) cannot show: each one whose value
+/// reads a variable that no record observes and that the evaluation or the harness writes.
+/// The rest are exact at every moment of such a run: the observed variables are, and a
+/// variable nothing writes after the initial blocks (a ROM's contents, a parameter) is too.
+/// `code`: the evaluation's files; `trace`: Verilator's tracing files (`Vboard__Trace__*`);
+/// `syms`: its symbol table (`Vboard__Syms.cpp`: the public variables, which the harness may
+/// write).
+///
+/// ```
+/// let root = "class Vboard___024root final : public VerilatedModule {\n  public:\n    struct {\n        VL_IN8(clk,0,0);\n        VL_OUT16(led,15,0);\n        CData/*0:0*/ a;\n        CData/*0:0*/ b;\n        CData/*0:0*/ __Vtrigrprev__TOP__clk;\n    };\n    VlTriggerVec<1> __VactTriggered;\n    VlTriggerVec<1> __VnbaTriggered;\n\n    // INTERNAL VARIABLES\n    Vboard__Syms* const vlSymsp;\n};\n";
+/// let eval = "void Vboard___024root___eval_triggers__act(Vboard___024root* vlSelf) {\n    vlSelf->__VactTriggered.at(0U) = ((IData)(vlSelf->clk) & (~ (IData)(vlSelf->__Vtrigrprev__TOP__clk)));\n    vlSelf->__Vtrigrprev__TOP__clk = vlSelf->clk;\n}\n\nvoid Vboard___024root___eval_nba(Vboard___024root* vlSelf) {\n    if (vlSelf->__VnbaTriggered.at(0U)) {\n        vlSelf->led = vlSelf->a;\n        vlSelf->b = (1U & (~ (IData)(vlSelf->b)));\n    }\n}\n\nvoid Vboard___024root___eval(Vboard___024root* vlSelf) {\n    Vboard___024root___eval_triggers__act(vlSelf);\n    Vboard___024root___eval_nba(vlSelf);\n}\n";
+/// let trace = "VL_ATTR_COLD void Vboard___024root__trace_full_sub_0(Vboard___024root* vlSelf, VerilatedVcd::Buffer* bufp) {\n    uint32_t* const oldp VL_ATTR_UNUSED = bufp->oldp(vlSymsp->__Vm_baseCode);\n    bufp->fullSData(oldp+1,(vlSelf->led),16);\n    bufp->fullBit(oldp+2,(vlSelf->a));\n    bufp->fullBit(oldp+3,(vlSelf->b));\n}\n";
+/// let unshown = botsim::board::observed::unshown(root, &[eval], &[trace], "").unwrap();
+/// // `b` toggles and nothing recorded reads it; `a` is never written (a constant).
+/// assert_eq!(unshown, [botsim::board::observed::Unshown { code: 3, width: 1 }]);
+/// ```
+pub fn unshown(root: &str, code: &[&str], trace: &[&str], syms: &str) -> Result<Vec<Unshown>, String> {
+    let mut a = Analysis::of(root, code)?;
+    // What the harness writes: the inputs and the public variables (the clocks' levels).
+    let mut written: HashSet<String> = root_inputs(root).into_iter().collect();
+    for line in syms.lines().filter(|l| l.contains("varInsert(") && l.contains("VLVF_PUB_RW")) {
+        if let Some(name) = line.split("&(TOP.").nth(1).and_then(|r| r.split(')').next()) {
+            written.insert(name.to_string());
         }
     }
-    let eval = *bodies.get("Vboard___024root___eval").ok_or("Verilator's evaluation function was not found")?;
-    let mut g = Graph::default();
-    // The scheduler: the functions it calls, which run in every evaluation (each decides on
-    // its triggers what else runs).
-    let entries = scheduler_calls(eval)?;
-    let mut todo: Vec<String> = entries.iter().map(|s| s.to_string()).collect();
-    let mut done: HashSet<String> = HashSet::new();
-    while let Some(f) = todo.pop() {
-        if !done.insert(f.clone()) {
-            continue;
-        }
-        let body = *bodies.get(f.as_str()).ok_or_else(|| format!("Verilator's function `{f}` was not found"))?;
-        let toks = tokens(body)?;
-        let mut p = Parser { g: &mut g, toks: &toks, fun: &f, locals: HashSet::new(), calls: Vec::new() };
-        let mut at = 0;
-        let ctrl = vec![p.g.node(&fun_node(&f))];
-        p.block(&mut at, &ctrl, false)?;
-        todo.append(&mut p.calls);
-    }
-    for r in HARNESS_READS {
-        if names.iter().any(|n| n == r) {
-            let id = g.node(&member_node(r));
-            g.roots.push(id);
-        }
-    }
-    let seen = g.ancestors();
-    Ok(names
-        .into_iter()
-        .map(|name| {
-            let observed = g.ids.get(&member_node(&name)).is_some_and(|&i| seen[i]);
-            Member { name, observed }
+    // Shown: observed, or never written after the initial blocks (no assignment reached from
+    // the evaluation gives it a predecessor: each has at least its function's).
+    let shown_member: HashSet<String> = a
+        .names
+        .iter()
+        .filter(|n| {
+            a.observed(n)
+                || (!written.contains(n.as_str())
+                    && !a.g.ids.get(&member_node(n)).is_some_and(|&i| !a.g.preds[i].is_empty()))
         })
-        .collect())
+        .cloned()
+        .collect();
+    let mut dumps = Vec::new();
+    for file in trace {
+        for (name, body) in super::checks::functions(file) {
+            if !name.starts_with("Vboard___024root__trace_full_sub_") {
+                continue;
+            }
+            // The function's codes are the declarations' (not the change functions' `+ 1`).
+            if !squeeze(body).contains("oldpVL_ATTR_UNUSED=bufp->oldp(vlSymsp->__Vm_baseCode);") {
+                return Err(format!("Verilator's waveform function `{name}` numbers its signals another way"));
+            }
+            let toks = tokens(body)?;
+            let mut p = Parser {
+                g: &mut a.g,
+                toks: &toks,
+                fun: name,
+                locals: HashSet::new(),
+                calls: Vec::new(),
+                dumps: Some(Vec::new()),
+            };
+            let mut at = 0;
+            p.block(&mut at, &[], false)?;
+            dumps.extend(p.dumps.take().unwrap_or_default());
+        }
+    }
+    if dumps.is_empty() {
+        return Err("Verilator's waveform functions were not found".into());
+    }
+    let keys: HashMap<usize, &str> = a.g.ids.iter().map(|(k, &i)| (i, k.as_str())).collect();
+    // A value is shown when every variable it reads is, through the function's locals.
+    let shown = |vars: &[usize]| {
+        let mut stack = vars.to_vec();
+        let mut seen = HashSet::new();
+        while let Some(i) = stack.pop() {
+            if !seen.insert(i) {
+                continue;
+            }
+            match keys.get(&i).copied().unwrap_or("") {
+                k if k.starts_with("m:") => {
+                    if !shown_member.contains(&k[2..]) {
+                        return false;
+                    }
+                }
+                k if k.starts_with("l:") => stack.extend(a.g.preds[i].iter().copied()),
+                k if k.starts_with("f:Vboard___024root__trace_") => {}
+                _ => return false,
+            }
+        }
+        true
+    };
+    let mut out: Vec<Unshown> = dumps
+        .iter()
+        .filter(|d| d.opaque || !shown(&d.vars))
+        .map(|d| Unshown { code: d.code, width: d.width })
+        .collect();
+    out.sort_by_key(|u| u.code);
+    out.dedup();
+    Ok(out)
+}
+
+/// The dependency graph of the evaluation and what a run observes of it.
+struct Analysis {
+    /// The root's variables.
+    names: Vec<String>,
+    g: Graph,
+    /// `seen[node]`: a record depends on it.
+    seen: Vec<bool>,
+}
+
+impl Analysis {
+    fn of(root: &str, code: &[&str]) -> Result<Analysis, String> {
+        let names = root_members(root)?;
+        let mut bodies: HashMap<&str, &str> = HashMap::new();
+        for c in code {
+            for (name, body) in super::checks::functions(c) {
+                bodies.insert(name, body);
+            }
+        }
+        let eval = *bodies.get("Vboard___024root___eval").ok_or("Verilator's evaluation function was not found")?;
+        let mut g = Graph::default();
+        // The scheduler: the functions it calls, which run in every evaluation (each decides
+        // on its triggers what else runs).
+        let entries = scheduler_calls(eval)?;
+        let mut todo: Vec<String> = entries.iter().map(|s| s.to_string()).collect();
+        let mut done: HashSet<String> = HashSet::new();
+        while let Some(f) = todo.pop() {
+            if !done.insert(f.clone()) {
+                continue;
+            }
+            let body = *bodies.get(f.as_str()).ok_or_else(|| format!("Verilator's function `{f}` was not found"))?;
+            let toks = tokens(body)?;
+            let mut p =
+                Parser { g: &mut g, toks: &toks, fun: &f, locals: HashSet::new(), calls: Vec::new(), dumps: None };
+            let mut at = 0;
+            let ctrl = vec![p.g.node(&fun_node(&f))];
+            p.block(&mut at, &ctrl, false)?;
+            todo.append(&mut p.calls);
+        }
+        for r in HARNESS_READS {
+            if names.iter().any(|n| n == r) {
+                let id = g.node(&member_node(r));
+                g.roots.push(id);
+            }
+        }
+        // A debug build's view of each KCPSM6, kept exact so that a waveform opened after a
+        // skip shows it.
+        for core in names.iter().filter_map(|n| n.strip_suffix(DEBUG_READS[0])) {
+            for r in DEBUG_READS {
+                let name = format!("{core}{r}");
+                if names.contains(&name) {
+                    let id = g.node(&member_node(&name));
+                    g.roots.push(id);
+                }
+            }
+        }
+        let seen = g.ancestors();
+        Ok(Analysis { names, g, seen })
+    }
+
+    fn observed(&self, name: &str) -> bool {
+        self.g.ids.get(&member_node(name)).is_some_and(|&i| self.seen[i])
+    }
 }
 
 /// The functions `___eval` calls (the scheduler's regions), checking that it touches nothing
@@ -209,6 +347,17 @@ fn root_members(header: &str) -> Result<Vec<String>, String> {
         return Err("the root's variables were not found".into());
     }
     Ok(out)
+}
+
+/// The root's inputs (the harness drives them).
+fn root_inputs(header: &str) -> Vec<String> {
+    header
+        .lines()
+        .map(str::trim)
+        .filter(|l| l.starts_with("VL_IN"))
+        .filter_map(|l| l.split(['(', ',']).nth(1))
+        .map(|n| n.trim().to_string())
+        .collect()
 }
 
 fn member_node(name: &str) -> String {
@@ -392,12 +541,24 @@ struct Named {
     calls: Vec<String>,
 }
 
+/// A signal a waveform function dumps: `bufp->fullCData(oldp+code, value, width)`.
+struct Dump {
+    code: u32,
+    width: u32,
+    /// What its value names.
+    vars: Vec<usize>,
+    /// Its value calls something (not a plain expression of variables).
+    opaque: bool,
+}
+
 struct Parser<'a, 'g> {
     g: &'g mut Graph,
     toks: &'a [Tok<'a>],
     fun: &'a str,
     locals: HashSet<&'a str>,
     calls: Vec<String>,
+    /// In a waveform function: the signals it dumps.
+    dumps: Option<Vec<Dump>>,
 }
 
 impl<'a> Parser<'a, '_> {
@@ -556,6 +717,15 @@ impl<'a> Parser<'a, '_> {
 
     /// A declaration, an assignment or a call: tokens `from..to` (the `;` excluded).
     fn simple(&mut self, from: usize, to: usize, ctrl: &[usize]) -> Result<(), String> {
+        if self.dumps.is_some() {
+            if let (Tok::Id("bufp"), Tok::P("->"), Tok::Id(f), Tok::P("(")) =
+                (self.tok(from), self.tok(from + 1), self.tok(from + 2), self.tok(from + 3))
+            {
+                if f.starts_with("full") && self.close(from + 3)? == to {
+                    return self.dump(f, from + 4, to - 1);
+                }
+            }
+        }
         // The top-level assignment operator, if any.
         let mut op = None;
         let mut i = from;
@@ -610,6 +780,48 @@ impl<'a> Parser<'a, '_> {
                 self.effects(&named, &targets, ctrl);
             }
         }
+        Ok(())
+    }
+
+    /// A waveform function's `bufp->full*(oldp+code, value[, width])`, its arguments `from..to`.
+    fn dump(&mut self, f: &str, from: usize, to: usize) -> Result<(), String> {
+        // The arguments, split at the commas outside brackets.
+        let mut args = Vec::new();
+        let (mut start, mut i) = (from, from);
+        while i < to {
+            match self.tok(i) {
+                Tok::P("(" | "[" | "{") => i = self.close(i)?,
+                Tok::P(",") => {
+                    args.push((start, i));
+                    i += 1;
+                    start = i;
+                }
+                _ => i += 1,
+            }
+        }
+        args.push((start, to));
+        let num = |t: Tok| match t {
+            Tok::Num(n) => n.trim_end_matches(['U', 'L']).parse::<u32>().ok(),
+            _ => None,
+        };
+        let code = match (args.first(), args.len()) {
+            (Some(&(a, b)), 2 | 3)
+                if b == a + 3 && self.tok(a) == Tok::Id("oldp") && self.tok(a + 1) == Tok::P("+") =>
+            {
+                num(self.tok(a + 2))
+            }
+            _ => None,
+        };
+        let width = match (f, args.get(2)) {
+            ("fullBit", None) => Some(1),
+            ("fullDouble", None) => Some(64),
+            (_, Some(&(a, b))) if b == a + 1 => num(self.tok(a)),
+            _ => None,
+        };
+        let (Some(code), Some(width)) = (code, width) else { return Err(self.unknown(from - 4)) };
+        let value = self.named(args[1].0, args[1].1)?;
+        let opaque = value.outside || !value.calls.is_empty() || !value.outputs.is_empty();
+        self.dumps.get_or_insert_with(Vec::new).push(Dump { code, width, vars: value.vars, opaque });
         Ok(())
     }
 
@@ -779,6 +991,27 @@ mod tests {
         assert!(members(ROOT, &[&c]).unwrap_err().contains("VnoInFunc_count"));
         let c = code("").replace("vlSelf->__VactIterCount = 0U;", "vlSelf->frames = 0U;");
         assert!(members(ROOT, &[&c]).unwrap_err().contains("scheduler reads `frames`"));
+    }
+
+    #[test]
+    fn a_waveform_shows_what_is_observed_or_never_written() {
+        // The test board's waveform: the display, the VGA pixel, the pixel clock (written by
+        // the harness: public), a cell of the map (never written), one value through a local.
+        let trace = "VL_ATTR_COLD void Vboard___024root__trace_full_sub_0(Vboard___024root* vlSelf, VerilatedVcd::Buffer* bufp) {\n    uint32_t* const oldp VL_ATTR_UNUSED = bufp->oldp(vlSymsp->__Vm_baseCode);\n    VlWide<3>/*95:0*/ __Vtemp_1;\n    bufp->fullCData(oldp+1,(vlSelf->an),8);\n    bufp->fullCData(oldp+2,(vlSelf->vga_r),4);\n    bufp->fullBit(oldp+3,(vlSelf->q25));\n    bufp->fullCData(oldp+4,(vlSelf->cells[3]),2);\n    __Vtemp_1[0U] = vlSelf->col;\n    bufp->fullWData(oldp+5,(__Vtemp_1),96);\n    bufp->fullCData(oldp+6,(vlSelf->frames),8);\n}\n";
+        let syms = "        __Vscope_top__clkgen.varInsert(__Vfinal,\"q\", &(TOP.q25), false, VLVT_UINT8,VLVD_NODIR|VLVF_PUB_RW,0);\n";
+        let codes = |syms: &str| -> Vec<u32> {
+            unshown(ROOT, &[&code("")], &[trace], syms).unwrap().iter().map(|u| u.code).collect()
+        };
+        // `frames` is never written by this board: a constant, like `cells`.
+        assert_eq!(codes(syms), [2, 3, 5]);
+        // Without the symbol table's word, the pixel clock would pass for a constant.
+        assert_eq!(codes(""), [2, 5]);
+        let wide = unshown(ROOT, &[&code("")], &[trace], syms).unwrap();
+        assert_eq!(wide.iter().find(|u| u.code == 5).map(|u| u.width), Some(96));
+        // Another way of numbering the signals is not read.
+        let other = trace.replace("__Vm_baseCode)", "__Vm_baseCode + 1)");
+        assert!(unshown(ROOT, &[&code("")], &[&other], syms).unwrap_err().contains("numbers its signals another way"));
+        assert!(unshown(ROOT, &[&code("")], &[], syms).is_err());
     }
 
     #[test]

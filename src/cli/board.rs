@@ -112,6 +112,11 @@ pub struct Args {
     /// With --vcd: end the waveform after sample N (its pulse included), at cycle Nc, or at a time
     #[arg(long, value_name = "N|Nc|TIME", requires = "vcd")]
     trace_to: Option<String>,
+    /// With --vcd --trace-from on a board whose other clocks drive only what a run does not
+    /// record (a VGA design): simulate every edge up to the waveform so that it shows those
+    /// parts too (without it, the run skips ahead as it does without a waveform and they read x)
+    #[arg(long, requires = "trace_from")]
+    vcd_all_signals: bool,
     /// What runs every KCPSM6 of the design (the team's and the bot's): rtl (botsim's RTL core
     /// under Verilator) or iss (the cycle-exact instruction-set simulator behind the same
     /// ports: only the rest of the design is evaluated by Verilator; same results, faster)
@@ -580,10 +585,26 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     let mut fast_forward_off: Option<String> = None;
     if let Sim::One(m) = &mut model {
         if fast_forward {
-            // A waveform window later shows every variable: compare them all until then.
-            let mode = if a.vcd.is_some() { FastForward::Whole } else { FastForward::Recorded };
+            // A waveform window later shows every variable: compare them all until then. A
+            // board with another clock cannot; unless asked to, it skips as without a
+            // waveform, which then shows what the run did not simulate as x.
+            let mut mode = if a.vcd.is_some() { FastForward::Whole } else { FastForward::Recorded };
             fast_forward_off = m.fast_forward_blocker().map(str::to_string);
-            if fast_forward_off.is_none() && !m.fast_forward(mode) {
+            let mut on = fast_forward_off.is_none() && m.fast_forward(mode);
+            if !on
+                && fast_forward_off.is_none()
+                && mode == FastForward::Whole
+                && !vcd_open
+                && !a.vcd_all_signals
+                && m.unshown_unknown().is_none()
+            {
+                mode = FastForward::Recorded;
+                on = m.fast_forward(mode);
+                if on {
+                    say("note: the waveform shows x for the parts of the design the run does not record (another clock drives them, and they are not simulated before it); --vcd-all-signals simulates every edge to show them".into());
+                }
+            }
+            if fast_forward_off.is_none() && !on {
                 let why = match (mode, m.observed_unknown()) {
                     (FastForward::Whole, _) => "a waveform later shows every variable".to_string(),
                     (_, Some(unknown)) => format!("what a run observes of it is not known: {unknown}"),
@@ -760,7 +781,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
                             model.main().open_vcd(v).map_err(|e| e.to_string())?;
                             vcd_open = true;
                         } else if vcd_open && (vcd_to == Some(Mark::Time(t)) || vcd_close_at == Some(t)) {
-                            model.main().close_vcd();
+                            model.main().close_vcd().map_err(|e| e.to_string())?;
                             (vcd_open, vcd_done) = (false, true);
                         }
                     }
@@ -797,7 +818,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         return Err(format!("the design stopped: {f}"));
     }
     let finished = if stopped.is_some() { Some("break") } else { finished };
-    model.main().close_vcd();
+    model.main().close_vcd().map_err(|e| e.to_string())?;
     if let (Some(v), Some((start, end))) = (&a.vcd, model.main().vcd_span()) {
         let view = save_file_view(start, end, stopped.as_ref());
         write_save_file(v, &plan, &maps, cpu == CpuModel::RtlProbed, main_bot == BotKind::Model, view)?;

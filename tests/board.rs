@@ -927,7 +927,7 @@ fn a_late_waveform_of_a_vga_design_skips_ahead_and_shows_x_for_what_the_run_did_
     // edge), and with every edge simulated up to it (--vcd-all-signals). Every signal the
     // first shows equals the second's at every change; the VGA part reads x.
     let dir = tempfile::tempdir().unwrap();
-    let mut changes = Vec::new();
+    let (mut changes, mut x_counts) = (Vec::new(), Vec::new());
     for all in [false, true] {
         let vcd = dir.path().join(format!("{all}.vcd"));
         let mut args = vec![
@@ -948,6 +948,7 @@ fn a_late_waveform_of_a_vga_design_skips_ahead_and_shows_x_for_what_the_run_did_
         let skipped = s["fast_forward"]["skipped_seconds"].as_f64().unwrap();
         assert_eq!(skipped > 0.04, !all, "{s}");
         changes.push(vcd_changes(&vcd));
+        x_counts.push(s["vcd_x_signals"].as_u64().unwrap());
     }
     let (skipping, every_edge) = (&changes[0], &changes[1]);
     let x: Vec<&String> =
@@ -978,6 +979,8 @@ fn a_late_waveform_of_a_vga_design_skips_ahead_and_shows_x_for_what_the_run_did_
         compared += 1;
     }
     assert!(compared > 100 && x.len() > 20, "{compared} signals compared, {} x", x.len());
+    // The summary counts them, an alias's names once (46 signals under 132 names).
+    assert!(x_counts[0] > 20 && x_counts[0] as usize <= x.len() && x_counts[1] == 0, "{x_counts:?}, {}", x.len());
 }
 
 /// Every signal of a VCD file (named as GTKWave names them) with its value changes (time,

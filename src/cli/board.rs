@@ -872,6 +872,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
             "vga_frames": frames_seen,
             "vga_frames_written": frames_written,
             "vga_unknown_frames": vga.unknown,
+            "vcd_x_signals": model.main().vcd_unshown(),
             "evaluations": evals,
             "wall_seconds": wall,
             "build_seconds": built.seconds,

@@ -33,7 +33,7 @@
 
 use std::path::Path;
 
-use super::observed::{Member, Unshown};
+use super::observed::{Analysis, Member, Unshown};
 
 /// What a build may assume, kept in its folder: for each, why not (`None`: it may).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
@@ -95,9 +95,10 @@ impl Checked {
         match Generated::read(obj) {
             Some(g) => {
                 let code: Vec<&str> = g.eval.iter().chain(&g.slow).map(String::as_str).collect();
-                let members = super::observed::members(&g.root, &code);
+                let analysis = Analysis::of(&g.root, &code);
+                let members = analysis.as_ref().map(Analysis::members).map_err(String::clone);
                 let trace: Vec<&str> = g.trace.iter().map(String::as_str).collect();
-                let unshown = super::observed::unshown(&g.root, &code, &trace, &g.syms);
+                let unshown = analysis.and_then(|a| a.unshown(&g.root, &trace, &g.syms));
                 let verdicts = Verdicts {
                     fast_forward: fast_forward_blocker(&g),
                     falling_edges: falling_edge_blocker(&g),

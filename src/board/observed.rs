@@ -68,8 +68,7 @@ pub struct Member {
 /// Every variable of the root (from its header `root`), each with whether a run observes it,
 /// from the evaluation's files `code`; or why the analysis cannot tell.
 pub fn members(root: &str, code: &[&str]) -> Result<Vec<Member>, String> {
-    let a = Analysis::of(root, code)?;
-    Ok(a.names.iter().map(|name| Member { name: name.clone(), observed: a.observed(name) }).collect())
+    Ok(Analysis::of(root, code)?.members())
 }
 
 /// A signal of the waveform (a code of Verilator's trace, as its tracing functions number it)
@@ -98,87 +97,11 @@ pub struct Unshown {
 /// assert_eq!(unshown, [botsim::board::observed::Unshown { code: 3, width: 1 }]);
 /// ```
 pub fn unshown(root: &str, code: &[&str], trace: &[&str], syms: &str) -> Result<Vec<Unshown>, String> {
-    let mut a = Analysis::of(root, code)?;
-    // What the harness writes: the inputs and the public variables (the clocks' levels).
-    let mut written: HashSet<String> = root_inputs(root).into_iter().collect();
-    for line in syms.lines().filter(|l| l.contains("varInsert(") && l.contains("VLVF_PUB_RW")) {
-        if let Some(name) = line.split("&(TOP.").nth(1).and_then(|r| r.split(')').next()) {
-            written.insert(name.to_string());
-        }
-    }
-    // Shown: observed, or never written after the initial blocks (no assignment reached from
-    // the evaluation gives it a predecessor: each has at least its function's).
-    let shown_member: HashSet<String> = a
-        .names
-        .iter()
-        .filter(|n| {
-            a.observed(n)
-                || (!written.contains(n.as_str())
-                    && !a.g.ids.get(&member_node(n)).is_some_and(|&i| !a.g.preds[i].is_empty()))
-        })
-        .cloned()
-        .collect();
-    let mut dumps = Vec::new();
-    for file in trace {
-        for (name, body) in super::checks::functions(file) {
-            if !name.starts_with("Vboard___024root__trace_full_sub_") {
-                continue;
-            }
-            // The function's codes are the declarations' (not the change functions' `+ 1`).
-            if !squeeze(body).contains("oldpVL_ATTR_UNUSED=bufp->oldp(vlSymsp->__Vm_baseCode);") {
-                return Err(format!("Verilator's waveform function `{name}` numbers its signals another way"));
-            }
-            let toks = tokens(body)?;
-            let mut p = Parser {
-                g: &mut a.g,
-                toks: &toks,
-                fun: name,
-                locals: HashSet::new(),
-                calls: Vec::new(),
-                dumps: Some(Vec::new()),
-            };
-            let mut at = 0;
-            p.block(&mut at, &[], false)?;
-            dumps.extend(p.dumps.take().unwrap_or_default());
-        }
-    }
-    if dumps.is_empty() {
-        return Err("Verilator's waveform functions were not found".into());
-    }
-    let keys: HashMap<usize, &str> = a.g.ids.iter().map(|(k, &i)| (i, k.as_str())).collect();
-    // A value is shown when every variable it reads is, through the function's locals.
-    let shown = |vars: &[usize]| {
-        let mut stack = vars.to_vec();
-        let mut seen = HashSet::new();
-        while let Some(i) = stack.pop() {
-            if !seen.insert(i) {
-                continue;
-            }
-            match keys.get(&i).copied().unwrap_or("") {
-                k if k.starts_with("m:") => {
-                    if !shown_member.contains(&k[2..]) {
-                        return false;
-                    }
-                }
-                k if k.starts_with("l:") => stack.extend(a.g.preds[i].iter().copied()),
-                k if k.starts_with("f:Vboard___024root__trace_") => {}
-                _ => return false,
-            }
-        }
-        true
-    };
-    let mut out: Vec<Unshown> = dumps
-        .iter()
-        .filter(|d| d.opaque || !shown(&d.vars))
-        .map(|d| Unshown { code: d.code, width: d.width })
-        .collect();
-    out.sort_by_key(|u| u.code);
-    out.dedup();
-    Ok(out)
+    Analysis::of(root, code)?.unshown(root, trace, syms)
 }
 
 /// The dependency graph of the evaluation and what a run observes of it.
-struct Analysis {
+pub(super) struct Analysis {
     /// The root's variables.
     names: Vec<String>,
     g: Graph,
@@ -187,7 +110,7 @@ struct Analysis {
 }
 
 impl Analysis {
-    fn of(root: &str, code: &[&str]) -> Result<Analysis, String> {
+    pub(super) fn of(root: &str, code: &[&str]) -> Result<Analysis, String> {
         let names = root_members(root)?;
         let mut bodies: HashMap<&str, &str> = HashMap::new();
         for c in code {
@@ -238,6 +161,94 @@ impl Analysis {
 
     fn observed(&self, name: &str) -> bool {
         self.g.ids.get(&member_node(name)).is_some_and(|&i| self.seen[i])
+    }
+
+    /// Every variable of the root with whether a run observes it.
+    pub(super) fn members(&self) -> Vec<Member> {
+        self.names.iter().map(|name| Member { name: name.clone(), observed: self.observed(name) }).collect()
+    }
+
+    /// [`unshown`] for this analysis (its graph gains the waveform functions' locals).
+    pub(super) fn unshown(mut self, root: &str, trace: &[&str], syms: &str) -> Result<Vec<Unshown>, String> {
+        let a = &mut self;
+        // What the harness writes: the inputs and the public variables (the clocks' levels);
+        // Verilator's own variables (the scheduler's) count as written too.
+        let mut written: HashSet<String> = root_inputs(root).into_iter().collect();
+        written.extend(a.names.iter().filter(|n| n.starts_with("__V")).cloned());
+        for line in syms.lines().filter(|l| l.contains("varInsert(") && l.contains("VLVF_PUB_RW")) {
+            if let Some(name) = line.split("&(TOP.").nth(1).and_then(|r| r.split(')').next()) {
+                written.insert(name.to_string());
+            }
+        }
+        // Shown: observed, or never written after the initial blocks (no assignment reached from
+        // the evaluation gives it a predecessor: each has at least its function's).
+        let shown_member: HashSet<String> = a
+            .names
+            .iter()
+            .filter(|n| {
+                a.observed(n)
+                    || (!written.contains(n.as_str())
+                        && !a.g.ids.get(&member_node(n)).is_some_and(|&i| !a.g.preds[i].is_empty()))
+            })
+            .cloned()
+            .collect();
+        let mut dumps = Vec::new();
+        for file in trace {
+            for (name, body) in super::checks::functions(file) {
+                if !name.starts_with("Vboard___024root__trace_full_sub_") {
+                    continue;
+                }
+                // The function's codes are the declarations' (not the change functions' `+ 1`).
+                if !squeeze(body).contains("oldpVL_ATTR_UNUSED=bufp->oldp(vlSymsp->__Vm_baseCode);") {
+                    return Err(format!("Verilator's waveform function `{name}` numbers its signals another way"));
+                }
+                let toks = tokens(body)?;
+                let mut p = Parser {
+                    g: &mut a.g,
+                    toks: &toks,
+                    fun: name,
+                    locals: HashSet::new(),
+                    calls: Vec::new(),
+                    dumps: Some(Vec::new()),
+                };
+                let mut at = 0;
+                p.block(&mut at, &[], false)?;
+                dumps.extend(p.dumps.take().unwrap_or_default());
+            }
+        }
+        if dumps.is_empty() {
+            return Err("Verilator's waveform functions were not found".into());
+        }
+        let keys: HashMap<usize, &str> = a.g.ids.iter().map(|(k, &i)| (i, k.as_str())).collect();
+        // A value is shown when every variable it reads is, through the function's locals.
+        let shown = |vars: &[usize]| {
+            let mut stack = vars.to_vec();
+            let mut seen = HashSet::new();
+            while let Some(i) = stack.pop() {
+                if !seen.insert(i) {
+                    continue;
+                }
+                match keys.get(&i).copied().unwrap_or("") {
+                    k if k.starts_with("m:") => {
+                        if !shown_member.contains(&k[2..]) {
+                            return false;
+                        }
+                    }
+                    k if k.starts_with("l:") => stack.extend(a.g.preds[i].iter().copied()),
+                    k if k.starts_with("f:Vboard___024root__trace_") => {}
+                    _ => return false,
+                }
+            }
+            true
+        };
+        let mut out: Vec<Unshown> = dumps
+            .iter()
+            .filter(|d| d.opaque || !shown(&d.vars))
+            .map(|d| Unshown { code: d.code, width: d.width })
+            .collect();
+        out.sort_by_key(|u| u.code);
+        out.dedup();
+        Ok(out)
     }
 }
 

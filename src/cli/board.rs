@@ -102,7 +102,8 @@ pub struct Args {
     /// dp, led in hex): the board's outputs edge for edge, as a waveform shows them
     #[arg(long, value_name = "FILE")]
     pins: Option<PathBuf>,
-    /// A waveform of the whole design
+    /// A waveform of the whole design (a window of a VGA design's opened later shows its VGA
+    /// part as x: see --vcd-all-signals)
     #[arg(long, value_name = "FILE")]
     vcd: Option<PathBuf>,
     /// With --vcd: start the waveform at bot sample N (its iteration in full), at cycle Nc of

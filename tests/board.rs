@@ -987,25 +987,7 @@ fn a_late_waveform_of_a_vga_design_skips_ahead_and_shows_x_for_what_the_run_did_
 /// value), an alias listed under each of its names.
 fn vcd_changes(path: &Path) -> std::collections::BTreeMap<String, Vec<(u64, String)>> {
     let mut parser = vcd::Parser::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
-    let header = parser.parse_header().unwrap();
-    let mut names: std::collections::HashMap<vcd::IdCode, Vec<String>> = Default::default();
-    fn walk(items: &[vcd::ScopeItem], path: &str, names: &mut std::collections::HashMap<vcd::IdCode, Vec<String>>) {
-        for item in items {
-            match item {
-                vcd::ScopeItem::Scope(s) => walk(&s.items, &format!("{path}{}.", s.identifier), names),
-                vcd::ScopeItem::Var(v) => {
-                    let range = match v.index {
-                        Some(vcd::ReferenceIndex::Range(a, b)) => format!("[{a}:{b}]"),
-                        Some(vcd::ReferenceIndex::BitSelect(a)) => format!("[{a}]"),
-                        None => String::new(),
-                    };
-                    names.entry(v.code).or_default().push(format!("{path}{}{range}", v.reference));
-                }
-                _ => {}
-            }
-        }
-    }
-    walk(&header.items, "", &mut names);
+    let names = vcd_names(&parser.parse_header().unwrap());
     let mut by_code: std::collections::HashMap<vcd::IdCode, Vec<(u64, String)>> = Default::default();
     let mut t = 0;
     for cmd in parser {
@@ -1024,6 +1006,29 @@ fn vcd_changes(path: &Path) -> std::collections::BTreeMap<String, Vec<(u64, Stri
         }
     }
     out
+}
+
+/// The names of each signal of a VCD header, as GTKWave gives them (`TOP.a.b.sig[7:0]`).
+fn vcd_names(header: &vcd::Header) -> std::collections::HashMap<vcd::IdCode, Vec<String>> {
+    fn walk(items: &[vcd::ScopeItem], path: &str, names: &mut std::collections::HashMap<vcd::IdCode, Vec<String>>) {
+        for item in items {
+            match item {
+                vcd::ScopeItem::Scope(s) => walk(&s.items, &format!("{path}{}.", s.identifier), names),
+                vcd::ScopeItem::Var(v) => {
+                    let range = match v.index {
+                        Some(vcd::ReferenceIndex::Range(a, b)) => format!("[{a}:{b}]"),
+                        Some(vcd::ReferenceIndex::BitSelect(a)) => format!("[{a}]"),
+                        None => String::new(),
+                    };
+                    names.entry(v.code).or_default().push(format!("{path}{}{range}", v.reference));
+                }
+                _ => {}
+            }
+        }
+    }
+    let mut names = Default::default();
+    walk(&header.items, "", &mut names);
+    names
 }
 
 /// Run an example design with and without the fast-forward; the same records, pin for pin.
@@ -1276,25 +1281,8 @@ fn a_run_counted_in_samples_stops_when_the_bot_stops_sampling() {
 
 /// The signals a VCD file declares, named as GTKWave names them (`TOP.a.b.sig[7:0]`).
 fn vcd_signals(path: &Path) -> std::collections::BTreeSet<String> {
-    use std::io::BufRead;
-    let mut scopes: Vec<String> = Vec::new();
-    let mut out = std::collections::BTreeSet::new();
-    for line in std::io::BufReader::new(std::fs::File::open(path).unwrap()).lines().map_while(Result::ok) {
-        let f: Vec<&str> = line.split_whitespace().collect();
-        match f.first() {
-            Some(&"$scope") => scopes.push(f[2].to_string()),
-            Some(&"$upscope") => {
-                scopes.pop();
-            }
-            Some(&"$var") => {
-                let range = if f.len() > 6 { f[5] } else { "" };
-                out.insert(format!("{}.{}{range}", scopes.join("."), f[4]));
-            }
-            Some(&"$enddefinitions") => break,
-            _ => {}
-        }
-    }
-    out
+    let mut parser = vcd::Parser::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    vcd_names(&parser.parse_header().unwrap()).into_values().flatten().collect()
 }
 
 #[test]

@@ -22,7 +22,8 @@
 //! harness then evaluates at rising edges only and, at the other moments, lets Verilator
 //! note the levels (its trigger function) without evaluating the design.
 //! [`Verdicts::falling_edges`] says why a design needs its falling edges evaluated: a trigger
-//! that is not a rising edge (`negedge`, a level, `@*` on a clock), or logic that reads the
+//! that is neither a rising edge nor any change of a variable the logic assigns (`negedge`, a
+//! level or `@*` on a clock or an input), or logic that reads the
 //! board clock's level.
 //!
 //! ```

@@ -1250,6 +1250,25 @@ fn falling_edges_are_evaluated_where_the_design_has_logic_on_them() {
 }
 
 #[test]
+fn clocks_made_from_a_generated_clocks_level_get_its_falling_edges_evaluated() {
+    // tests/board_designs/derived_clocks counts the rising edges of an MMCM's inverted output
+    // and of a BUFGCE-gated clock: the first rises when the generated clock falls, the
+    // second is computed from its level. Evaluating rising edges only would miss them (the
+    // counts then read 0x08 and 0x08 after 0.2 ms); the build sees the logic and keeps every
+    // edge, with the same LEDs and evaluations as --every-edge.
+    let run = |extra: Option<&str>| {
+        let mut args = vec!["tests/board_designs/derived_clocks", "--seconds", "0.0002", "--json"];
+        args.extend(extra);
+        let s = summary(&board(&args));
+        (s["leds"].as_u64().unwrap(), s["evaluations"].as_u64().unwrap())
+    };
+    let (leds, evaluations) = run(None);
+    assert_eq!((leds, evaluations), run(Some("--every-edge")));
+    // 65 MHz for 0.2 ms less the MMCM's lock: about 12,900 edges of each, both counters alike.
+    assert!(leds >> 8 == leds & 0xff && evaluations > 2 * 20_000, "{leds:#x}, {evaluations}");
+}
+
+#[test]
 fn a_run_counted_in_samples_stops_when_the_bot_stops_sampling() {
     // The CPU reset held from 60 ms holds the bot in reset too: --samples 3 would wait forever
     // for sample 3; the run gives up after 1 s of board time without a sample.

@@ -23,7 +23,9 @@
 //! note the levels (its trigger function) without evaluating the design.
 //! [`Verdicts::falling_edges`] says why a design needs its falling edges evaluated: a trigger
 //! that is neither a rising edge nor any change of a variable the logic assigns (`negedge`, a
-//! level or `@*` on a clock or an input), or logic that reads the
+//! level or `@*` on a clock or an input), logic that computes from a generated clock's level
+//! what a trigger or a record reads (an inverted or gated clock: `board::observed`'s
+//! dependency graph), or logic that reads the
 //! board clock's level.
 //!
 //! ```
@@ -98,11 +100,20 @@ impl Checked {
                 let code: Vec<&str> = g.eval.iter().chain(&g.slow).map(String::as_str).collect();
                 let analysis = Analysis::of(&g.root, &code);
                 let members = analysis.as_ref().map(Analysis::members).map_err(String::clone);
+                // Logic that computes from a clock's level what a trigger or a record reads (an
+                // inverted or gated clock): not known when the analysis is not.
+                let level = match &analysis {
+                    Ok(a) => a.clock_level_feeds(&g.syms).map(|v| {
+                        format!("the design computes `{v}` from a clock's level (an inverted or gated clock?)")
+                    }),
+                    Err(why) => Some(format!("what the design computes from its clocks' levels is not known: {why}")),
+                };
+                let falling_edges = falling_edge_blocker(&g).or(level);
                 let trace: Vec<&str> = g.trace.iter().map(String::as_str).collect();
                 let unshown = analysis.and_then(|a| a.unshown(&g.root, &trace, &g.syms));
                 let verdicts = Verdicts {
                     fast_forward: fast_forward_blocker(&g),
-                    falling_edges: falling_edge_blocker(&g),
+                    falling_edges,
                     observed: members.as_ref().err().cloned(),
                 };
                 Checked { verdicts, members, unshown }

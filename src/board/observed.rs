@@ -163,6 +163,38 @@ impl Analysis {
         self.g.ids.get(&member_node(name)).is_some_and(|&i| self.seen[i])
     }
 
+    /// A variable the logic computes from a clock's level (the board's `clk`, or a generated
+    /// clock's, which the harness writes: the public variables of `syms`) that feeds a trigger
+    /// or what a run records, if any: such a design changes at a moment when clocks only fall
+    /// (an inverted or gated clock rises there), so its falling edges must be evaluated.
+    pub(super) fn clock_level_feeds(&self, syms: &str) -> Option<String> {
+        let mut clocks: Vec<usize> = self.g.ids.get(&member_node("clk")).copied().into_iter().collect();
+        for name in public_rw(syms) {
+            clocks.extend(self.g.ids.get(&member_node(&name)).copied());
+        }
+        // Everything a trigger or a record depends on.
+        let mut g = Graph { ids: HashMap::new(), preds: self.g.preds.clone(), roots: self.g.roots.clone() };
+        g.roots.extend(self.g.ids.iter().filter(|(k, _)| k.starts_with("t:act:")).map(|(_, &i)| i));
+        let feeds = g.ancestors();
+        let mut found: Vec<&str> = self
+            .g
+            .ids
+            .iter()
+            .filter(|(k, &i)| {
+                // The trigger function's copy of the level (`__Vtrigrprev__`) is how a rising
+                // edge is found, not logic.
+                k.starts_with("m:")
+                    && !k.starts_with("m:__Vtrigrprev__")
+                    && feeds[i]
+                    && !clocks.contains(&i)
+                    && self.g.preds[i].iter().any(|p| clocks.contains(p))
+            })
+            .map(|(k, _)| &k[2..])
+            .collect();
+        found.sort();
+        found.first().map(|s| s.to_string())
+    }
+
     /// Every variable of the root with whether a run observes it.
     pub(super) fn members(&self) -> Vec<Member> {
         self.names.iter().map(|name| Member { name: name.clone(), observed: self.observed(name) }).collect()
@@ -175,11 +207,7 @@ impl Analysis {
         // Verilator's own variables (the scheduler's) count as written too.
         let mut written: HashSet<String> = root_inputs(root).into_iter().collect();
         written.extend(a.names.iter().filter(|n| n.starts_with("__V")).cloned());
-        for line in syms.lines().filter(|l| l.contains("varInsert(") && l.contains("VLVF_PUB_RW")) {
-            if let Some(name) = line.split("&(TOP.").nth(1).and_then(|r| r.split(')').next()) {
-                written.insert(name.to_string());
-            }
-        }
+        written.extend(public_rw(syms));
         // Shown: observed, or never written after the initial blocks (no assignment reached from
         // the evaluation gives it a predecessor: each has at least its function's).
         let shown_member: HashSet<String> = a
@@ -358,6 +386,16 @@ fn root_members(header: &str) -> Result<Vec<String>, String> {
         return Err("the root's variables were not found".into());
     }
     Ok(out)
+}
+
+/// The variables the symbol table `syms` (`Vboard__Syms.cpp`) makes public for writing: the
+/// generated clocks' levels, which the harness writes.
+fn public_rw(syms: &str) -> Vec<String> {
+    syms.lines()
+        .filter(|l| l.contains("varInsert(") && l.contains("VLVF_PUB_RW"))
+        .filter_map(|l| l.split("&(TOP.").nth(1).and_then(|r| r.split(')').next()))
+        .map(str::to_string)
+        .collect()
 }
 
 /// The root's inputs (the harness drives them).

@@ -173,9 +173,9 @@ impl Analysis {
             clocks.extend(self.g.ids.get(&member_node(&name)).copied());
         }
         // Everything a trigger or a record depends on.
-        let mut g = Graph { ids: HashMap::new(), preds: self.g.preds.clone(), roots: self.g.roots.clone() };
-        g.roots.extend(self.g.ids.iter().filter(|(k, _)| k.starts_with("t:act:")).map(|(_, &i)| i));
-        let feeds = g.ancestors();
+        let mut roots = self.g.roots.clone();
+        roots.extend(self.g.ids.iter().filter(|(k, _)| k.starts_with("t:act:")).map(|(_, &i)| i));
+        let feeds = self.g.ancestors_of(&roots);
         let mut found: Vec<&str> = self
             .g
             .ids
@@ -438,8 +438,13 @@ impl Graph {
 
     /// Every node a root depends on, the roots included.
     fn ancestors(&self) -> Vec<bool> {
+        self.ancestors_of(&self.roots)
+    }
+
+    /// Every node one of `roots` depends on, `roots` included.
+    fn ancestors_of(&self, roots: &[usize]) -> Vec<bool> {
         let mut seen = vec![false; self.preds.len()];
-        let mut stack = self.roots.clone();
+        let mut stack = roots.to_vec();
         while let Some(i) = stack.pop() {
             if std::mem::replace(&mut seen[i], true) {
                 continue;

@@ -440,7 +440,12 @@ fn module(p: &mut Parser) -> Option<Module> {
                 p.i = semi;
                 continue;
             }
-            Some(Tok::Ident(w)) if matches!(w.as_str(), "begin" | "else" | "generate" | "end") => {
+            Some(Tok::Ident(w))
+                if matches!(
+                    w.as_str(),
+                    "begin" | "else" | "generate" | "end" | "endgenerate" | "endcase" | "endfunction" | "endtask"
+                ) =>
+            {
                 // `begin : label` — skip the label.
                 p.i += 1;
                 if p.is(0, ':') && p.ident(1).is_some() {
@@ -700,6 +705,20 @@ mod tests {
         assert_eq!(names, [("BUFG", "b0", 9), ("kcpsm6", "cpu", 12), ("kcpsm6", "cpu2", 12)]);
         assert_eq!(m.instances[0].connections[1], ("O".into(), "".into()));
         assert_eq!(m.instances[1].params[0], ("hwbuild".into(), "8'h00".into()));
+    }
+
+    #[test]
+    fn an_instance_right_after_the_end_of_a_block() {
+        // No `;` between `endgenerate` (or `endcase`, `endfunction`) and the next instance.
+        for end in [
+            "generate if (1) begin : g\n assign a = 1'b0;\n end endgenerate",
+            "function f; input x; f = x; endfunction",
+        ] {
+            let src = format!("module t(input clk);\n {end}\n bot b (.clk(clk));\nendmodule\n");
+            let m = &scan(&src)[0];
+            let names: Vec<_> = m.instances.iter().map(|i| i.name.as_str()).collect();
+            assert_eq!(names, ["b"], "{src}");
+        }
     }
 
     #[test]

@@ -1251,13 +1251,13 @@ fn falling_edges_are_evaluated_where_the_design_has_logic_on_them() {
 
 #[test]
 fn clocks_made_from_a_generated_clocks_level_get_its_falling_edges_evaluated() {
-    // tests/board_designs/derived_clocks counts the rising edges of an MMCM's inverted output
-    // and of a BUFGCE-gated clock: the first rises when the generated clock falls, the
+    // tests/board_designs/clocks with KIND 2 counts the rising edges of an MMCM's inverted
+    // output and of a BUFGCE-gated clock: the first rises when the generated clock falls, the
     // second is computed from its level. Evaluating rising edges only would miss them (the
     // counts then read 0x08 and 0x08 after 0.2 ms); the build sees the logic and keeps every
     // edge, with the same LEDs and evaluations as --every-edge.
     let run = |extra: Option<&str>| {
-        let mut args = vec!["tests/board_designs/derived_clocks", "--seconds", "0.0002", "--json"];
+        let mut args = vec!["tests/board_designs/clocks", "--param", "KIND=2", "--seconds", "0.0002", "--json"];
         args.extend(extra);
         let s = summary(&board(&args));
         (s["leds"].as_u64().unwrap(), s["evaluations"].as_u64().unwrap())

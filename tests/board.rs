@@ -133,16 +133,27 @@ fn one_line_error(o: &Output) -> String {
 }
 
 #[test]
-fn a_missing_module_is_one_error_at_its_instance() {
+fn every_missing_module_is_one_error_listing_each_instance() {
     let dir = tempfile::tempdir().unwrap();
     let top = write(
         dir.path(),
         "top.v",
-        "module top(input clk, output [15:0] led);\n  bot b (.clk(clk), .reset(1'b0));\n  blinker u (.clk(clk), .q(led));\nendmodule\n",
+        "module top(input clk, output [15:0] led);\n  bot b (.clk(clk), .reset(1'b0));\n  blinker u (.clk(clk), .q(led));\n  uart tx (.clk(clk));\nendmodule\n",
     );
-    let e = one_line_error(&board(&[&top]));
-    assert!(e.starts_with(&format!("{top}:3:3: module `blinker` (instance `u` in `top`)")), "{e}");
-    assert!(e.contains("--stub blinker"), "{e}");
+    let o = board(&[&top]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let e = stderr(&o);
+    let lines: Vec<&str> = e.lines().collect();
+    assert_eq!(lines[0], "2 modules of the design are missing:", "{e}");
+    assert_eq!(
+        lines[1],
+        format!("  {top}:3:3: `blinker` (instance `u` in `top`): add its file, or tie it off with --stub blinker")
+    );
+    assert_eq!(
+        lines[2],
+        format!("  {top}:4:3: `uart` (instance `tx` in `top`): add its file, or tie it off with --stub uart")
+    );
+    assert_eq!(lines.len(), 3, "{e}");
 }
 
 #[test]

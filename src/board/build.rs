@@ -71,6 +71,10 @@ const VERILATOR_FLAGS: &[&str] = &[
     "-Wno-style",
     "-Wno-MULTITOP",
     "-Wno-TIMESCALEMOD",
+    // Vivado reads `.v` files as Verilog-2005 (a variable may be called `bit` or `do`).
+    "+1364-2005ext+v",
+    // Vivado builds a variable given both blocking and non-blocking assignments; said once.
+    "-Wwarn-BLKANDNBLK",
     "-CFLAGS",
     "-fPIC -O2 -fvisibility-inlines-hidden -fno-semantic-interposition -DVL_USER_FINISH -DVL_USER_FATAL -I..",
     "-LDFLAGS",
@@ -103,6 +107,18 @@ pub fn cache_dir() -> PathBuf {
     home.join(".cache").join("botsim")
 }
 
+/// Mark the cache folder as one (the Cache Directory Tagging convention): backups skip it,
+/// and so does botsim's own search of a repository that holds it.
+fn tag_cache(dir: &Path) {
+    let tag = dir.join("CACHEDIR.TAG");
+    if !tag.exists() {
+        let _ = std::fs::write(
+            tag,
+            "Signature: 8a477f597d28d172789f06886806bc55\n# botsim's build cache: safe to delete, rebuilt as needed\n",
+        );
+    }
+}
+
 /// The files of the build: (name in the build folder, text), user files with their origin.
 struct Files {
     generated: Vec<(String, String)>,
@@ -113,30 +129,26 @@ struct Files {
 
 fn files(plan: &Plan, params: &[(String, String)], cpu: CpuModel, bot: BotKind) -> Files {
     let mut generated = vec![
-        ("botsim_board.v".to_string(), wrapper::board_top(plan, params)),
-        ("xilinx.v".to_string(), XILINX.to_string()),
-        ("botsim_clkgen.v".to_string(), CLKGEN.to_string()),
+        ("botsim_board.sv".to_string(), wrapper::board_top(plan, params)),
+        ("botsim_xilinx.sv".to_string(), XILINX.to_string()),
+        ("botsim_clkgen.sv".to_string(), CLKGEN.to_string()),
     ];
     for (_, file) in OWN_MODULES {
         let text = match (file, cpu) {
             ("kcpsm6.v", CpuModel::Iss) => KCPSM6_ISS.to_string(),
             ("bot.v", _) if bot == BotKind::Model => BOT_MODEL.to_string(),
             ("kcpsm6.v", CpuModel::RtlProbed) => {
-                generated.push(("botsim_kcpsm6_probe.v".into(), KCPSM6_PROBE.into()));
+                generated.push(("botsim_kcpsm6_probe.sv".into(), KCPSM6_PROBE.into()));
                 own_rtl(file).replacen("module kcpsm6 #(", "module kcpsm6_rtl #(", 1)
             }
             _ => own_rtl(file).to_string(),
         };
-        generated.push((format!("botsim_{file}"), text));
+        // botsim's own files are SystemVerilog (the models' DPI imports); the user's `.v`
+        // files are Verilog-2005, as Vivado reads them.
+        generated.push((format!("botsim_{}", file.replace(".v", ".sv")), text));
     }
     for (module, text) in wrapper::roms(plan) {
-        generated.push((format!("rom_{module}.v"), text));
-    }
-    for core in &plan.cores {
-        generated.push((format!("core_{}.v", core.name), core.verilog()));
-    }
-    for (module, ports) in &plan.stubs {
-        generated.push((format!("stub_{module}.v"), wrapper::stub(module, ports)));
+        generated.push((format!("botsim_rom_{module}.sv"), text));
     }
     let mut user = Vec::new();
     for (k, f) in plan.files.iter().enumerate() {
@@ -226,6 +238,7 @@ pub fn build(
     let _ = std::fs::remove_dir_all(&tmp);
     std::fs::create_dir_all(&tmp)
         .map_err(|e| BoardError::at(&tmp, 0, 0, format!("cannot create the build folder: {e}")))?;
+    tag_cache(&cache_dir());
     let write = |name: &str, text: &str| {
         std::fs::write(tmp.join(name), text)
             .map_err(|e| BoardError::at(&tmp.join(name), 0, 0, format!("cannot write: {e}")))

@@ -16,8 +16,9 @@ use botsim::render::{path_picture, PathStyle};
 use botsim::{Snapshot, World};
 use botsim_core::board::display::Display;
 use botsim_core::board::gtkw::View;
-use botsim_core::board::memcore::MemCore;
-use botsim_core::board::plan::{collect, Plan, Request, Rom, Source};
+use botsim_core::board::ip::ClockSpec;
+use botsim_core::board::plan::{Plan, Request, Rom};
+use botsim_core::board::resolve::{resolve, Options};
 use botsim_core::board::stimulus::{parse_press, parse_time, Stimulus};
 use botsim_core::board::vga::Capture;
 use botsim_core::board::wrapper;
@@ -40,12 +41,23 @@ use crate::cli::run::{csv_row, json_row, CSV_HEADER};
   botsim board src/ --program src/proj2demo.psm --param SIMULATE=1 --samples 200 --trace-csv trace.csv
   botsim board src/ --press btnC@100+50 --switches 00FF --json")]
 pub struct Args {
-    /// Verilog files, folders, or a Vivado project (.xpr)
+    /// Your repository's folder, a project file (.xpr, .xise), or Verilog files and folders
     #[arg(required = true, value_name = "SOURCE")]
     sources: Vec<PathBuf>,
-    /// The top module (default: the one module nothing instantiates with a clock pin)
+    /// The top module [default: the project's, or the one module with a board clock pin that
+    /// reaches the bot]
     #[arg(long, value_name = "NAME")]
     top: Option<String>,
+    /// Take the definitions in this file over other copies of the same modules
+    #[arg(long = "file", value_name = "FILE")]
+    prefer: Vec<PathBuf>,
+    /// Leave this file or folder out of the repository
+    #[arg(long, value_name = "PATH")]
+    exclude: Vec<PathBuf>,
+    /// The frequency of an output of a clock module the repository has no configuration
+    /// for: MODULE.PORT=FREQUENCY (e.g. clk_wiz_0.clk_out1=25MHz), once per output
+    #[arg(long, value_name = "MODULE.PORT=FREQ")]
+    clock: Vec<String>,
     /// A program (.psm, .hex, .mem, .v) for the ROM module of the same name
     #[arg(long, value_name = "FILE")]
     program: Vec<PathBuf>,
@@ -380,34 +392,29 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         check_writable(&d.join("frame.png"))?;
     }
 
-    // Plan and build.
-    let collected = collect(&a.sources).map_err(|e| e.to_string())?;
-    let mut include_dirs = collected.include_dirs;
-    let collected_notes = collected.notes;
-    include_dirs.extend(a.include.iter().cloned());
-    let sources =
-        collected.files.iter().map(|f| Source::read(f)).collect::<Result<Vec<_>, _>>().map_err(|e| e.to_string())?;
-    let mut cores = Vec::new();
-    for x in &collected.xci {
-        if let Some(core) = MemCore::from_xci(x).map_err(|e| e.to_string())? {
-            cores.push((x.clone(), core));
-        }
-    }
-    let req = Request {
-        cores,
-        top: a.top.clone().or(collected.top),
-        programs,
-        bot_firmware,
-        force_own_firmware: a.firmware.any(),
+    // Find the design, plan and build.
+    let clocks = a.clock.iter().map(|c| ClockSpec::parse(c)).collect::<Result<Vec<_>, _>>()?;
+    let options = Options {
+        top: a.top.clone(),
+        prefer: a.prefer.clone(),
+        exclude: a.exclude.clone(),
+        clocks,
         stubs: a.stub.clone(),
+        include_dirs: a.include.clone(),
     };
-    let plan = Plan::new(&sources, include_dirs, &req).map_err(|e| e.to_string())?;
+    let design = resolve(&a.sources, &options).map_err(|e| e.to_string())?;
+    let req = Request { programs, bot_firmware, force_own_firmware: a.firmware.any() };
+    let mut plan = Plan::new(&design, &req).map_err(|e| e.to_string())?;
+    plan.replaced.extend(design.generated.iter().cloned());
     let say = |s: String| {
         if !a.quiet && !a.json {
             eprintln!("{s}");
         }
     };
-    for n in &collected_notes {
+    if let Some(p) = &design.project {
+        say(format!("botsim board: the project {}", p.display()));
+    }
+    for n in &design.notes {
         say(format!("note: {n}"));
     }
     say(format!("botsim board: top `{}`, bot at `{}.{}`", plan.top, plan.top, plan.bot_path));

@@ -4,16 +4,22 @@
 //! ([`display`]: the seven-segment display as a person sees it; [`vga`]: frames from the VGA pins). The `botsim` crate builds
 //! and runs the plan (`botsim::board`).
 
+pub mod course;
 pub mod display;
 pub mod gtkw;
+pub mod ip;
 pub mod memcore;
 pub mod pins;
 pub mod plan;
+pub mod project;
+pub mod repo;
+pub mod resolve;
 pub mod scan;
+pub mod source;
 pub mod stimulus;
 pub mod vga;
+pub mod vhdl;
 pub mod wrapper;
-pub mod xpr;
 
 use std::fmt;
 use std::path::Path;

@@ -11,9 +11,10 @@ use std::path::{Path, PathBuf};
 
 use kcpsm6::image::Image;
 
-use super::memcore::MemCore;
 use super::pins::{self, Role};
-use super::scan::{self, Dir, Instance, Module};
+use super::resolve::Design;
+use super::scan::{Dir, Instance, Module};
+pub use super::source::Source;
 use super::BoardError;
 
 /// botsim's own modules that replace the user's, with the file each comes from.
@@ -40,120 +41,9 @@ pub const PRIMITIVES: [(&str, &[&str]); 10] = [
     ("DCM_SP", &["CLK0", "CLK90", "CLK180", "CLK270", "CLK2X", "CLK2X180", "CLKDV", "CLKFX"]),
 ];
 
-/// A source file of the user's, scanned.
-#[derive(Clone, Debug)]
-pub struct Source {
-    pub path: PathBuf,
-    pub text: String,
-    pub modules: Vec<Module>,
-}
-
-impl Source {
-    pub fn read(path: &Path) -> Result<Source, BoardError> {
-        let bytes = std::fs::read(path).map_err(|e| BoardError::at(path, 0, 0, format!("cannot read: {e}")))?;
-        let text = String::from_utf8_lossy(&bytes).into_owned();
-        let modules = scan::scan(&text);
-        Ok(Source { path: path.to_path_buf(), text, modules })
-    }
-}
-
-/// The sources named on the command line.
-#[derive(Clone, Debug, Default)]
-pub struct Collected {
-    /// Verilog files, in a stable order.
-    pub files: Vec<PathBuf>,
-    /// Include folders: every source's folder and every folder holding a `.vh`.
-    pub include_dirs: Vec<PathBuf>,
-    /// The top a Vivado project names.
-    pub top: Option<String>,
-    /// What the user should know about how the sources were found.
-    pub notes: Vec<String>,
-    /// Vivado IP files (`.xci`): memory cores among them are modelled ([`super::memcore`]).
-    pub xci: Vec<PathBuf>,
-}
-
-/// The sources named on the command line: files as given, folders searched recursively
-/// for `.v` and `.sv` (`.vh`/`.svh` files are include files: their folders go on the
-/// include path), Vivado projects (`.xpr`: their design sources and top, [`super::xpr`]).
-pub fn collect(inputs: &[PathBuf]) -> Result<Collected, BoardError> {
-    let mut files = Vec::new();
-    let mut include_dirs = BTreeSet::new();
-    let mut top = None;
-    let mut notes = Vec::new();
-    let mut xci = Vec::new();
-    fn add(f: PathBuf, files: &mut Vec<PathBuf>, include_dirs: &mut BTreeSet<PathBuf>, xci: &mut Vec<PathBuf>) {
-        match f.extension().and_then(|e| e.to_str()) {
-            // A file named twice (a folder and a project listing it) is read once.
-            Some("v" | "sv") if !files.contains(&f) => files.push(f),
-            Some("xci") if !xci.contains(&f) => xci.push(f),
-            Some("vh" | "svh") => {
-                include_dirs.insert(f.parent().unwrap_or(Path::new(".")).to_path_buf());
-            }
-            _ => {}
-        }
-    }
-    for input in inputs {
-        let meta = std::fs::metadata(input).map_err(|e| BoardError::at(input, 0, 0, format!("cannot read: {e}")))?;
-        if meta.is_dir() {
-            let mut found: Vec<PathBuf> = walk(input)?;
-            found.sort();
-            for f in found {
-                add(f, &mut files, &mut include_dirs, &mut xci);
-            }
-        } else if input.extension().is_some_and(|e| e == "xpr") {
-            let project = super::xpr::Project::read(input)?;
-            let (found, project_notes) = project.sources(input)?;
-            for f in project.files.iter().filter(|f| f.extension().is_some_and(|e| e == "xci") && f.exists()) {
-                add(f.clone(), &mut files, &mut include_dirs, &mut xci);
-            }
-            for f in found {
-                add(f, &mut files, &mut include_dirs, &mut xci);
-            }
-            notes.extend(project_notes);
-            top = top.or(project.top);
-        } else if input.extension().is_some_and(|e| e == "xci") {
-            add(input.clone(), &mut files, &mut include_dirs, &mut xci);
-        } else if !files.contains(input) {
-            files.push(input.clone());
-        }
-    }
-    for f in &files {
-        include_dirs.insert(f.parent().unwrap_or(Path::new(".")).to_path_buf());
-    }
-    if files.is_empty() {
-        return Err(BoardError::plain(
-            "no Verilog sources found (.v or .sv files, folders holding them, or a Vivado .xpr)",
-        ));
-    }
-    Ok(Collected { files, include_dirs: include_dirs.into_iter().collect(), top, notes, xci })
-}
-
-fn walk(dir: &Path) -> Result<Vec<PathBuf>, BoardError> {
-    let mut out = Vec::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        let entries =
-            std::fs::read_dir(&d).map_err(|e| BoardError::at(&d, 0, 0, format!("cannot read folder: {e}")))?;
-        for e in entries.flatten() {
-            let p = e.path();
-            let name = e.file_name();
-            if name.to_string_lossy().starts_with('.') {
-                continue;
-            }
-            if p.is_dir() {
-                stack.push(p);
-            } else {
-                out.push(p);
-            }
-        }
-    }
-    Ok(out)
-}
-
 /// What the user asked for on the command line that the plan needs.
 #[derive(Clone, Debug)]
 pub struct Request {
-    pub top: Option<String>,
     /// Programs named with `--program`, assembled or loaded: (file, image).
     pub programs: Vec<(PathBuf, Image)>,
     /// botsim's firmware for the bot, when asked for (by `--timing`, `--threshold`,
@@ -161,9 +51,6 @@ pub struct Request {
     pub bot_firmware: Image,
     /// True when the request selects botsim's firmware even if the user has a `bot_pgm`.
     pub force_own_firmware: bool,
-    pub stubs: Vec<String>,
-    /// Memory cores from the design's `.xci` files, with the file each came from.
-    pub cores: Vec<(PathBuf, MemCore)>,
 }
 
 /// One line of the substitution report.
@@ -211,9 +98,6 @@ pub struct Plan {
     pub files: Vec<UserFile>,
     pub include_dirs: Vec<PathBuf>,
     pub roms: Vec<Rom>,
-    pub stubs: Vec<(String, Vec<String>)>,
-    /// Memory cores to model.
-    pub cores: Vec<MemCore>,
     /// `BOTSIM_USED_<PRIMITIVE>` masks.
     pub used_outputs: BTreeMap<String, u8>,
     pub replaced: Vec<Replacement>,
@@ -246,70 +130,29 @@ pub fn is_program_rom(m: &Module) -> bool {
 }
 
 impl Plan {
-    /// Plan the build of `sources` for `req`.
-    pub fn new(sources: &[Source], include_dirs: Vec<PathBuf>, req: &Request) -> Result<Plan, BoardError> {
+    /// Plan the build of the design the resolver found ([`super::resolve`]) for `req`.
+    pub fn new(design: &Design, req: &Request) -> Result<Plan, BoardError> {
+        let sources = &design.sources;
+        let include_dirs = design.include_dirs.clone();
         let mut defined: BTreeMap<&str, (&Source, &Module)> = BTreeMap::new();
         for s in sources {
             for m in &s.modules {
                 if let Some((other, om)) = defined.get(m.name.as_str()) {
-                    if !is_replaced_name(&m.name) && !is_program_rom(m) {
-                        return Err(BoardError::at(
-                            &s.path,
-                            m.line,
-                            m.col,
-                            format!(
-                                "module `{}` is defined twice (also at {}:{}); keep one of the files",
-                                m.name,
-                                other.path.display(),
-                                om.line
-                            ),
-                        ));
-                    }
+                    return Err(BoardError::at(
+                        &s.path,
+                        m.line,
+                        m.col,
+                        format!("module `{}` is defined twice (also at {}:{})", m.name, other.path.display(), om.line),
+                    ));
                 }
                 defined.insert(&m.name, (s, m));
             }
         }
         let own_name = |n: &str| OWN_MODULES.iter().any(|(m, _)| *m == n);
-        let primitive = |n: &str| PRIMITIVES.iter().any(|(m, _)| *m == n);
-
-        // The top: --top, else the one module nobody instantiates that has a clock pin.
-        let instantiated: BTreeSet<&str> =
-            sources.iter().flat_map(|s| &s.modules).flat_map(|m| &m.instances).map(|i| i.module.as_str()).collect();
-        let top = match &req.top {
-            Some(t) => {
-                if !defined.contains_key(t.as_str()) {
-                    return Err(BoardError::plain(format!("--top {t}: no module of that name in the sources")));
-                }
-                t.clone()
-            }
-            None => {
-                let candidates: Vec<&str> = defined
-                    .iter()
-                    .filter(|(n, (_, m))| {
-                        !instantiated.contains(*n)
-                            && !own_name(n)
-                            && !primitive(n)
-                            && !is_program_rom(m)
-                            && m.ports.iter().any(|p| pins::role(&p.name) == Some(Role::Clock))
-                    })
-                    .map(|(n, _)| *n)
-                    .collect();
-                match candidates.as_slice() {
-                    [one] => one.to_string(),
-                    [] => {
-                        return Err(BoardError::plain(
-                            "cannot find the top module: no module that nothing instantiates has a clk/clk100/CLK100MHZ port (name it with --top)",
-                        ))
-                    }
-                    many => {
-                        return Err(BoardError::plain(format!(
-                            "several modules could be the top ({}); name one with --top",
-                            many.join(", ")
-                        )))
-                    }
-                }
-            }
-        };
+        let top = design.top.clone();
+        if !defined.contains_key(top.as_str()) {
+            return Err(BoardError::plain(format!("the top module `{top}` is not in the design's sources")));
+        }
 
         // Walk the hierarchy from the top: every module used, missing ones, the bot's path.
         let mut used = BTreeSet::new();
@@ -317,8 +160,6 @@ impl Plan {
         let mut loc_y_reg = false;
         let mut used_outputs: BTreeMap<String, u8> = BTreeMap::new();
         let mut missing: Option<BoardError> = None;
-        let stubs: BTreeSet<&str> = req.stubs.iter().map(String::as_str).collect();
-        let mut stub_ports: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
         let mut cpus = Vec::new();
         let mut stack: Vec<(String, String)> = vec![(top.clone(), String::new())];
         let mut depth_guard = 0;
@@ -353,15 +194,6 @@ impl Plan {
                     used.insert(inst.module.clone());
                     let mask = used_outputs.entry(inst.module.clone()).or_insert(0);
                     *mask |= connected_mask(inst, outs);
-                    continue;
-                }
-                if req.cores.iter().any(|(_, c)| c.name == inst.module) {
-                    used.insert(inst.module.clone());
-                    continue;
-                }
-                if stubs.contains(inst.module.as_str()) {
-                    let set = stub_ports.entry(inst.module.clone()).or_default();
-                    set.extend(inst.connections.iter().map(|(p, _)| p.clone()));
                     continue;
                 }
                 if !defined.contains_key(inst.module.as_str()) && !own_name(&inst.module) {
@@ -421,17 +253,6 @@ impl Plan {
                     with: format!("botsim's behavioural {name}"),
                 });
             }
-        }
-
-        let cores: Vec<MemCore> =
-            req.cores.iter().filter(|(_, c)| used.contains(&c.name)).map(|(_, c)| c.clone()).collect();
-        for (xci, c) in req.cores.iter().filter(|(_, c)| used.contains(&c.name)) {
-            let from = defined.get(c.name.as_str()).map(|(s, m)| format!("{}:{}", s.path.display(), m.line));
-            replaced.push(Replacement {
-                module: c.name.clone(),
-                from: from.unwrap_or_default(),
-                with: format!("a behavioural memory core configured as in {}", xci.display()),
-            });
         }
 
         // Program ROMs.
@@ -521,28 +342,19 @@ impl Plan {
             .map(|(m, _)| m.to_string())
             .chain(PRIMITIVES.iter().map(|(p, _)| p.to_string()))
             .chain(roms.iter().map(|r| r.module.clone()))
-            .chain(stub_ports.keys().cloned())
-            .chain(cores.iter().map(|c| c.name.clone()))
             .collect();
         let mut files = Vec::new();
         for s in sources {
-            let drop: Vec<&Module> = s.modules.iter().filter(|m| replaced_names.contains(&m.name)).collect();
-            if drop.is_empty() {
+            let drop: Vec<std::ops::Range<usize>> =
+                s.modules.iter().filter(|m| replaced_names.contains(&m.name)).map(|m| m.span.clone()).collect();
+            if drop.is_empty() && s.dropped.is_empty() && !s.edited {
                 files.push(UserFile { path: s.path.clone(), filtered: None });
                 continue;
             }
             if drop.len() == s.modules.len() && !s.text.contains("`define") {
                 continue; // nothing of the user's is left in it
             }
-            let mut text = s.text.clone().into_bytes();
-            for m in drop {
-                for b in &mut text[m.span.clone()] {
-                    if *b != b'\n' {
-                        *b = b' ';
-                    }
-                }
-            }
-            files.push(UserFile { path: s.path.clone(), filtered: Some(String::from_utf8_lossy(&text).into_owned()) });
+            files.push(UserFile { path: s.path.clone(), filtered: Some(s.compiled_text(&drop)) });
         }
 
         let top_module = defined[top.as_str()].1;
@@ -552,14 +364,11 @@ impl Plan {
         })?;
         let widths = top_module.ports.iter().map(|p| (p.name.clone(), p.width)).collect();
         let inputs = top_module.ports.iter().filter(|p| p.dir == Dir::Input).map(|p| p.name.clone()).collect();
-        let stubs = stub_ports.into_iter().map(|(m, ports)| (m, ports.into_iter().collect())).collect();
         Ok(Plan {
             top,
             files,
             include_dirs,
             roms,
-            stubs,
-            cores,
             used_outputs,
             replaced,
             warnings,
@@ -594,10 +403,6 @@ fn rom_of(cpu: &Instance, m: &Module, is_rom: impl Fn(&str) -> bool) -> Result<S
         [] => Err(format!("no program ROM instance in `{}` drives its `instruction` net `{wire}`", m.name)),
         _ => Err(format!("several program ROMs in `{}` drive its `instruction` net `{wire}`", m.name)),
     }
-}
-
-fn is_replaced_name(n: &str) -> bool {
-    OWN_MODULES.iter().any(|(m, _)| *m == n) || PRIMITIVES.iter().any(|(m, _)| *m == n) || n == "bot_pgm"
 }
 
 /// Bits of `outs` that the instance connects to a net (not left open, not a `*unused*` net).
@@ -656,18 +461,18 @@ mod tests {
     use super::*;
 
     fn src(name: &str, text: &str) -> Source {
-        Source { path: PathBuf::from(name), text: text.into(), modules: scan::scan(text) }
+        Source::new(name, text)
     }
 
     fn request() -> Request {
-        Request {
-            top: None,
-            programs: vec![],
-            bot_firmware: Image::zeroed(),
-            force_own_firmware: false,
-            stubs: vec![],
-            cores: vec![],
-        }
+        Request { programs: vec![], bot_firmware: Image::zeroed(), force_own_firmware: false }
+    }
+
+    /// `sources` as the resolver gives them, with `top`.
+    fn plan(top: &str, sources: Vec<Source>, req: &Request) -> Result<Plan, BoardError> {
+        let design =
+            Design { top: top.into(), project: None, sources, include_dirs: vec![], notes: vec![], generated: vec![] };
+        Plan::new(&design, req)
     }
 
     #[test]
@@ -679,28 +484,13 @@ mod tests {
              module sys(input clk);\n wire a, b, fb;\n MMCME2_ADV #(.CLKOUT0_DIVIDE_F(40.0)) m (.CLKOUT0(a), .CLKOUT1(clkout1_unused), .CLKOUT1B(), .CLKFBOUT(fb), .CLKFBIN(fb));\n\
              bot robot (.clk(a), .Loc_Y_reg());\nendmodule\n",
         );
-        let p = Plan::new(&[top], vec![], &request()).unwrap();
+        let p = plan("nexys4fpga", vec![top], &request()).unwrap();
         assert_eq!(p.top, "nexys4fpga");
         assert_eq!(p.bot_path, "s.robot");
         assert!(p.loc_y_reg);
         assert_eq!(p.used_outputs["MMCME2_ADV"], 0b1000_0001);
         assert_eq!(p.unknown_pins, ["JA"]);
         assert!(p.roms.iter().any(|r| r.module == "bot_pgm"));
-    }
-
-    #[test]
-    fn a_missing_module_names_the_instance_and_its_line() {
-        let top = src(
-            "top.v",
-            "module t(input clk);\n\n  bot b(.clk(clk));\n  debounce #(.SIMULATE(1)) db (.clk(clk));\nendmodule\n",
-        );
-        let e = Plan::new(&[top], vec![], &request()).unwrap_err();
-        assert_eq!(e.to_string().split(": ").next().unwrap(), "top.v:4:3");
-        assert!(e.to_string().contains("`debounce` (instance `db` in `t`)"), "{e}");
-        let top =
-            src("top.v", "module t(input clk);\n  bot b(.clk(clk));\n  debounce db (.clk(clk), .q());\nendmodule\n");
-        let p = Plan::new(&[top], vec![], &Request { stubs: vec!["debounce".into()], ..request() }).unwrap();
-        assert_eq!(p.stubs, [("debounce".to_string(), vec!["clk".to_string(), "q".to_string()])]);
     }
 
     #[test]
@@ -723,8 +513,8 @@ mod tests {
                  kcpsm6 cpu (.address(a), .instruction(i), .bram_enable(e), .clk(clk));\n\
                  prog rom (.address(a), .instruction(i), .enable(e), .clk(clk));\n bot b(.clk(clk));\nendmodule\n",
             );
-            let rom = Source { path: rom_file, text: rom_text.clone(), modules: scan::scan(&rom_text) };
-            Plan::new(&[top, rom], vec![], &request()).unwrap()
+            let rom = Source::new(rom_file, rom_text);
+            plan("t", vec![top, rom], &request()).unwrap()
         };
         let p = plan_with("start: LOAD s0, 01\n       JUMP start\n");
         let rom = p.roms.iter().find(|r| r.module == "prog").unwrap();
@@ -743,7 +533,7 @@ mod tests {
     #[test]
     fn a_wrong_pin_direction_is_an_error_at_the_top() {
         let top = src("top.v", "module t(input clk, input [15:0] led);\n bot b(.clk(clk));\nendmodule\n");
-        let e = Plan::new(&[top], vec![], &request()).unwrap_err().to_string();
+        let e = plan("t", vec![top], &request()).unwrap_err().to_string();
         assert!(e.starts_with("top.v:1:8: port `led` is the board's LED pin, an output"), "{e}");
     }
 }

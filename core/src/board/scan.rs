@@ -64,6 +64,9 @@ pub struct Module {
     pub params: Vec<String>,
     pub ports: Vec<Port>,
     pub instances: Vec<Instance>,
+    /// Nothing but port and parameter declarations: a black box (a synthesis stub such as
+    /// Vivado's `<ip>_stub.v`), which declares a module without defining it.
+    pub empty: bool,
 }
 
 impl Module {
@@ -189,10 +192,16 @@ const KEYWORDS: &[&str] = &[
     "rtran",
 ];
 
-fn tokenize(src: &str) -> Vec<Token> {
+/// The file names of a source's `` `include "..." `` directives, with their lines.
+pub fn includes(src: &str) -> Vec<(String, u32)> {
+    tokenize(src).1
+}
+
+fn tokenize(src: &str) -> (Vec<Token>, Vec<(String, u32)>) {
     let b = src.as_bytes();
     let (mut i, mut line, mut line_start) = (0usize, 1u32, 0usize);
     let mut out = Vec::new();
+    let mut includes = Vec::new();
     let mut at_line_start = true;
     while i < b.len() {
         let c = b[i];
@@ -257,6 +266,13 @@ fn tokenize(src: &str) -> Vec<Token> {
             if directive && (was_line_start || word != "else") {
                 let takes_line = !matches!(word, "else" | "endif" | "celldefine" | "endcelldefine" | "resetall");
                 i = j;
+                if word == "include" {
+                    let rest = &src[j..src[j..].find('\n').map_or(src.len(), |e| j + e)];
+                    let name = rest.trim().trim_start_matches(['"', '<']);
+                    if let Some(end) = name.find(['"', '>']) {
+                        includes.push((name[..end].to_string(), line));
+                    }
+                }
                 if takes_line {
                     while i < b.len() && b[i] != b'\n' {
                         if b[i] == b'\\' && b.get(i + 1) == Some(&b'\n') {
@@ -308,7 +324,7 @@ fn tokenize(src: &str) -> Vec<Token> {
         out.push(Token { tok: Tok::Punct(c as char), at: start, line, col });
         i += len;
     }
-    out
+    (out, includes)
 }
 
 struct Parser<'a> {
@@ -362,7 +378,7 @@ impl Parser<'_> {
 
 /// Scan one source text.
 pub fn scan(src: &str) -> Vec<Module> {
-    let t = tokenize(src);
+    let (t, _) = tokenize(src);
     let mut p = Parser { src, t, i: 0 };
     let mut modules = Vec::new();
     while p.i < p.t.len() {
@@ -407,6 +423,7 @@ fn module(p: &mut Parser) -> Option<Module> {
     let end = p.t.get(body_end).map_or(p.src.len(), |t| t.at + "endmodule".len());
     p.i = body_start;
     let mut stmt_start = true;
+    let mut logic = false;
     while p.i < body_end {
         match p.peek(0) {
             Some(Tok::Punct(';')) => {
@@ -454,6 +471,23 @@ fn module(p: &mut Parser) -> Option<Module> {
                 stmt_start = true;
                 continue;
             }
+            Some(Tok::Ident(w))
+                if matches!(
+                    w.as_str(),
+                    "assign"
+                        | "always"
+                        | "always_ff"
+                        | "always_comb"
+                        | "always_latch"
+                        | "initial"
+                        | "function"
+                        | "task"
+                        | "generate"
+                ) =>
+            {
+                logic = true;
+            }
+            Some(Tok::Punct('=')) => logic = true,
             Some(Tok::Ident(w)) if matches!(w.as_str(), "if" | "for" | "case") => {
                 // generate if/for headers: skip the condition.
                 p.i += 1;
@@ -479,7 +513,8 @@ fn module(p: &mut Parser) -> Option<Module> {
         ports.sort_by_key(|pt: &Port| port_order.iter().position(|n| *n == pt.name).unwrap_or(usize::MAX));
         ports.retain(|pt| port_order.contains(&pt.name));
     }
-    Some(Module { name, line: name_tok.line, col: name_tok.col, span: start..end, params, ports, instances })
+    let empty = !logic && instances.is_empty();
+    Some(Module { name, line: name_tok.line, col: name_tok.col, span: start..end, params, ports, instances, empty })
 }
 
 fn direction(w: &str) -> Dir {
@@ -684,6 +719,83 @@ fn connections(p: &Parser, from: usize, to: usize) -> Vec<(String, String)> {
     out
 }
 
+/// The module at `span` of `src` with comments and layout taken out: two copies of a module
+/// that differ in nothing else have the same normalized text.
+pub fn normalized(src: &str, span: Range<usize>) -> String {
+    let text = &src[span];
+    let (tokens, _) = tokenize(text);
+    let mut out = String::new();
+    for (k, t) in tokens.iter().enumerate() {
+        match &t.tok {
+            Tok::Ident(s) | Tok::Num(s) => out.push_str(s),
+            Tok::Punct(c) => out.push(*c),
+            Tok::Str => {
+                let end = tokens.get(k + 1).map_or(text.len(), |n| n.at);
+                out.push_str(text[t.at..end].trim_end());
+            }
+        }
+        out.push(' ');
+    }
+    out
+}
+
+/// A based literal with more digits than its width holds (`8'h1FF`, `4'b10101`), which
+/// Vivado truncates to its width and Verilator refuses: where it is, and the same literal
+/// with the digits the width keeps.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Oversized {
+    pub at: Range<usize>,
+    pub line: u32,
+    pub col: u32,
+    pub text: String,
+    pub fixed: String,
+}
+
+/// Every oversized literal of `src` (comments and strings skipped).
+///
+/// ```
+/// use botsim_core::board::scan::oversized_literals;
+/// let o = oversized_literals("assign a = 8'h1FF; // 8'h1FF\nassign b = 6'hFF + 4'b0_1010;");
+/// let fixed: Vec<_> = o.iter().map(|o| (o.line, o.text.as_str(), o.fixed.as_str())).collect();
+/// assert_eq!(fixed, [(1, "8'h1FF", "8'hFF"), (2, "4'b0_1010", "4'b1010")]);
+/// ```
+pub fn oversized_literals(src: &str) -> Vec<Oversized> {
+    let (tokens, _) = tokenize(src);
+    tokens
+        .iter()
+        .filter_map(|t| {
+            let Tok::Num(text) = &t.tok else { return None };
+            let fixed = truncated_literal(text)?;
+            Some(Oversized { at: t.at..t.at + text.len(), line: t.line, col: t.col, text: text.clone(), fixed })
+        })
+        .collect()
+}
+
+/// `8'h1FF` -> `8'hFF`: the digits a literal's width keeps, when it has more (an unsized
+/// literal is 32 bits wide).
+fn truncated_literal(text: &str) -> Option<String> {
+    let (size_text, rest) = text.split_once('\'')?;
+    let size: u32 = if size_text.is_empty() { 32 } else { size_text.replace('_', "").parse().ok()? };
+    let (signed, rest) = match rest.strip_prefix(['s', 'S']) {
+        Some(r) => (&rest[..1], r),
+        None => ("", rest),
+    };
+    let base = rest.chars().next()?;
+    let bits_per_digit = match base.to_ascii_lowercase() {
+        'b' => 1,
+        'o' => 3,
+        'h' => 4,
+        _ => return None,
+    };
+    let digits: String = rest[1..].chars().filter(|c| *c != '_').collect();
+    let significant = digits.trim_start_matches('0');
+    let allowed = size.div_ceil(bits_per_digit) as usize;
+    if size == 0 || significant.len() <= allowed {
+        return None;
+    }
+    Some(format!("{size_text}'{signed}{base}{}", &significant[significant.len() - allowed..]))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -719,6 +831,28 @@ mod tests {
             let names: Vec<_> = m.instances.iter().map(|i| i.name.as_str()).collect();
             assert_eq!(names, ["b"], "{src}");
         }
+    }
+
+    #[test]
+    fn an_empty_module_declares_and_include_directives_are_listed() {
+        let src = "`include \"defs.vh\"\nmodule clk_wiz_0(clk_out1, clk_in1) /* synthesis syn_black_box */;\n\
+                   output clk_out1;\n input clk_in1;\nendmodule\n\
+                   module w(output y); assign y = 1'b0; endmodule\nmodule r(output reg q = 1'b0); endmodule\n\
+                   module i(input a); sub s(.a(a)); endmodule\n";
+        let empty: Vec<_> = scan(src).iter().map(|m| (m.name.clone(), m.empty)).collect();
+        let want = [("clk_wiz_0", true), ("w", false), ("r", true), ("i", false)];
+        assert_eq!(empty, want.map(|(n, e)| (n.to_string(), e)));
+        assert_eq!(includes(src), [("defs.vh".to_string(), 1)]);
+    }
+
+    #[test]
+    fn normalized_text_ignores_comments_and_layout() {
+        let a = "module m(input a); // one\n  assign y = a;\nendmodule";
+        let b = "module m(input a);\n/* two */ assign y =\n a; endmodule";
+        let c = "module m(input a); assign y = ~a; endmodule";
+        let n = |s: &str| normalized(s, scan(s)[0].span.clone());
+        assert_eq!(n(a), n(b));
+        assert_ne!(n(a), n(c));
     }
 
     #[test]

@@ -1,0 +1,1095 @@
+//! Finding the design in a repository the way the vendor tool does, before anything is built.
+//!
+//! 1. **Where the design is**: a project file (`.xpr`, `.xise`: [`super::project`]) named on
+//!    the command line or found in the folder, else the folder itself. A folder with several
+//!    projects uses the one whose design has a `bot`, or asks which.
+//! 2. **The top**: `--top`, the project's, or the one module with a board clock pin that
+//!    reaches a `bot` and that no other such module instantiates.
+//! 3. **Only what the top reaches**: from the top down, each module gets one definition;
+//!    files and modules never reached are not compiled, so release templates, stale copies
+//!    and testbenches beside the design cannot break it. Where a reached module has
+//!    different definitions, the one taken is said: the one `--file` names, the project's,
+//!    the one beside the module that instantiates it, the nearest, the newest (last
+//!    committed), and a simulation netlist or a black box last.
+//! 4. **What nobody committed**: a core from its configuration (Clocking Wizard, memory
+//!    cores: [`super::ip`], [`super::memcore`]), a memory core from its wrapper's parameters,
+//!    the course's `debounce`/`sevensegment`/`dtg` ([`super::course`]), an entity that only
+//!    exists as VHDL (GHDL: [`super::vhdl`]), `--clock` and `--stub` modules; and whatever
+//!    is still missing is one error listing every instance.
+//! 5. **Vivado's leniency**: literals with more digits than their width are truncated as
+//!    Vivado does, each said with its file:line:col.
+
+use std::collections::{BTreeMap, BTreeSet, VecDeque};
+use std::path::{Path, PathBuf};
+
+use super::course;
+use super::ip::{ClockCore, ClockSpec, IpConfig, CLOCK_CORES};
+use super::memcore::{library_model, MemCore, MEMORY_CORES};
+use super::pins::{self, Role};
+use super::plan::{is_program_rom, Replacement, OWN_MODULES, PRIMITIVES};
+use super::project::Project;
+use super::repo::{Ages, FileKind, Repo};
+use super::scan::{self, Instance, Module};
+use super::source::Source;
+use super::vhdl;
+use super::BoardError;
+
+/// What the command line says about finding the design.
+#[derive(Clone, Debug, Default)]
+pub struct Options {
+    /// `--top`.
+    pub top: Option<String>,
+    /// `--file`: files whose definitions win over other copies of the same modules.
+    pub prefer: Vec<PathBuf>,
+    /// `--exclude`: files or folders left out.
+    pub exclude: Vec<PathBuf>,
+    /// `--clock`: outputs of clock modules the design has no configuration for.
+    pub clocks: Vec<ClockSpec>,
+    /// `--stub`: modules tied off.
+    pub stubs: Vec<String>,
+    /// `--include`: more include folders.
+    pub include_dirs: Vec<PathBuf>,
+}
+
+/// The design as the build takes it.
+#[derive(Clone, Debug)]
+pub struct Design {
+    pub top: String,
+    /// The project file it comes from, if any.
+    pub project: Option<PathBuf>,
+    /// What the build compiles: the reached modules' files (the rest of each blanked out)
+    /// and what botsim generated for the design.
+    pub sources: Vec<Source>,
+    pub include_dirs: Vec<PathBuf>,
+    /// Every decision, one line each.
+    pub notes: Vec<String>,
+    /// What botsim made for the design, for the report.
+    pub generated: Vec<Replacement>,
+}
+
+/// The ports of BotSim 2.0's `bot` (rtl/bot.v): a `bot` instance that connects another is
+/// not BotSim 2.0's.
+fn botsim20_ports() -> Vec<String> {
+    let bot = scan::scan(include_str!("../../../rtl/bot.v"));
+    bot.iter().find(|m| m.name == "bot").map(|m| m.ports.iter().map(|p| p.name.clone()).collect()).unwrap_or_default()
+}
+
+/// Find the design named by `inputs` (folders, files, a project file).
+pub fn resolve(inputs: &[PathBuf], opts: &Options) -> Result<Design, BoardError> {
+    let mut explicit_files = Vec::new();
+    let mut folders = Vec::new();
+    let mut named_projects = Vec::new();
+    for input in inputs {
+        let meta = std::fs::metadata(input).map_err(|e| BoardError::at(input, 0, 0, format!("cannot read: {e}")))?;
+        if meta.is_dir() {
+            folders.push(input.clone());
+        } else if FileKind::of(input) == FileKind::Project {
+            named_projects.push(input.clone());
+        } else {
+            explicit_files.push(input.clone());
+        }
+    }
+    // The repository: the folders named, or the one holding a named project (its git
+    // work tree, else the project's folder), plus files named one by one.
+    let mut roots = folders.clone();
+    for p in &named_projects {
+        roots.push(repository_root(p));
+    }
+    let mut repo = Repo::walk(&roots)?;
+    for f in &explicit_files {
+        repo.add(f.clone());
+    }
+    for p in &named_projects {
+        for f in Project::read(p)?.files.into_iter().filter(|f| f.is_file()) {
+            repo.add(f);
+        }
+    }
+    for f in &opts.prefer {
+        repo.add(f.clone());
+    }
+    let pool = Pool::new(&repo, opts)?;
+
+    let projects: Vec<PathBuf> = if !named_projects.is_empty() {
+        named_projects.clone()
+    } else if explicit_files.is_empty() {
+        repo.projects.clone()
+    } else {
+        Vec::new()
+    };
+    if projects.is_empty() {
+        return pool.design(None, opts, &repo);
+    }
+    if projects.len() == 1 {
+        let project = Project::read(&projects[0])?;
+        let design = pool.design(Some(&project), opts, &repo);
+        let forced = !named_projects.is_empty() || opts.top.is_some();
+        return match design {
+            Ok(d) if forced || pool.reaches_bot(&d.top) => Ok(d),
+            // A project whose design has no bot (a first project beside the one that has):
+            // the folder without it.
+            Ok(d) => {
+                let mut folder = pool.design(None, opts, &repo)?;
+                folder.notes.insert(
+                    0,
+                    format!("{}: its design (top `{}`) has no `bot`; using the folder", projects[0].display(), d.top),
+                );
+                Ok(folder)
+            }
+            Err(e) if forced => Err(e),
+            Err(e) => pool.design(None, opts, &repo).map_err(|_| e),
+        };
+    }
+    // Several projects: the one whose design has a bot, or the user's choice.
+    let mut with_bot = Vec::new();
+    for p in &projects {
+        let Ok(project) = Project::read(p) else { continue };
+        if let Ok(d) = pool.design(Some(&project), opts, &repo) {
+            if pool.reaches_bot(&d.top) {
+                with_bot.push(d);
+            }
+        }
+    }
+    let list = projects.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ");
+    match with_bot.len() {
+        1 if named_projects.is_empty() => {
+            let mut d = with_bot.remove(0);
+            let chosen = d.project.clone().unwrap_or_default();
+            d.notes.insert(
+                0,
+                format!(
+                    "several projects here ({list}); using {}, the one with a `bot` (name another to run it)",
+                    chosen.display()
+                ),
+            );
+            Ok(d)
+        }
+        _ => Err(BoardError::plain(format!(
+            "several projects here: {list}; name the one to run (botsim board {})",
+            projects[0].display()
+        ))),
+    }
+}
+
+/// The folder a project's repository starts at: its git work tree, else the project's folder.
+fn repository_root(project: &Path) -> PathBuf {
+    let dir = project.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new(".")).to_path_buf();
+    let mut d = std::path::absolute(&dir).unwrap_or(dir.clone());
+    loop {
+        if d.join(".git").exists() {
+            return d;
+        }
+        if !d.pop() {
+            return dir;
+        }
+    }
+}
+
+/// One definition of a module: source and module index.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Def {
+    src: usize,
+    module: usize,
+}
+
+/// Every Verilog file of the repository, scanned, and every IP configuration, by name.
+struct Pool {
+    sources: Vec<Source>,
+    defs: BTreeMap<String, Vec<Def>>,
+    ips: BTreeMap<String, Vec<Result<IpConfig, BoardError>>>,
+    /// VHDL entities by lower-case name: (file, entity as written).
+    entities: BTreeMap<String, Vec<(PathBuf, String)>>,
+    ages: std::cell::OnceCell<Ages>,
+    root: PathBuf,
+}
+
+/// Generated artefacts Vivado leaves beside a core (board.md §6): a simulation netlist is
+/// taken only when nothing else defines the module.
+fn is_netlist(path: &Path) -> bool {
+    let name = path.file_name().map(|n| n.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+    name.ends_with("_sim_netlist.v") || name.ends_with("_funcsim.v") || name.ends_with("_stub.v")
+}
+
+impl Pool {
+    fn new(repo: &Repo, opts: &Options) -> Result<Pool, BoardError> {
+        let excluded = |p: &Path| {
+            let p = std::path::absolute(p).unwrap_or(p.to_path_buf());
+            opts.exclude.iter().any(|x| p.starts_with(std::path::absolute(x).unwrap_or(x.clone())))
+        };
+        let mut sources = Vec::new();
+        let mut defs: BTreeMap<String, Vec<Def>> = BTreeMap::new();
+        for f in repo.hdl.iter().filter(|f| !excluded(f)) {
+            let s = Source::read(f)?;
+            for (k, m) in s.modules.iter().enumerate() {
+                defs.entry(m.name.clone()).or_default().push(Def { src: sources.len(), module: k });
+            }
+            sources.push(s);
+        }
+        let mut ips: BTreeMap<String, Vec<Result<IpConfig, BoardError>>> = BTreeMap::new();
+        for f in repo.ip.iter().filter(|f| !excluded(f)) {
+            let ip = IpConfig::read(f);
+            let name = match &ip {
+                Ok(ip) => ip.name.clone(),
+                Err(_) => f.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
+            };
+            ips.entry(name).or_default().push(ip);
+        }
+        let mut entities: BTreeMap<String, Vec<(PathBuf, String)>> = BTreeMap::new();
+        for f in repo.vhdl.iter().filter(|f| !excluded(f)) {
+            let text = String::from_utf8_lossy(&std::fs::read(f).unwrap_or_default()).into_owned();
+            for (e, _) in vhdl::entities(&text) {
+                entities.entry(e.to_ascii_lowercase()).or_default().push((f.clone(), e));
+            }
+        }
+        let root = repo.roots.first().cloned().unwrap_or_else(|| PathBuf::from("."));
+        Ok(Pool { sources, defs, ips, entities, ages: std::cell::OnceCell::new(), root })
+    }
+
+    fn module(&self, d: Def) -> &Module {
+        &self.sources[d.src].modules[d.module]
+    }
+
+    fn path(&self, d: Def) -> &Path {
+        &self.sources[d.src].path
+    }
+
+    fn at(&self, d: Def) -> String {
+        format!("{}:{}", self.path(d).display(), self.module(d).line)
+    }
+
+    /// The definitions of `name`, but for black boxes in Vivado's synthesis stubs
+    /// (`<ip>_stub.v`: the core's ports and nothing else).
+    fn definitions(&self, name: &str) -> Vec<Def> {
+        let stub = |d: &Def| {
+            self.module(*d).empty && self.path(*d).to_string_lossy().to_ascii_lowercase().ends_with("_stub.v")
+        };
+        self.defs.get(name).map(|v| v.iter().copied().filter(|d| !stub(d)).collect()).unwrap_or_default()
+    }
+
+    /// Does any definition of `name` reach a `bot` instance?
+    fn reaches_bot(&self, name: &str) -> bool {
+        let mut seen = BTreeSet::new();
+        let mut stack = vec![name.to_string()];
+        while let Some(n) = stack.pop() {
+            if n == "bot" {
+                return true;
+            }
+            if !seen.insert(n.clone()) {
+                continue;
+            }
+            for d in self.definitions(&n) {
+                stack.extend(self.module(d).instances.iter().map(|i| i.module.clone()));
+            }
+        }
+        false
+    }
+
+    fn ages(&self) -> &Ages {
+        self.ages.get_or_init(|| Ages::of(&self.root))
+    }
+
+    /// The top: `--top`, the project's, or the one board module that reaches a bot and
+    /// that no other one instantiates.
+    fn top(&self, opts: &Options, project: Option<&Project>) -> Result<String, BoardError> {
+        if let Some(t) = &opts.top {
+            return if self.definitions(t).is_empty() {
+                Err(BoardError::plain(format!("--top {t}: no module of that name in the sources")))
+            } else {
+                Ok(t.clone())
+            };
+        }
+        if let Some(p) = project {
+            if let Some(t) = &p.top {
+                return if self.definitions(t).is_empty() {
+                    // ISE and VHDL tops are written in any case.
+                    match self.defs.keys().find(|k| k.eq_ignore_ascii_case(t) && !self.definitions(k).is_empty()) {
+                        Some(k) => Ok(k.clone()),
+                        None => Err(BoardError::at(
+                            &p.path,
+                            0,
+                            0,
+                            format!("its top module `{t}` is defined in no Verilog file of the repository"),
+                        )),
+                    }
+                } else {
+                    Ok(t.clone())
+                };
+            }
+        }
+        let own = |n: &str| OWN_MODULES.iter().any(|(m, _)| *m == n) || PRIMITIVES.iter().any(|(m, _)| *m == n);
+        let boards: BTreeSet<&str> = self
+            .defs
+            .keys()
+            .filter(|n| !own(n))
+            .filter(|n| {
+                self.definitions(n).iter().any(|d| {
+                    let m = self.module(*d);
+                    !is_program_rom(m) && m.ports.iter().any(|p| pins::role(&p.name) == Some(Role::Clock))
+                })
+            })
+            .map(String::as_str)
+            .collect();
+        let with_bot: BTreeSet<&str> = boards.iter().copied().filter(|n| self.reaches_bot(n)).collect();
+        let pick = |set: &BTreeSet<&str>| -> Vec<String> {
+            // Not instantiated by another module of the set (a testbench, which has no
+            // board pins, does not count).
+            set.iter()
+                .filter(|n| {
+                    !set.iter().any(|other| {
+                        other != *n
+                            && self
+                                .definitions(other)
+                                .iter()
+                                .any(|d| self.module(*d).instances.iter().any(|i| i.module == **n))
+                    })
+                })
+                .map(|n| n.to_string())
+                .collect()
+        };
+        let mut candidates = pick(&with_bot);
+        if candidates.is_empty() {
+            candidates = pick(&boards);
+        }
+        match candidates.as_slice() {
+            [one] => Ok(one.clone()),
+            [] => Err(BoardError::plain(
+                "cannot find the top module: no module has a board clock pin (clk, clk100, CLK100MHZ); name it with --top",
+            )),
+            many => {
+                let list: Vec<String> = many
+                    .iter()
+                    .map(|n| format!("`{n}` ({})", self.definitions(n).first().map(|d| self.at(*d)).unwrap_or_default()))
+                    .collect();
+                Err(BoardError::plain(format!("several modules could be the top: {}; name one with --top", list.join(", "))))
+            }
+        }
+    }
+
+    /// The definition of `name` to use, from `defs`, and the note that says why when there
+    /// was a choice. `parent`: the file of the module that instantiates it.
+    fn choose(
+        &self,
+        name: &str,
+        defs: &[Def],
+        parent: Option<&Path>,
+        listed: &BTreeSet<PathBuf>,
+        opts: &Options,
+    ) -> (Def, Option<String>) {
+        if defs.len() == 1 {
+            return (defs[0], None);
+        }
+        // Copies that differ in nothing but comments and layout are one definition.
+        let text = |d: Def| scan::normalized(&self.sources[d.src].text, self.module(d).span.clone());
+        let first = text(defs[0]);
+        if defs[1..].iter().all(|d| text(*d) == first) {
+            return (self.order_by_age(defs)[0], None);
+        }
+        let canon = |p: &Path| std::fs::canonicalize(p).unwrap_or(p.to_path_buf());
+        let mut cands = defs.to_vec();
+        let mut why = String::new();
+        let narrow = |cands: &mut Vec<Def>, keep: &dyn Fn(Def) -> bool, reason: String, why: &mut String| {
+            let kept: Vec<Def> = cands.iter().copied().filter(|d| keep(*d)).collect();
+            if !kept.is_empty() && kept.len() < cands.len() {
+                *cands = kept;
+                if why.is_empty() {
+                    *why = reason;
+                }
+            }
+        };
+        let preferred: Vec<PathBuf> = opts.prefer.iter().map(|p| canon(p)).collect();
+        narrow(&mut cands, &|d| preferred.contains(&canon(self.path(d))), "the one --file names".into(), &mut why);
+        narrow(&mut cands, &|d| listed.contains(&canon(self.path(d))), "the project's".into(), &mut why);
+        narrow(&mut cands, &|d| !is_netlist(self.path(d)), "not a simulation netlist".into(), &mut why);
+        if let Some(parent) = parent {
+            let dir = parent.parent().unwrap_or(Path::new("."));
+            let depth = |d: Def| common_depth(&canon(self.path(d)), &canon(dir));
+            let best = cands.iter().map(|d| depth(*d)).max().unwrap_or(0);
+            narrow(
+                &mut cands,
+                &|d| self.path(d).parent() == Some(dir),
+                format!("beside {}, which instantiates it", parent.display()),
+                &mut why,
+            );
+            narrow(&mut cands, &|d| depth(d) == best, format!("the nearest to {}", parent.display()), &mut why);
+        }
+        let ordered = self.order_by_age(&cands);
+        let taken = ordered[0];
+        if cands.len() > 1 {
+            let ages = self.ages();
+            let newest = ages.of_file(self.path(taken));
+            why = if cands.iter().all(|d| ages.of_file(self.path(*d)) == newest) {
+                "the one nearest the repository's root".into()
+            } else {
+                "the newest".into()
+            };
+        }
+        let others: Vec<String> = defs.iter().filter(|d| **d != taken).map(|d| self.at(*d)).collect();
+        let note = format!(
+            "`{name}` has {} different definitions: took {} ({why}) over {} (--file or --exclude chooses another)",
+            defs.len(),
+            self.at(taken),
+            others.join(", ")
+        );
+        (taken, Some(note))
+    }
+
+    /// Newest first (last committed, else modified), then nearest the root, then by path.
+    fn order_by_age(&self, defs: &[Def]) -> Vec<Def> {
+        let mut v = defs.to_vec();
+        let ages = self.ages();
+        v.sort_by_key(|d| {
+            let p = self.path(*d);
+            (std::cmp::Reverse(ages.of_file(p)), p.components().count(), p.to_path_buf())
+        });
+        v
+    }
+
+    /// The design from the top down.
+    fn design(&self, project: Option<&Project>, opts: &Options, repo: &Repo) -> Result<Design, BoardError> {
+        let mut notes = Vec::new();
+        // The project's files, found by name when they are listed with another machine's
+        // paths.
+        let mut listed = BTreeSet::new();
+        if let Some(p) = project {
+            for f in &p.files {
+                if f.exists() {
+                    listed.insert(std::fs::canonicalize(f).unwrap_or(f.clone()));
+                    continue;
+                }
+                let name = f.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+                match repo.find_near(&name, p.path.parent().unwrap_or(Path::new("."))) {
+                    Some(found) => {
+                        notes.push(format!(
+                            "{}: lists {}, which is not here; using {}",
+                            p.path.display(),
+                            f.display(),
+                            found.display()
+                        ));
+                        listed.insert(std::fs::canonicalize(&found).unwrap_or(found));
+                    }
+                    None if matches!(FileKind::of(f), FileKind::Hdl | FileKind::Ip | FileKind::Vhdl) => notes
+                        .push(format!("{}: lists {}, which is not in the repository", p.path.display(), f.display())),
+                    None => {}
+                }
+            }
+        }
+        let top = self.top(opts, project)?;
+        let mut walk = Walk::new(self, opts, repo, &listed);
+        walk.run(&top)?;
+        notes.append(&mut walk.notes);
+        let mut design = walk.finish(top, project.map(|p| p.path.clone()))?;
+        notes.append(&mut design.notes);
+        design.notes = notes;
+        Ok(design)
+    }
+}
+
+fn common_depth(a: &Path, b: &Path) -> usize {
+    a.components().zip(b.components()).take_while(|(x, y)| x == y).count()
+}
+
+/// What stands for a reached module.
+#[derive(Clone, Debug)]
+enum Choice {
+    /// The user's definition.
+    User(Def),
+    /// Botsim's own module or a primitive model.
+    Own,
+    /// Verilog botsim generated (a core, a stand-in, a stub), with its report line.
+    Generated(Source, Replacement),
+}
+
+/// A module nobody defines, where it is instantiated.
+struct Missing {
+    module: String,
+    instance: String,
+    parent: String,
+    at: String,
+    hint: String,
+}
+
+struct Walk<'a> {
+    pool: &'a Pool,
+    opts: &'a Options,
+    repo: &'a Repo,
+    listed: &'a BTreeSet<PathBuf>,
+    chosen: BTreeMap<String, Choice>,
+    order: Vec<String>,
+    missing: Vec<Missing>,
+    notes: Vec<String>,
+    /// Every instance of a stubbed or `--clock` module, for their ports.
+    instances: BTreeMap<String, Vec<Instance>>,
+}
+
+impl<'a> Walk<'a> {
+    fn new(pool: &'a Pool, opts: &'a Options, repo: &'a Repo, listed: &'a BTreeSet<PathBuf>) -> Walk<'a> {
+        Walk {
+            pool,
+            opts,
+            repo,
+            listed,
+            chosen: BTreeMap::new(),
+            order: Vec::new(),
+            missing: Vec::new(),
+            notes: Vec::new(),
+            instances: BTreeMap::new(),
+        }
+    }
+
+    fn run(&mut self, top: &str) -> Result<(), BoardError> {
+        let defs = self.pool.definitions(top);
+        let (d, note) = self.pool.choose(top, &defs, None, self.listed, self.opts);
+        self.notes.extend(note);
+        self.chosen.insert(top.to_string(), Choice::User(d));
+        self.order.push(top.to_string());
+        let mut queue: VecDeque<(String, Def)> = VecDeque::from([(top.to_string(), d)]);
+        let bot_ports = botsim20_ports();
+        while let Some((_, def)) = queue.pop_front() {
+            let m = self.pool.module(def).clone();
+            let file = self.pool.path(def).to_path_buf();
+            if is_program_rom(&m) {
+                continue; // replaced by a behavioural ROM: what it instantiates is not needed
+            }
+            for inst in &m.instances {
+                if inst.module == "bot" {
+                    if let Some((port, _)) =
+                        inst.connections.iter().find(|(p, _)| !p.starts_with('#') && !bot_ports.contains(p))
+                    {
+                        return Err(BoardError::at(
+                            &file,
+                            inst.line,
+                            inst.col,
+                            format!(
+                                "this `bot` has a port `{port}` that BotSim 2.0's bot does not have (a later BotSim?); botsim simulates BotSim 2.0 (ports: {})",
+                                bot_ports.join(", ")
+                            ),
+                        ));
+                    }
+                }
+                if self.opts.stubs.contains(&inst.module) || self.clock_specs(&inst.module, &inst.name).is_some() {
+                    self.instances.entry(inst.module.clone()).or_default().push(inst.clone());
+                }
+                if self.chosen.contains_key(&inst.module) {
+                    continue;
+                }
+                if let Some(child) = self.choose_for(inst, &m.name, &file) {
+                    // botsim's own modules replace the user's copies: not walked into.
+                    let own = OWN_MODULES.iter().any(|(o, _)| *o == inst.module);
+                    if let (Choice::User(d), false) = (&child, own) {
+                        queue.push_back((inst.module.clone(), *d));
+                    }
+                    self.chosen.insert(inst.module.clone(), child);
+                    self.order.push(inst.module.clone());
+                }
+                if inst.module == "bot" && !self.chosen.contains_key("bot_pgm") {
+                    // botsim's bot runs the user's bot_pgm, if there is one.
+                    let defs = self.pool.definitions("bot_pgm");
+                    if !defs.is_empty() {
+                        let (d, note) = self.pool.choose("bot_pgm", &defs, Some(&file), self.listed, self.opts);
+                        self.notes.extend(note);
+                        self.chosen.insert("bot_pgm".into(), Choice::User(d));
+                        self.order.push("bot_pgm".into());
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn clock_specs(&self, module: &str, instance: &str) -> Option<Vec<&'a ClockSpec>> {
+        let v: Vec<&ClockSpec> =
+            self.opts.clocks.iter().filter(|c| c.target == module || c.target == instance).collect();
+        (!v.is_empty()).then_some(v)
+    }
+
+    /// What stands for the module `inst` instantiates (first met in `parent`, in `file`);
+    /// `None` when it is missing (recorded) or made at the end (stubs, `--clock`).
+    fn choose_for(&mut self, inst: &Instance, parent: &str, file: &Path) -> Option<Choice> {
+        let name = inst.module.as_str();
+        let pool = self.pool;
+        if OWN_MODULES.iter().any(|(m, _)| *m == name) {
+            // The user's copy is reported as replaced (and blanked by the plan).
+            let defs = pool.definitions(name);
+            return Some(if defs.is_empty() {
+                Choice::Own
+            } else {
+                let (d, _) = pool.choose(name, &defs, Some(file), self.listed, self.opts);
+                Choice::User(d)
+            });
+        }
+        if PRIMITIVES.iter().any(|(m, _)| *m == name) {
+            return Some(Choice::Own);
+        }
+        if self.opts.stubs.iter().any(|s| s == name) || self.clock_specs(name, &inst.name).is_some() {
+            return None; // made once every instance is known
+        }
+        // The user's Verilog (simulation netlists only when nothing else defines it).
+        let defs = pool.definitions(name);
+        let real: Vec<Def> = defs.iter().copied().filter(|d| !is_netlist(pool.path(*d))).collect();
+        if !real.is_empty() {
+            return Some(self.user(name, &real, file));
+        }
+        // A core from its configuration.
+        if let Some(c) = self.configured(name, file) {
+            return Some(c);
+        }
+        if !defs.is_empty() {
+            return Some(self.user(name, &defs, file));
+        }
+        // The course's modules.
+        if let Some((text, module)) = course::stand_in(name) {
+            let unknown: Vec<&str> = inst
+                .connections
+                .iter()
+                .map(|(p, _)| p.as_str())
+                .filter(|p| !p.starts_with('#') && module.port(p).is_none())
+                .collect();
+            if unknown.is_empty() {
+                let path = PathBuf::from(format!("botsim/course/{}.v", name));
+                return Some(Choice::Generated(
+                    Source::generated(path, text),
+                    Replacement {
+                        module: name.to_string(),
+                        from: String::new(),
+                        with: format!("botsim's clean-room course `{name}` (the repository has none)"),
+                    },
+                ));
+            }
+            self.missing(
+                inst,
+                parent,
+                file,
+                format!(
+                "the course's `{name}` is not in the repository, and botsim's stand-in has no port {} (its ports: {})",
+                unknown.join(", "),
+                module.ports.iter().map(|p| p.name.as_str()).collect::<Vec<_>>().join(", ")
+            ),
+            );
+            return None;
+        }
+        // An entity that only exists as VHDL.
+        if let Some(found) = pool.entities.get(&name.to_ascii_lowercase()) {
+            let (vhd, entity) = found[0].clone();
+            let beside: Vec<PathBuf> = self.repo.vhdl.iter().filter(|p| p.parent() == vhd.parent()).cloned().collect();
+            let generics: Vec<(String, String)> = inst
+                .params
+                .iter()
+                .filter(|(n, v)| !n.starts_with('#') && v.trim().parse::<i64>().is_ok())
+                .map(|(n, v)| (n.clone(), v.trim().to_string()))
+                .collect();
+            match vhdl::to_verilog(&vhd, &beside, &entity, name, &generics) {
+                Ok(verilog) => {
+                    let path = PathBuf::from(format!("{}.v", vhd.display()));
+                    return Some(Choice::Generated(
+                        Source::generated(path, verilog),
+                        Replacement {
+                            module: name.to_string(),
+                            from: vhd.display().to_string(),
+                            with: "GHDL's synthesis of the VHDL entity to Verilog".into(),
+                        },
+                    ));
+                }
+                Err(e) => {
+                    self.missing(
+                        inst,
+                        parent,
+                        file,
+                        format!("it exists only as VHDL ({}), and {e}; tie it off with --stub {name}", vhd.display()),
+                    );
+                    return None;
+                }
+            }
+        }
+        let hint = if let Some(Ok(ip)) = pool.ips.get(name).and_then(|v| v.first()) {
+            format!(
+                "an IP core botsim has no model of (`{}`, {}); tie it off with --stub {name}",
+                ip.core,
+                ip.path.display()
+            )
+        } else if let Some(Err(e)) = pool.ips.get(name).and_then(|v| v.first()) {
+            format!("its IP configuration cannot be read ({e}); tie it off with --stub {name}")
+        } else if let Some(d) = pool.defs.get(name).and_then(|v| v.first()) {
+            format!("only a black box declares it ({}); add its file, or tie it off with --stub {name}", pool.at(*d))
+        } else if looks_like_clock_core(inst) {
+            let outs: Vec<&str> = inst
+                .connections
+                .iter()
+                .map(|(p, _)| p.as_str())
+                .filter(|p| p.to_ascii_lowercase().contains("out") || p.to_ascii_lowercase().starts_with("clk_o"))
+                .collect();
+            let example = outs.first().copied().unwrap_or("clk_out1");
+            format!(
+                "a clock core with no configuration (ports {}): give its frequencies with --clock {name}.{example}=25MHz (one per output), or add its .xci",
+                inst.connections.iter().map(|(p, _)| p.as_str()).collect::<Vec<_>>().join(", ")
+            )
+        } else {
+            format!("add its file, or tie it off with --stub {name}")
+        };
+        self.missing(inst, parent, file, hint);
+        None
+    }
+
+    fn user(&mut self, name: &str, defs: &[Def], file: &Path) -> Choice {
+        let (d, note) = self.pool.choose(name, defs, Some(file), self.listed, self.opts);
+        self.notes.extend(note);
+        // A generated wrapper of Xilinx's memory library model: the core from its
+        // configuration, else from the parameters the wrapper gives the model.
+        let m = self.pool.module(d);
+        if let Some(lib) = m.instances.iter().find(|i| library_model(&i.module).is_some()) {
+            if let Some(c) = self.configured(name, self.pool.path(d)) {
+                return c;
+            }
+            let dir = self.pool.path(d).parent().unwrap_or(Path::new("."));
+            let find = |n: &str| self.repo.find_near(n, dir);
+            match MemCore::from_wrapper(m, lib, self.pool.path(d), &find) {
+                Ok(core) => return self.core(core, self.pool.at(d)),
+                Err(e) => self.notes.push(format!("{e} (the wrapper is compiled as it is)")),
+            }
+        }
+        Choice::User(d)
+    }
+
+    fn core(&mut self, core: MemCore, from: String) -> Choice {
+        self.notes.extend(core.notes.iter().cloned());
+        let path = PathBuf::from(format!("botsim/cores/{}.v", core.name));
+        Choice::Generated(
+            Source::generated(path, core.verilog()),
+            Replacement { module: core.name.clone(), from, with: format!("{}, from {}", core.summary(), core.origin) },
+        )
+    }
+
+    /// A clock or memory core from its `.xci`/`.xco`.
+    fn configured(&mut self, name: &str, file: &Path) -> Option<Choice> {
+        let configs: Vec<&IpConfig> = self.pool.ips.get(name)?.iter().filter_map(|r| r.as_ref().ok()).collect();
+        let supported: Vec<&IpConfig> = configs
+            .into_iter()
+            .filter(|c| CLOCK_CORES.contains(&c.core.as_str()) || MEMORY_CORES.contains(&c.core.as_str()))
+            .collect();
+        // The project's, else the nearest to the instance.
+        let canon = |p: &Path| std::fs::canonicalize(p).unwrap_or(p.to_path_buf());
+        let dir = canon(file.parent().unwrap_or(Path::new(".")));
+        let ip = supported
+            .iter()
+            .max_by_key(|c| (self.listed.contains(&canon(&c.path)), common_depth(&canon(&c.path), &dir)))
+            .copied()?;
+        if supported.len() > 1 {
+            self.notes.push(format!("`{name}` has {} IP configurations; using {}", supported.len(), ip.path.display()));
+        }
+        let result = if CLOCK_CORES.contains(&ip.core.as_str()) {
+            ClockCore::from_config(ip).map(|c| {
+                let path = PathBuf::from(format!("botsim/cores/{}.v", c.name));
+                let with = format!("a Clocking Wizard from its configuration ({})", c.summary());
+                Choice::Generated(
+                    Source::generated(path, c.verilog()),
+                    Replacement { module: name.to_string(), from: ip.path.display().to_string(), with },
+                )
+            })
+        } else {
+            let dir = ip.path.parent().unwrap_or(Path::new("."));
+            let find = |n: &str| self.repo.find_near(n, dir);
+            MemCore::from_config(ip, &find).map(|c| {
+                let core = c.expect("a memory core's configuration");
+                self.core(core, ip.path.display().to_string())
+            })
+        };
+        match result {
+            Ok(c) => Some(c),
+            Err(e) => {
+                self.missing.push(Missing {
+                    module: name.to_string(),
+                    instance: String::new(),
+                    parent: String::new(),
+                    at: e.location.clone().unwrap_or_default(),
+                    hint: e.message,
+                });
+                // Recorded as missing: nothing stands for it.
+                Some(Choice::Own)
+            }
+        }
+    }
+
+    fn missing(&mut self, inst: &Instance, parent: &str, file: &Path, hint: String) {
+        self.missing.push(Missing {
+            module: inst.module.clone(),
+            instance: inst.name.clone(),
+            parent: parent.to_string(),
+            at: format!("{}:{}:{}", file.display(), inst.line, inst.col),
+            hint,
+        });
+    }
+
+    /// The design: stubs and `--clock` modules made from every instance, the chosen
+    /// definitions' files with everything else blanked, and the missing modules as one error.
+    fn finish(mut self, top: String, project: Option<PathBuf>) -> Result<Design, BoardError> {
+        let mut generated = Vec::new();
+        let mut sources: Vec<Source> = Vec::new();
+        for (module, insts) in std::mem::take(&mut self.instances) {
+            let ports: BTreeSet<String> = insts
+                .iter()
+                .flat_map(|i| &i.connections)
+                .map(|(p, _)| p.clone())
+                .filter(|p| !p.starts_with('#'))
+                .collect();
+            let params: BTreeSet<String> =
+                insts.iter().flat_map(|i| &i.params).map(|(p, _)| p.clone()).filter(|p| !p.starts_with('#')).collect();
+            let ports: Vec<String> = ports.into_iter().collect();
+            if self.opts.stubs.contains(&module) {
+                let params: Vec<String> = params.into_iter().collect();
+                sources.push(Source::generated(
+                    format!("botsim/stubs/{module}.v"),
+                    super::wrapper::stub(&module, &ports, &params),
+                ));
+                generated.push(Replacement {
+                    module: module.clone(),
+                    from: String::new(),
+                    with: "a stub (--stub: inputs ignored, outputs 0)".into(),
+                });
+            } else if let Some(specs) = self.clock_specs(&module, &insts[0].name) {
+                let core = ClockCore::from_specs(&module, &specs, &ports);
+                let with = format!("a clock module as --clock describes it ({})", core.summary());
+                sources.push(Source::generated(format!("botsim/cores/{module}.v"), core.verilog()));
+                generated.push(Replacement { module: module.clone(), from: String::new(), with });
+            }
+        }
+        if !self.missing.is_empty() {
+            let n = self.missing.len();
+            let mut msg = if n == 1 {
+                "a module of the design is missing:".to_string()
+            } else {
+                format!("{n} modules of the design are missing:")
+            };
+            for m in &self.missing {
+                let place = if m.instance.is_empty() {
+                    String::new()
+                } else {
+                    format!(" (instance `{}` in `{}`)", m.instance, m.parent)
+                };
+                msg.push_str(&format!("\n  {}: `{}`{place}: {}", m.at, m.module, m.hint));
+            }
+            return Err(BoardError::plain(msg));
+        }
+        // The user's files: each with the modules chosen from it, the rest blanked.
+        let mut by_file: BTreeMap<usize, Vec<usize>> = BTreeMap::new();
+        for name in &self.order {
+            match self.chosen.get(name) {
+                Some(Choice::User(d)) => by_file.entry(d.src).or_default().push(d.module),
+                Some(Choice::Generated(src, rep)) => {
+                    sources.push(src.clone());
+                    generated.push(rep.clone());
+                }
+                _ => {}
+            }
+        }
+        let mut user = Vec::new();
+        let mut include_dirs: Vec<PathBuf> = Vec::new();
+        for (src, keep) in by_file {
+            let s = &self.pool.sources[src];
+            let mut out = s.clone();
+            out.modules =
+                s.modules.iter().enumerate().filter(|(k, _)| keep.contains(k)).map(|(_, m)| m.clone()).collect();
+            out.dropped =
+                s.modules.iter().enumerate().filter(|(k, _)| !keep.contains(k)).map(|(_, m)| m.span.clone()).collect();
+            self.lenient(&mut out);
+            let dir = s.path.parent().unwrap_or(Path::new(".")).to_path_buf();
+            if !include_dirs.contains(&dir) {
+                include_dirs.push(dir);
+            }
+            user.push(out);
+        }
+        // Includes the compiled files name that are elsewhere in the repository.
+        for s in &user {
+            for (inc, _) in scan::includes(&s.text) {
+                let name = Path::new(&inc.replace('\\', "/")).file_name().map(|n| n.to_string_lossy().into_owned());
+                let Some(name) = name else { continue };
+                let here = include_dirs.iter().chain(&self.opts.include_dirs).any(|d| d.join(&inc).is_file());
+                if here {
+                    continue;
+                }
+                if let Some(found) = self.repo.find_near(&name, s.path.parent().unwrap_or(Path::new("."))) {
+                    let dir = found.parent().unwrap_or(Path::new(".")).to_path_buf();
+                    if !include_dirs.contains(&dir) {
+                        self.notes.push(format!("{} includes {inc}: found in {}", s.path.display(), dir.display()));
+                        include_dirs.push(dir);
+                    }
+                }
+            }
+        }
+        include_dirs.extend(self.opts.include_dirs.iter().cloned());
+        user.extend(sources);
+        Ok(Design { top, project, sources: user, include_dirs, notes: self.notes, generated })
+    }
+
+    /// Rewrite what Vivado accepts and Verilator refuses in the compiled parts of `s`, and
+    /// say so.
+    fn lenient(&mut self, s: &mut Source) {
+        let kept = |at: &std::ops::Range<usize>| !s.dropped.iter().any(|d| d.start <= at.start && at.end <= d.end);
+        let fixes: Vec<scan::Oversized> =
+            scan::oversized_literals(&s.text).into_iter().filter(|o| kept(&o.at)).collect();
+        for o in fixes.iter().rev() {
+            // Padded with spaces: every column after it stays where it was.
+            let padded = format!("{:<width$}", o.fixed, width = o.text.len());
+            s.text.replace_range(o.at.clone(), &padded);
+            s.edited = true;
+        }
+        for o in &fixes {
+            self.notes.push(format!(
+                "{}:{}:{}: `{}` has more digits than its width holds; Vivado keeps the low bits (`{}`), and so does botsim",
+                s.path.display(),
+                o.line,
+                o.col,
+                o.text,
+                o.fixed
+            ));
+        }
+    }
+}
+
+/// An instance whose connections look like a Clocking Wizard's (`clk_in1`, `clk_out1`, ...).
+fn looks_like_clock_core(inst: &Instance) -> bool {
+    let ports: Vec<String> = inst.connections.iter().map(|(p, _)| p.to_ascii_lowercase()).collect();
+    ports.iter().any(|p| p.starts_with("clk_in") || p == "clkin")
+        || (ports.iter().any(|p| p.starts_with("clk_out"))
+            && ports.iter().any(|p| p.contains("locked") || p.contains("reset")))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tree(files: &[(&str, &str)]) -> tempfile::TempDir {
+        let dir = tempfile::tempdir().unwrap();
+        for (f, text) in files {
+            let p = dir.path().join(f);
+            std::fs::create_dir_all(p.parent().unwrap()).unwrap();
+            std::fs::write(p, text).unwrap();
+        }
+        dir
+    }
+
+    const TOP: &str =
+        "module nexys4fpga(input clk, output [15:0] led);\n  sys s (.clk(clk));\n  bot b (.clk(clk));\nendmodule\n";
+
+    fn names(d: &Design) -> Vec<(String, Vec<String>)> {
+        d.sources
+            .iter()
+            .map(|s| {
+                let p = s.path.to_string_lossy().into_owned();
+                let short = p.rsplit_once("/tmp").map_or(p.clone(), |_| {
+                    p.split('/').rev().take(2).collect::<Vec<_>>().into_iter().rev().collect::<Vec<_>>().join("/")
+                });
+                (short, s.modules.iter().map(|m| m.name.clone()).collect())
+            })
+            .collect()
+    }
+
+    #[test]
+    fn only_what_the_top_reaches_is_compiled() {
+        let t = tree(&[
+            ("src/top.v", TOP),
+            ("src/sys.v", "module sys(input clk); endmodule\nmodule unused(input a); broken syntax here\nendmodule\n"),
+            ("KCPSM6_Release9/ROM_form.v", "module jtag_loader_6(input a); endmodule\n"),
+            ("src/prog.v", "module jtag_loader_6(input a); assign x = 1; endmodule\n"),
+            ("tb/tb.v", "module tb; nexys4fpga dut (.clk(c)); endmodule\n"),
+        ]);
+        let d = resolve(&[t.path().to_path_buf()], &Options::default()).unwrap();
+        assert_eq!(d.top, "nexys4fpga");
+        assert_eq!(
+            names(&d),
+            [("src/sys.v".to_string(), vec!["sys".to_string()]), ("src/top.v".into(), vec!["nexys4fpga".into()])]
+        );
+        // The unused module of a reached file is blanked, lines kept.
+        let sys = d.sources.iter().find(|s| s.path.ends_with("sys.v")).unwrap();
+        assert_eq!(sys.dropped.len(), 1);
+        assert!(!sys.compiled_text(&[]).contains("broken"));
+        assert_eq!(sys.compiled_text(&[]).lines().count(), 3);
+    }
+
+    #[test]
+    fn different_copies_the_one_beside_the_parent_wins_and_is_said() {
+        let t = tree(&[
+            ("src/top.v", TOP),
+            ("src/sys.v", "module sys(input clk); assign a = 1; endmodule\n"),
+            ("old/sys.v", "module sys(input clk); assign a = 0; endmodule\n"),
+            ("copy/sys.v", "// same as src, other comment\nmodule sys(input clk);\n assign a = 1;\nendmodule\n"),
+        ]);
+        let d = resolve(&[t.path().to_path_buf()], &Options::default()).unwrap();
+        let sys = d.sources.iter().find(|s| s.module("sys").is_some()).unwrap();
+        assert!(sys.path.ends_with("src/sys.v"), "{:?}", sys.path);
+        let note = d.notes.iter().find(|n| n.contains("`sys` has 3 different definitions")).unwrap();
+        assert!(note.contains("src/sys.v:1 (beside") && note.contains("old/sys.v:1"), "{note}");
+        // --file chooses another.
+        let opts = Options { prefer: vec![t.path().join("old/sys.v")], ..Options::default() };
+        let d = resolve(&[t.path().to_path_buf()], &opts).unwrap();
+        assert!(d.sources.iter().any(|s| s.module("sys").is_some() && s.path.ends_with("old/sys.v")));
+        // --exclude leaves a folder out: the other two copies are the choice.
+        let opts = Options { exclude: vec![t.path().join("src")], ..Options::default() };
+        let d = resolve(&[t.path().to_path_buf(), t.path().join("src/top.v")], &opts).unwrap();
+        let note = d.notes.iter().find(|n| n.contains("`sys` has 2 different definitions")).unwrap();
+        assert!(!note.contains("src/sys.v"), "{note}");
+    }
+
+    #[test]
+    fn every_missing_module_at_once_with_what_gets_past_it() {
+        let t = tree(&[(
+            "top.v",
+            "module top(input clk);\n  clk_wiz_0 cw (.clk_in1(clk), .clk_out1(c25), .locked(l));\n  uart u (.clk(clk));\n  bot b (.clk(clk));\n  spi s (.clk(clk));\nendmodule\n",
+        )]);
+        let e = resolve(&[t.path().to_path_buf()], &Options::default()).unwrap_err().to_string();
+        let lines: Vec<&str> = e.lines().collect();
+        assert_eq!(lines[0], "3 modules of the design are missing:");
+        assert!(lines[1].ends_with("top.v:2:3: `clk_wiz_0` (instance `cw` in `top`): a clock core with no configuration (ports clk_in1, clk_out1, locked): give its frequencies with --clock clk_wiz_0.clk_out1=25MHz (one per output), or add its .xci"), "{e}");
+        assert!(
+            lines[2]
+                .contains("top.v:3:3: `uart` (instance `u` in `top`): add its file, or tie it off with --stub uart"),
+            "{e}"
+        );
+        assert!(lines[3].contains("top.v:5:3: `spi`"), "{e}");
+        let opts = Options {
+            stubs: vec!["uart".into(), "spi".into()],
+            clocks: vec![ClockSpec::parse("clk_wiz_0.clk_out1=25MHz").unwrap()],
+            ..Options::default()
+        };
+        let d = resolve(&[t.path().to_path_buf()], &opts).unwrap();
+        let made: Vec<&str> = d.generated.iter().map(|r| r.module.as_str()).collect();
+        assert_eq!(made, ["clk_wiz_0", "spi", "uart"]);
+    }
+
+    #[test]
+    fn a_bot_of_another_botsim_is_named_by_its_port() {
+        let t = tree(&[("top.v", "module top(input clk);\n  bot b (.clk(clk), .Bot_Config_reg(cfg));\nendmodule\n")]);
+        let e = resolve(&[t.path().to_path_buf()], &Options::default()).unwrap_err().to_string();
+        assert!(
+            e.contains("top.v:2:3: this `bot` has a port `Bot_Config_reg` that BotSim 2.0's bot does not have"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn the_top_is_the_board_module_that_reaches_the_bot() {
+        let t = tree(&[
+            ("p2/top.v", TOP),
+            ("p2/sys.v", "module sys(input clk); endmodule\n"),
+            ("p1/top1.v", "module proj1(input clk, output [15:0] led); endmodule\n"),
+        ]);
+        assert_eq!(resolve(&[t.path().to_path_buf()], &Options::default()).unwrap().top, "nexys4fpga");
+        let t = tree(&[
+            ("a.v", TOP),
+            ("b.v", "module final_top(input clk); bot b (.clk(clk)); endmodule\n"),
+            ("s.v", "module sys(input clk); endmodule\n"),
+        ]);
+        let e = resolve(&[t.path().to_path_buf()], &Options::default()).unwrap_err().to_string();
+        assert!(e.starts_with("several modules could be the top: `final_top` ("), "{e}");
+        assert!(e.ends_with("; name one with --top"), "{e}");
+    }
+
+    #[test]
+    fn oversized_literals_are_truncated_as_vivado_does_and_said() {
+        let t = tree(&[(
+            "top.v",
+            "module top(input clk, output [7:0] led);\n  assign led = 8'h1FF;\n  bot b (.clk(clk));\nendmodule\n",
+        )]);
+        let d = resolve(&[t.path().to_path_buf()], &Options::default()).unwrap();
+        let top = d.sources.iter().find(|s| s.module("top").is_some()).unwrap();
+        assert!(top.edited && top.text.contains("assign led = 8'hFF ;"), "{}", top.text);
+        assert!(d.notes.iter().any(|n| n.ends_with("top.v:2:16: `8'h1FF` has more digits than its width holds; Vivado keeps the low bits (`8'hFF`), and so does botsim")), "{:?}", d.notes);
+    }
+}

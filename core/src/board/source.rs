@@ -1,0 +1,67 @@
+//! A Verilog source of a design: its path, its text and its modules, and what of it the build
+//! leaves out.
+
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use super::scan::{self, Module};
+use super::BoardError;
+
+/// A source file, scanned.
+#[derive(Clone, Debug)]
+pub struct Source {
+    pub path: PathBuf,
+    pub text: String,
+    /// The modules the build compiles from it.
+    pub modules: Vec<Module>,
+    /// Parts of the text the build blanks out (modules the design does not reach, other
+    /// copies of a module), lines kept so that messages keep the file's line numbers.
+    pub dropped: Vec<Range<usize>>,
+    /// The text is not the file's as it is on disk: botsim generated it (a core from its
+    /// configuration, a stand-in) or rewrote a construct in it.
+    pub edited: bool,
+}
+
+impl Source {
+    /// A source from its text.
+    pub fn new(path: impl Into<PathBuf>, text: impl Into<String>) -> Source {
+        let text = text.into();
+        let modules = scan::scan(&text);
+        Source { path: path.into(), text, modules, dropped: Vec::new(), edited: false }
+    }
+
+    /// A source botsim wrote (`path` says where it comes from and ends in `.v`).
+    pub fn generated(path: impl Into<PathBuf>, text: impl Into<String>) -> Source {
+        Source { edited: true, ..Source::new(path, text) }
+    }
+
+    /// Read and scan a file (a UTF-8 byte-order mark, as Windows editors write, is skipped).
+    pub fn read(path: &Path) -> Result<Source, BoardError> {
+        let bytes = std::fs::read(path).map_err(|e| BoardError::at(path, 0, 0, format!("cannot read: {e}")))?;
+        let mut text = String::from_utf8_lossy(&bytes).into_owned();
+        let bom = text.starts_with('\u{feff}');
+        if bom {
+            // Three spaces keep every column.
+            text.replace_range(..3, "   ");
+        }
+        Ok(Source { edited: bom, ..Source::new(path, text) })
+    }
+
+    /// The module named `name`, if this source compiles it.
+    pub fn module(&self, name: &str) -> Option<&Module> {
+        self.modules.iter().find(|m| m.name == name)
+    }
+
+    /// The text the build compiles: `dropped` and `also` blanked (newlines kept).
+    pub fn compiled_text(&self, also: &[Range<usize>]) -> String {
+        let mut text = self.text.clone().into_bytes();
+        for span in self.dropped.iter().chain(also) {
+            for b in &mut text[span.clone()] {
+                if *b != b'\n' {
+                    *b = b' ';
+                }
+            }
+        }
+        String::from_utf8_lossy(&text).into_owned()
+    }
+}

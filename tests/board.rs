@@ -199,15 +199,6 @@ fn a_dcm_clkfx_runs_at_its_multiply_and_divide() {
     assert_eq!(edges_in_one_ms(1), 24_996);
 }
 
-/// Decode a PNG into (width, height, RGB bytes).
-fn rgb(png_bytes: &[u8]) -> (u32, u32, Vec<u8>) {
-    let mut r = png::Decoder::new(std::io::Cursor::new(png_bytes)).read_info().unwrap();
-    let mut buf = vec![0; r.output_buffer_size().unwrap()];
-    let info = r.next_frame(&mut buf).unwrap();
-    buf.truncate(info.buffer_size());
-    (info.width, info.height, buf)
-}
-
 #[test]
 fn a_vga_frame_from_the_designs_pins_equals_botsim_frame_for_the_same_state() {
     let dir = tempfile::tempdir().unwrap();
@@ -221,34 +212,7 @@ fn a_vga_frame_from_the_designs_pins_equals_botsim_frame_for_the_same_state() {
     );
     let summary = summary(&o);
     assert_eq!(summary["vga_frames"], 2, "{summary}");
-    let text = std::fs::read_to_string(&csv).unwrap();
-    let last: Vec<u8> = text.lines().nth(2).unwrap().split(',').skip(2).map(|v| v.parse().unwrap()).collect();
-    let snapshot = botsim::Snapshot {
-        sample: 1,
-        cycle: 0,
-        regs: botsim::Registers {
-            loc_x: last[0],
-            loc_y: last[1],
-            bot_info: last[2],
-            sensors: last[3],
-            lm_dist: last[4],
-            rm_dist: last[5],
-        },
-    };
-    let want = rgb(&botsim::render::display::frame(&botsim::World::builtin(), Some(&snapshot)));
-    for k in 0..2 {
-        let got = rgb(&std::fs::read(frames.join(format!("frame_{k:05}.png"))).unwrap());
-        assert_eq!((got.0, got.1), (640, 480));
-        if let Some(i) = (0..got.2.len() / 3).find(|&i| got.2[3 * i..3 * i + 3] != want.2[3 * i..3 * i + 3]) {
-            panic!(
-                "frame {k}: pixel ({}, {}) is {:?}, botsim frame has {:?}",
-                i % 640,
-                i / 640,
-                &got.2[3 * i..3 * i + 3],
-                &want.2[3 * i..3 * i + 3]
-            );
-        }
-    }
+    common::frames_show_sample(&frames, &csv, 1, &[0, 1]);
 }
 
 /// The rows of a `--trace-csv` file, each as its columns.

@@ -205,6 +205,17 @@ pub struct Args {
     quiet: bool,
 }
 
+/// What a Verilator finding that Vivado accepts means for the simulation, for the codes the
+/// build waives (`VERILATOR_FLAGS` in src/board/build.rs).
+fn leniency(code: &str) -> Option<&'static str> {
+    match code {
+        "BLKANDNBLK" => Some(
+            "a variable is given both blocking and non-blocking assignments; Vivado builds it, and botsim simulates each assignment as written",
+        ),
+        _ => None,
+    }
+}
+
 /// `--cpu`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 enum CpuArg {
@@ -525,7 +536,14 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         None => say(format!("  reused the build in {}", built.library.parent().unwrap_or(&built.library).display())),
     }
     for (code, n, first) in &built.warnings {
-        say(format!("  verilator warning {code} ({n}x), first: {first}"));
+        match leniency(code) {
+            Some(what) => {
+                let at = first.split(": ").next().unwrap_or(first);
+                let more = if *n > 1 { format!(" (and {} more)", n - 1) } else { String::new() };
+                say(format!("note: {at}: {what}{more}"));
+            }
+            None => say(format!("  verilator warning {code} ({n}x), first: {first}")),
+        }
     }
 
     let twin = if lockstep {

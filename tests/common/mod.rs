@@ -3,6 +3,7 @@
 
 pub mod cpu_coverage;
 pub mod lockstep;
+pub mod repo;
 pub mod strategies;
 
 use std::path::{Path, PathBuf};
@@ -56,4 +57,47 @@ pub fn decode_png(path: &std::path::Path) -> (u32, u32, Vec<u8>) {
     let info = dec.next_frame(&mut buf).unwrap();
     buf.truncate(info.buffer_size());
     (info.width, info.height, buf)
+}
+
+/// Decode a PNG into (width, height, RGB bytes).
+pub fn rgb(png_bytes: &[u8]) -> (u32, u32, Vec<u8>) {
+    let mut r = png::Decoder::new(std::io::Cursor::new(png_bytes)).read_info().unwrap();
+    let mut buf = vec![0; r.output_buffer_size().unwrap()];
+    let info = r.next_frame(&mut buf).unwrap();
+    buf.truncate(info.buffer_size());
+    (info.width, info.height, buf)
+}
+
+/// The VGA frames `frames` (numbers, in the `--frames` folder) of a run on the built-in world
+/// equal, pixel for pixel, botsim's own frame of the bot at `sample` of the run's
+/// `--trace-csv`.
+pub fn frames_show_sample(dir: &Path, csv: &Path, sample: usize, frames: &[u32]) {
+    let text = std::fs::read_to_string(csv).unwrap();
+    let row: Vec<u8> = text.lines().nth(sample + 1).unwrap().split(',').skip(2).map(|v| v.parse().unwrap()).collect();
+    let snapshot = botsim::Snapshot {
+        sample: sample as u64,
+        cycle: 0,
+        regs: botsim::Registers {
+            loc_x: row[0],
+            loc_y: row[1],
+            bot_info: row[2],
+            sensors: row[3],
+            lm_dist: row[4],
+            rm_dist: row[5],
+        },
+    };
+    let want = rgb(&botsim::render::display::frame(&botsim::World::builtin(), Some(&snapshot)));
+    for k in frames {
+        let got = rgb(&std::fs::read(dir.join(format!("frame_{k:05}.png"))).unwrap());
+        assert_eq!((got.0, got.1), (640, 480));
+        if let Some(i) = (0..got.2.len() / 3).find(|&i| got.2[3 * i..3 * i + 3] != want.2[3 * i..3 * i + 3]) {
+            panic!(
+                "frame {k}: pixel ({}, {}) is {:?}, botsim frame has {:?}",
+                i % 640,
+                i / 640,
+                &got.2[3 * i..3 * i + 3],
+                &want.2[3 * i..3 * i + 3]
+            );
+        }
+    }
 }

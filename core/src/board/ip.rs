@@ -88,7 +88,7 @@ impl IpConfig {
         Some(if p.is_absolute() || super::project::is_drive_path(&v) {
             p.to_path_buf()
         } else {
-            self.path.parent().unwrap_or(Path::new(".")).join(p)
+            super::repo::tidy(&self.path.parent().unwrap_or(Path::new(".")).join(p))
         })
     }
 }

@@ -21,6 +21,7 @@ use std::path::{Path, PathBuf};
 
 use roxmltree::{Document, Node};
 
+use super::repo::tidy;
 use super::BoardError;
 
 /// Which tool made a project.
@@ -107,7 +108,7 @@ fn vivado(path: &Path, root: Node) -> (Vec<PathBuf>, Option<String>) {
     let srcs = dir.join(format!("{stem}.srcs"));
     let resolve = |p: &str| {
         let p = p.replace('\\', "/");
-        if let Some(rest) = p.strip_prefix("$PSRCDIR/") {
+        tidy(&if let Some(rest) = p.strip_prefix("$PSRCDIR/") {
             srcs.join(rest)
         } else if let Some(rest) = p.strip_prefix("$PPRDIR/") {
             dir.join(rest)
@@ -115,7 +116,7 @@ fn vivado(path: &Path, root: Node) -> (Vec<PathBuf>, Option<String>) {
             PathBuf::from(&p)
         } else {
             dir.join(&p)
-        }
+        })
     };
     let mut files = Vec::new();
     let mut top = None;
@@ -159,7 +160,11 @@ fn ise(path: &Path, root: Node) -> (Vec<PathBuf>, Option<String>) {
         let implementation = children(file, "association").any(|a| attr(a, "name") == Some("Implementation"));
         if implementation {
             let p = name.replace('\\', "/");
-            files.push(if Path::new(&p).is_absolute() || is_drive_path(&p) { PathBuf::from(p) } else { dir.join(p) });
+            files.push(if Path::new(&p).is_absolute() || is_drive_path(&p) {
+                PathBuf::from(p)
+            } else {
+                tidy(&dir.join(p))
+            });
         }
     }
     let top = root
@@ -215,7 +220,7 @@ mod tests {
         assert_eq!(
             p.files,
             [
-                PathBuf::from("/p/../hdl/kcpsm6.v"),
+                PathBuf::from("/hdl/kcpsm6.v"),
                 PathBuf::from("/p/proj.srcs/sources_1/new/top.v"),
                 PathBuf::from("/abs/bot.v"),
                 PathBuf::from("/p/proj.srcs/sources_1/ip/clk_wiz_0/clk_wiz_0.xci"),

@@ -97,6 +97,7 @@ impl Repo {
 
     /// Add a file (one named outside the folders walked, e.g. by a project).
     pub fn add(&mut self, f: PathBuf) {
+        let f = tidy(&f);
         if !self.seen.insert(canonical(&f)) {
             return;
         }
@@ -185,6 +186,39 @@ impl Ages {
             .ok()
             .and_then(|t| t.duration_since(std::time::UNIX_EPOCH).ok())
             .map_or(0, |d| d.as_secs() as i64)
+    }
+}
+
+/// `a/b/../c` as `a/c`, `./x` as `x`: a path as a person writes it, without asking the file
+/// system (a `..` after a link would differ, which the repositories here do not have).
+///
+/// ```
+/// use botsim_core::board::repo::tidy;
+/// use std::path::Path;
+/// assert_eq!(tidy(Path::new("p/ip/x/../../../coe/a.coe")), Path::new("coe/a.coe"));
+/// assert_eq!(tidy(Path::new("p/..")), Path::new("."));
+/// assert_eq!(tidy(Path::new("../up/./f.v")), Path::new("../up/f.v"));
+/// ```
+pub fn tidy(path: &Path) -> PathBuf {
+    use std::path::Component;
+    let mut out: Vec<Component> = Vec::new();
+    for c in path.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir => match out.last() {
+                Some(Component::Normal(_)) => {
+                    out.pop();
+                }
+                Some(Component::RootDir | Component::Prefix(_)) => {}
+                _ => out.push(c),
+            },
+            _ => out.push(c),
+        }
+    }
+    if out.is_empty() {
+        PathBuf::from(".")
+    } else {
+        out.iter().collect()
     }
 }
 

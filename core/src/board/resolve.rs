@@ -28,7 +28,7 @@ use super::memcore::{library_model, MemCore, MEMORY_CORES};
 use super::pins::{self, Role};
 use super::plan::{is_program_rom, Replacement, OWN_MODULES, PRIMITIVES};
 use super::project::Project;
-use super::repo::{Ages, FileKind, Repo};
+use super::repo::{tidy, Ages, FileKind, Repo};
 use super::scan::{self, Instance, Module};
 use super::source::Source;
 use super::vhdl;
@@ -170,18 +170,21 @@ pub fn resolve(inputs: &[PathBuf], opts: &Options) -> Result<Design, BoardError>
     }
 }
 
-/// The folder a project's repository starts at: its git work tree, else the project's folder.
+/// The folder a project's repository starts at: its git work tree, else the project's
+/// folder; written from the project's path (`proj2/..` is `.`).
 fn repository_root(project: &Path) -> PathBuf {
     let dir = project.parent().filter(|d| !d.as_os_str().is_empty()).unwrap_or(Path::new(".")).to_path_buf();
-    let mut d = std::path::absolute(&dir).unwrap_or(dir.clone());
-    loop {
-        if d.join(".git").exists() {
-            return d;
+    let mut up = dir.clone();
+    for _ in 0..64 {
+        if up.join(".git").exists() {
+            return tidy(&up);
         }
-        if !d.pop() {
-            return dir;
+        if std::fs::canonicalize(&up).map_or(true, |c| c.parent().is_none()) {
+            break;
         }
+        up = up.join("..");
     }
+    tidy(&dir)
 }
 
 /// One definition of a module: source and module index.

@@ -1,0 +1,153 @@
+//! `botsim board` on repositories as teams commit them (tests/board_designs/repos, built into
+//! real git clones by tests/common/repo.rs): a team runs `botsim board <clone>` (or names its
+//! project file) and the design runs, every decision said in a line of its own, or stops with
+//! one message that says what to add. Each shape of issue 26 has its own repository.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+mod common;
+
+use common::repo::clone_of;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// `botsim board` with `args`, run in `dir`.
+fn board_in(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_botsim"))
+        .arg("board")
+        .args(args)
+        .current_dir(dir)
+        .env("BOTSIM_CACHE", root().join("target/botsim-board-cache"))
+        .output()
+        .unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// The `--json` summary of a run that must have succeeded, and its messages.
+fn summary(o: &Output) -> (serde_json::Value, String) {
+    assert!(o.status.success(), "{}", stderr(o));
+    (serde_json::from_slice(&o.stdout).unwrap(), stderr(o))
+}
+
+/// The messages of a run asked for JSON are on standard error only when not `--json`; these
+/// tests ask for both: the summary from a `--json` run, the lines from the same run without.
+fn run(dir: &Path, args: &[&str]) -> (serde_json::Value, String) {
+    let mut with_json = args.to_vec();
+    with_json.push("--json");
+    let (s, _) = summary(&board_in(dir, &with_json));
+    let o = board_in(dir, args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    (s, stderr(&o))
+}
+
+/// The display the example firmware shows for the bot's registers after `samples` samples
+/// at fast timing, driving forward: LocX on digits 7-6, LocY on 5-4, the heading on digit 0.
+fn shows_the_bot(summary: &serde_json::Value) {
+    let display = summary["display"].as_str().unwrap();
+    assert_eq!(display.len(), 8, "{summary}");
+    assert!(display.ends_with("40   2"), "the bot at (x, 64) facing east: {summary}");
+}
+
+#[test]
+fn a_repository_with_the_release_folder_stale_copies_and_a_testbench_runs_as_committed() {
+    let clone = clone_of("release_stale");
+    let c = clone.path();
+    let (s, said) = run(c, &[".", "--param", "SIMULATE=1", "--timing", "fast", "--seconds", "0.03"]);
+    assert_eq!(s["top"], "nexys4fpga");
+    shows_the_bot(&s);
+    // The live copies, each said once, the stale ones named.
+    for (module, taken, other, why) in [
+        ("nexys4fpga", "src/nexys4fpga.v", "old/nexys4fpga.v", "the newest"),
+        ("proj2_system", "src/proj2_system.v", "old/proj2_system.v", "beside src/nexys4fpga.v"),
+        ("debounce", "src/debounce.v", "old/debounce.v", "beside src/proj2_system.v"),
+        ("proj2demo", "src/proj2demo.v", "old/proj2demo.v", "beside src/proj2_system.v"),
+    ] {
+        let line = said
+            .lines()
+            .find(|l| l.starts_with(&format!("note: `{module}` has 2 different definitions")))
+            .unwrap_or_else(|| panic!("no note on {module}: {said}"));
+        assert!(line.contains(&format!("took {taken}:")) && line.contains(&format!("({why}")), "{line}");
+        assert!(line.contains(&format!("over {other}:")), "{line}");
+    }
+    // Vivado's leniency, with the user's file:line:col.
+    assert!(said.contains("note: src/nexys4_bot_if.v:29:34: `8'h1FF` has more digits than its width holds; Vivado keeps the low bits (`8'hFF`), and so does botsim"), "{said}");
+    assert!(said.contains("note: src/nexys4_bot_if.v:28:15: a variable is given both blocking and non-blocking assignments; Vivado builds it"), "{said}");
+    // The ROM's program from its INIT strings, the source beside it.
+    assert!(
+        said.contains(
+            "replaced proj2demo (src/proj2demo.v:3) with a behavioural ROM holding the program from its own contents"
+        ),
+        "{said}"
+    );
+    // Nothing of the release folder, the testbench or Project 1 was compiled.
+    for never in ["ROM_form", "kcpsm6_design_template", "tb_nexys4fpga", "nexys4fpga_p1", "jtag_loader_6", "bot_if_v1"]
+    {
+        assert!(!said.contains(never), "{never}: {said}");
+    }
+}
+
+#[test]
+fn the_team_firmware_follows_the_line_to_its_end_through_a_repository_as_committed() {
+    let clone = clone_of("release_stale");
+    let args = [
+        ".",
+        "--param",
+        "SIMULATE=1",
+        "--program",
+        "src/linefollow.psm",
+        "--timing",
+        "fast",
+        "--compat",
+        "botsim20",
+        "--cpu",
+        "iss",
+        "--samples",
+        "6000",
+        "--stop-at-line-end",
+        "--json",
+    ];
+    let (s, _) = summary(&board_in(clone.path(), &args));
+    assert_eq!(s["stopped_by"], "line-end", "{s}");
+    assert_eq!(s["end"]["at_line_end"], true, "{s}");
+}
+
+#[test]
+fn a_vivado_project_whose_ip_is_only_its_configuration_runs_with_the_cores_it_describes() {
+    let clone = clone_of("vivado_ip");
+    let c = clone.path();
+    let frames = c.join("frames");
+    let csv = c.join("t.csv");
+    let args = [
+        "proj2vga/proj2vga.xpr",
+        "--param",
+        "SIMULATE=1",
+        "--seconds",
+        "0.052",
+        "--frames",
+        frames.to_str().unwrap(),
+        "--trace-csv",
+        csv.to_str().unwrap(),
+    ];
+    let (s, said) = run(c, &args);
+    assert_eq!(s["top"], "nexys4fpga");
+    assert!(said.contains("botsim board: the project proj2vga/proj2vga.xpr"), "{said}");
+    // The clock from its .xci (25 MHz exactly: the frames are the display's own), the
+    // palette from its .xci and .coe (read to its end without the `;`), nothing of the
+    // library model or of the unused IP.
+    assert!(said.contains("replaced clk_wiz_0 (proj2vga/proj2vga.srcs/sources_1/ip/clk_wiz_0/clk_wiz_0.xci) with a Clocking Wizard from its configuration (100 MHz in; clk_out1 25 MHz)"), "{said}");
+    assert!(said.contains("with a Block Memory Generator core, read latency 1, 12 x 32, from proj2vga/proj2vga.srcs/sources_1/ip/palette/palette.xci"), "{said}");
+    assert!(said.contains("note: coe/palette.coe:6: the vector does not end with `;` (Vivado reads it to the end of the file, and so does botsim)"), "{said}");
+    assert!(!said.contains("unused_rom") && !said.contains("blk_mem_gen_v8_3"), "{said}");
+    assert_eq!(s["vga_frames"], 2, "{s}");
+    common::frames_show_sample(&frames, &csv, 1, &[0, 1]);
+    // The folder finds the project by itself.
+    let (s, said) = run(c, &[".", "--param", "SIMULATE=1", "--seconds", "0.002"]);
+    assert_eq!(s["top"], "nexys4fpga");
+    assert!(said.contains("botsim board: the project proj2vga/proj2vga.xpr"), "{said}");
+}

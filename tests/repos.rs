@@ -151,3 +151,64 @@ fn a_vivado_project_whose_ip_is_only_its_configuration_runs_with_the_cores_it_de
     assert_eq!(s["top"], "nexys4fpga");
     assert!(said.contains("botsim board: the project proj2vga/proj2vga.xpr"), "{said}");
 }
+
+#[test]
+fn an_ise_project_for_the_nexys3_runs_with_its_core_generator_ip() {
+    let clone = clone_of("ise_nexys3");
+    let c = clone.path();
+    let (s, said) = run(c, &["ise/proj2n3.xise", "--param", "SIMULATE=1", "--timing", "fast", "--seconds", "0.03"]);
+    assert_eq!(s["top"], "Nexys3fpga");
+    // Four digits (the other four dark): the heading on digit 0.
+    assert_eq!(s["display"], "       2", "{s}");
+    // The sensors on LED[7:0] (the example firmware), mirrored by the ROM on the 25 MHz clock.
+    let csv = c.join("t.csv");
+    let (s2, _) = run(c, &["ise/proj2n3.xise", "--param", "SIMULATE=1", "--timing", "fast", "--seconds", "0.03", "--trace-csv", csv.to_str().unwrap()]);
+    let last = std::fs::read_to_string(&csv).unwrap().lines().last().unwrap().to_string();
+    let sensors: u8 = last.split(',').nth(5).unwrap().parse().unwrap();
+    assert_eq!(s2["leds"].as_u64().unwrap(), sensors.reverse_bits() as u64, "{last}");
+    assert!(said.contains("replaced clk25 (ise/ipcore_dir/clk25.xco) with a Clocking Wizard from its configuration (100 MHz in; CLK_OUT1 25 MHz)"), "{said}");
+    assert!(said.contains("replaced led_map (ise/ipcore_dir/led_map.v:12) with a Block Memory Generator core, read latency 1, 8 x 256, from the parameters led_map gives `BLK_MEM_GEN_V7_3` (ise/ipcore_dir/led_map.v:24)"), "{said}");
+    assert!(!said.contains("tb_nexys3fpga"), "{said}");
+}
+
+#[test]
+fn a_repository_of_the_teams_own_files_says_all_it_lacks_at_once_and_runs_with_the_course_modules() {
+    let clone = clone_of("team_files_only");
+    let c = clone.path();
+    // The course's modules are botsim's; the clock and the UART are one error, each with
+    // its instance and what gets past it.
+    let o = board_in(c, &[".", "--param", "SIMULATE=1"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let e = stderr(&o);
+    let lines: Vec<&str> = e.lines().filter(|l| !l.starts_with("note:")).collect();
+    assert_eq!(lines[0], "2 modules of the design are missing:", "{e}");
+    assert!(lines[1].starts_with("  hdl/nexys4fpga.v:38:5: `uart_tx` (instance `DEBUG_UART` in `nexys4fpga`): add its file, or tie it off with --stub uart_tx"), "{e}");
+    assert!(lines[2].starts_with("  hdl/nexys4fpga.v:42:5: `clk_wiz_0` (instance `CLKGEN` in `nexys4fpga`): a clock core with no configuration (ports clk_in1, clk_out1, reset, locked): give its frequencies with --clock clk_wiz_0.clk_out1=25MHz"), "{e}");
+    assert_eq!(lines.len(), 3, "{e}");
+    // With them: the stand-ins said, and the frames are the display's own.
+    let (frames, csv) = (c.join("frames"), c.join("t.csv"));
+    let args = [
+        ".",
+        "--param",
+        "SIMULATE=1",
+        "--clock",
+        "clk_wiz_0.clk_out1=25MHz",
+        "--stub",
+        "uart_tx",
+        "--seconds",
+        "0.052",
+        "--frames",
+        frames.to_str().unwrap(),
+        "--trace-csv",
+        csv.to_str().unwrap(),
+    ];
+    let (s, said) = run(c, &args);
+    for m in ["debounce", "sevensegment", "dtg"] {
+        assert!(said.contains(&format!("replaced {m} with botsim's clean-room course `{m}` (the repository has none)")), "{said}");
+    }
+    assert!(said.contains("replaced clk_wiz_0 with a clock module as --clock describes it (100 MHz in; clk_out1 25 MHz)"), "{said}");
+    assert!(said.contains("replaced uart_tx with a stub (--stub: inputs ignored, outputs 0)"), "{said}");
+    assert_eq!(s["vga_frames"], 2, "{s}");
+    common::frames_show_sample(&frames, &csv, 1, &[0, 1]);
+    assert_eq!(s["display"].as_str().unwrap().len(), 8, "{s}");
+}

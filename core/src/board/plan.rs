@@ -41,6 +41,10 @@ pub const PRIMITIVES: [(&str, &[&str]); 10] = [
     ("DCM_SP", &["CLK0", "CLK90", "CLK180", "CLK270", "CLK2X", "CLK2X180", "CLKDV", "CLKFX"]),
 ];
 
+/// botsim's own building blocks (rtl/board/xilinx.v, botsim_clkgen.v) that the Verilog it
+/// generates for a design (clock cores) instantiates.
+pub const HELPERS: [&str; 3] = ["botsim_clkgen", "botsim_lock", "botsim_mmcm"];
+
 /// What the user asked for on the command line that the plan needs.
 #[derive(Clone, Debug)]
 pub struct Request {
@@ -148,7 +152,7 @@ impl Plan {
                 defined.insert(&m.name, (s, m));
             }
         }
-        let own_name = |n: &str| OWN_MODULES.iter().any(|(m, _)| *m == n);
+        let own_name = |n: &str| OWN_MODULES.iter().any(|(m, _)| *m == n) || HELPERS.contains(&n);
         let top = design.top.clone();
         if !defined.contains_key(top.as_str()) {
             return Err(BoardError::plain(format!("the top module `{top}` is not in the design's sources")));

@@ -26,7 +26,7 @@ use super::course;
 use super::ip::{ClockCore, ClockSpec, IpConfig, CLOCK_CORES};
 use super::memcore::{library_model, MemCore, MEMORY_CORES};
 use super::pins::{self, Role};
-use super::plan::{is_program_rom, Replacement, OWN_MODULES, PRIMITIVES};
+use super::plan::{is_program_rom, Replacement, HELPERS, OWN_MODULES, PRIMITIVES};
 use super::project::Project;
 use super::repo::{tidy, Ages, FileKind, Repo};
 use super::scan::{self, Instance, Module};
@@ -619,7 +619,7 @@ impl<'a> Walk<'a> {
                 Choice::User(d)
             });
         }
-        if PRIMITIVES.iter().any(|(m, _)| *m == name) {
+        if PRIMITIVES.iter().any(|(m, _)| *m == name) || HELPERS.contains(&name) {
             return Some(Choice::Own);
         }
         if self.opts.stubs.iter().any(|s| s == name) || self.clock_specs(name, &inst.name).is_some() {

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Installs what botsim needs on a fresh Debian machine (bookworm): Verilator 5.006 to build the
-# RTL model, libclang for bindgen, Icarus Verilog + Yosys for the CI gate, python3 for its
-# coverage report, GTKWave and a virtual X server (Xvfb) for the test that opens a board
-# waveform's save file in GTKWave.
+# RTL model, libclang for bindgen, GHDL for board designs with VHDL modules, Icarus Verilog +
+# Yosys for the CI gate, python3 for its coverage report, GTKWave and a virtual X server
+# (Xvfb) for the test that opens a board waveform's save file in GTKWave.
 # Safe to run twice: it only installs what is missing.
 set -euo pipefail
 
@@ -10,6 +10,8 @@ need=()
 command -v verilator >/dev/null 2>&1 || need+=(verilator)
 command -v iverilog  >/dev/null 2>&1 || need+=(iverilog)
 command -v yosys     >/dev/null 2>&1 || need+=(yosys)
+command -v ghdl      >/dev/null 2>&1 || need+=(ghdl)
+command -v git       >/dev/null 2>&1 || need+=(git)
 dpkg -s libclang-dev >/dev/null 2>&1 || need+=(libclang-dev)
 command -v g++       >/dev/null 2>&1 || need+=(g++)
 command -v make      >/dev/null 2>&1 || need+=(make)
@@ -31,4 +33,4 @@ if ! command -v cargo >/dev/null 2>&1; then
   echo "setup: cargo not found; install Rust (rustup) first" >&2
   exit 1
 fi
-echo "setup: $(verilator --version | head -1); $(iverilog -V 2>&1 | head -1); $(yosys -V)"
+echo "setup: $(verilator --version | head -1); $(iverilog -V 2>&1 | head -1); $(yosys -V); $(ghdl --version | head -1)"

@@ -162,7 +162,20 @@ fn an_ise_project_for_the_nexys3_runs_with_its_core_generator_ip() {
     assert_eq!(s["display"], "       2", "{s}");
     // The sensors on LED[7:0] (the example firmware), mirrored by the ROM on the 25 MHz clock.
     let csv = c.join("t.csv");
-    let (s2, _) = run(c, &["ise/proj2n3.xise", "--param", "SIMULATE=1", "--timing", "fast", "--seconds", "0.03", "--trace-csv", csv.to_str().unwrap()]);
+    let (s2, _) = run(
+        c,
+        &[
+            "ise/proj2n3.xise",
+            "--param",
+            "SIMULATE=1",
+            "--timing",
+            "fast",
+            "--seconds",
+            "0.03",
+            "--trace-csv",
+            csv.to_str().unwrap(),
+        ],
+    );
     let last = std::fs::read_to_string(&csv).unwrap().lines().last().unwrap().to_string();
     let sensors: u8 = last.split(',').nth(5).unwrap().parse().unwrap();
     assert_eq!(s2["leds"].as_u64().unwrap(), sensors.reverse_bits() as u64, "{last}");
@@ -204,11 +217,70 @@ fn a_repository_of_the_teams_own_files_says_all_it_lacks_at_once_and_runs_with_t
     ];
     let (s, said) = run(c, &args);
     for m in ["debounce", "sevensegment", "dtg"] {
-        assert!(said.contains(&format!("replaced {m} with botsim's clean-room course `{m}` (the repository has none)")), "{said}");
+        assert!(
+            said.contains(&format!("replaced {m} with botsim's clean-room course `{m}` (the repository has none)")),
+            "{said}"
+        );
     }
-    assert!(said.contains("replaced clk_wiz_0 with a clock module as --clock describes it (100 MHz in; clk_out1 25 MHz)"), "{said}");
+    assert!(
+        said.contains("replaced clk_wiz_0 with a clock module as --clock describes it (100 MHz in; clk_out1 25 MHz)"),
+        "{said}"
+    );
     assert!(said.contains("replaced uart_tx with a stub (--stub: inputs ignored, outputs 0)"), "{said}");
     assert_eq!(s["vga_frames"], 2, "{s}");
     common::frames_show_sample(&frames, &csv, 1, &[0, 1]);
     assert_eq!(s["display"].as_str().unwrap().len(), 8, "{s}");
+}
+
+#[test]
+fn of_two_projects_the_one_with_the_bot_runs_and_another_machines_paths_are_found_here() {
+    let clone = clone_of("two_projects");
+    let c = clone.path();
+    // (The reset button is held for the first millisecond.)
+    let (s, said) = run(c, &[".", "--param", "SIMULATE=1", "--timing", "fast", "--seconds", "0.0012"]);
+    assert_eq!(s["top"], "nexys4fpga");
+    assert!(said.contains("note: several projects here (proj1/proj1.xpr, proj2/proj2.xpr); using proj2/proj2.xpr, the one with a `bot`"), "{said}");
+    assert!(said.contains("note: proj2/proj2.xpr: lists C:/Users/team/Desktop/ECE540/proj2/hdl/nexys4fpga.v, which is not here; using proj2/hdl/nexys4fpga.v"), "{said}");
+    assert!(
+        said.contains("replaced AccelCtl (proj2/hdl/AccelCtl.vhd) with GHDL's synthesis of the VHDL entity to Verilog"),
+        "{said}"
+    );
+    assert!(said.contains("names c:/Users/team/Desktop/ECE540/coe/pattern.coe, which is not here; using proj2/proj2.srcs/sources_1/ip/led_rom/led_rom.mif, the .mif Vivado made from it"), "{said}");
+    // LED[15:12]: the VHDL's reading for the 100 MHz its instance sets (not its default 50);
+    // LED[11:8]: the ROM's word for switches 0 from the .mif.
+    assert_eq!(s["leds"].as_u64().unwrap() >> 8, 0x4A, "{s}");
+    let (s, _) = run(
+        c,
+        &["proj2/proj2.xpr", "--param", "SIMULATE=1", "--switches", "0002", "--timing", "fast", "--seconds", "0.0012"],
+    );
+    assert_eq!(s["leds"].as_u64().unwrap() >> 8, 0x4C, "{s}");
+    // A third project with a bot: which one is the user's to say.
+    std::fs::create_dir_all(c.join("final")).unwrap();
+    std::fs::copy(c.join("proj2/proj2.xpr"), c.join("final/final.xpr")).unwrap();
+    let o = board_in(c, &["."]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        stderr(&o).trim(),
+        "several projects here: final/final.xpr, proj1/proj1.xpr, proj2/proj2.xpr; name the one to run (botsim board final/final.xpr)"
+    );
+}
+
+#[test]
+fn a_bot_that_is_not_botsim_20s_is_one_line_naming_its_port() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(
+        dir.path().join("top.v"),
+        "module nexys4fpga(input clk, output [15:0] led);\n  bot ROJOBOT (.clk(clk), .reset(1'b0), .Bot_Config_reg(8'h00), .MotCtl_in(8'h00));\nendmodule\n",
+    )
+    .unwrap();
+    let o = board_in(dir.path(), &["."]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert_eq!(e.lines().count(), 1, "{e}");
+    assert!(
+        e.starts_with(
+            "top.v:2:3: this `bot` has a port `Bot_Config_reg` that BotSim 2.0's bot does not have (a later BotSim?)"
+        ),
+        "{e}"
+    );
 }

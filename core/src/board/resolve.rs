@@ -823,6 +823,7 @@ impl<'a> Walk<'a> {
     /// The design: stubs and `--clock` modules made from every instance, the chosen
     /// definitions' files with everything else blanked, and the missing modules as one error.
     fn finish(mut self, top: String, project: Option<PathBuf>) -> Result<Design, BoardError> {
+        let project_dir = project.as_ref().and_then(|p| p.parent()).map(Path::to_path_buf);
         let mut generated = Vec::new();
         let mut sources: Vec<Source> = Vec::new();
         for (module, insts) in std::mem::take(&mut self.instances) {
@@ -892,29 +893,12 @@ impl<'a> Walk<'a> {
             out.dropped =
                 s.modules.iter().enumerate().filter(|(k, _)| !keep.contains(k)).map(|(_, m)| m.span.clone()).collect();
             self.lenient(&mut out);
+            self.references(&mut out, project_dir.as_deref())?;
             let dir = s.path.parent().unwrap_or(Path::new(".")).to_path_buf();
             if !include_dirs.contains(&dir) {
                 include_dirs.push(dir);
             }
             user.push(out);
-        }
-        // Includes the compiled files name that are elsewhere in the repository.
-        for s in &user {
-            for (inc, _) in scan::includes(&s.text) {
-                let name = Path::new(&inc.replace('\\', "/")).file_name().map(|n| n.to_string_lossy().into_owned());
-                let Some(name) = name else { continue };
-                let here = include_dirs.iter().chain(&self.opts.include_dirs).any(|d| d.join(&inc).is_file());
-                if here {
-                    continue;
-                }
-                if let Some(found) = self.repo.find_near(&name, s.path.parent().unwrap_or(Path::new("."))) {
-                    let dir = found.parent().unwrap_or(Path::new(".")).to_path_buf();
-                    if !include_dirs.contains(&dir) {
-                        self.notes.push(format!("{} includes {inc}: found in {}", s.path.display(), dir.display()));
-                        include_dirs.push(dir);
-                    }
-                }
-            }
         }
         include_dirs.extend(self.opts.include_dirs.iter().cloned());
         user.extend(sources);
@@ -943,6 +927,62 @@ impl<'a> Walk<'a> {
                 o.fixed
             ));
         }
+    }
+}
+
+impl Walk<'_> {
+    /// The files `s` names (includes, `$readmemh`/`$readmemb` files) found as Vivado finds
+    /// them: beside the source, in the include folders, in the project's folder or the
+    /// repository's; else by name in the repository (in any case, as on Windows). Each is
+    /// written as the path found, so the build and the run find it wherever they run; one
+    /// that is nowhere is an error at its file:line:col.
+    fn references(&mut self, s: &mut Source, project_dir: Option<&Path>) -> Result<(), BoardError> {
+        let dir = s.path.parent().unwrap_or(Path::new(".")).to_path_buf();
+        let refs: Vec<scan::FileRef> = scan::file_references(&s.text)
+            .into_iter()
+            .filter(|r| !s.dropped.iter().any(|d| d.start <= r.at.start && r.at.end <= d.end))
+            .collect();
+        for r in refs.into_iter().rev() {
+            let name = r.name.replace('\\', "/");
+            if name.is_empty() || Path::new(&name).is_absolute() {
+                continue;
+            }
+            let mut places: Vec<PathBuf> = vec![dir.clone()];
+            places.extend(self.opts.include_dirs.iter().cloned());
+            places.extend(project_dir.map(Path::to_path_buf));
+            places.extend(self.repo.roots.iter().cloned());
+            let direct = places.iter().map(|p| p.join(&name)).find(|p| p.is_file());
+            let base = Path::new(&name).file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+            let found = direct.clone().or_else(|| self.repo.find_near(&base, &dir));
+            let what = match r.kind {
+                scan::RefKind::Include => "includes",
+                scan::RefKind::Readmem => "reads",
+            };
+            let at = format!("{}:{}:{}", s.path.display(), r.line, r.col);
+            match found {
+                Some(f) => {
+                    let abs = std::fs::canonicalize(&f).unwrap_or(f.clone());
+                    let beside = direct.as_ref().is_some_and(|d| d.parent() == Some(dir.as_path()));
+                    if !beside || r.kind == scan::RefKind::Readmem {
+                        let how = if beside {
+                            "beside the source, as Vivado reads it".to_string()
+                        } else {
+                            format!("{}", tidy(&f).display())
+                        };
+                        self.notes.push(format!("{at}: {what} \"{}\": {how}", r.name));
+                    }
+                    s.replace(r.at.clone(), &format!("\"{}\"", abs.display()));
+                }
+                None if r.kind == scan::RefKind::Readmem => {
+                    return Err(BoardError::plain(format!(
+                        "{at}: $readmem reads \"{}\", which is not in the repository (add the file)",
+                        r.name
+                    )));
+                }
+                None => {}
+            }
+        }
+        Ok(())
     }
 }
 
@@ -1094,5 +1134,37 @@ mod tests {
         let top = d.sources.iter().find(|s| s.module("top").is_some()).unwrap();
         assert!(top.edited && top.text.contains("assign led = 8'hFF ;"), "{}", top.text);
         assert!(d.notes.iter().any(|n| n.ends_with("top.v:2:16: `8'h1FF` has more digits than its width holds; Vivado keeps the low bits (`8'hFF`), and so does botsim")), "{:?}", d.notes);
+    }
+
+    #[test]
+    fn readmem_files_and_includes_are_found_as_vivado_finds_them_or_named_when_missing() {
+        let top = "`include \"Defs.vh\"\nmodule top(input clk);\n  reg [1:0] rom [0:3];\n  initial $readmemh(\"icon.mem\", rom);\n  initial $readmemb(\"data/Table.MEM\", rom);\n  bot b (.clk(clk));\nendmodule\n";
+        let t = tree(&[
+            ("hdl/top.v", top),
+            ("hdl/icon.mem", "0 1 2 3\n"),
+            ("mem/table.mem", "00\n"),
+            ("inc/defs.vh", "`define X 1\n"),
+        ]);
+        let d = resolve(&[t.path().to_path_buf()], &Options::default()).unwrap();
+        let s = d.sources.iter().find(|s| s.module("top").is_some()).unwrap();
+        let abs = |p: &str| std::fs::canonicalize(t.path().join(p)).unwrap().display().to_string();
+        for p in ["hdl/icon.mem", "mem/table.mem", "inc/defs.vh"] {
+            assert!(s.text.contains(&format!("\"{}\"", abs(p))), "{p}: {}", s.text);
+        }
+        // The module's span follows the longer text: nothing of it is cut.
+        assert!(s.text[s.modules[0].span.clone()].ends_with("endmodule"));
+        let notes = d.notes.join("\n");
+        assert!(notes.contains("hdl/top.v:4:21: reads \"icon.mem\": beside the source, as Vivado reads it"), "{notes}");
+        assert!(
+            notes.contains("hdl/top.v:5:21: reads \"data/Table.MEM\": ") && notes.contains("mem/table.mem"),
+            "{notes}"
+        );
+        assert!(notes.contains("hdl/top.v:1:10: includes \"Defs.vh\": ") && notes.contains("inc/defs.vh"), "{notes}");
+        let t = tree(&[("top.v", "module top(input clk);\n  reg r [0:1];\n  initial $readmemh(\"gone.mem\", r);\n  bot b (.clk(clk));\nendmodule\n")]);
+        let e = resolve(&[t.path().to_path_buf()], &Options::default()).unwrap_err().to_string();
+        assert!(
+            e.ends_with("top.v:3:21: $readmem reads \"gone.mem\", which is not in the repository (add the file)"),
+            "{e}"
+        );
     }
 }

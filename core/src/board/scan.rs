@@ -192,12 +192,56 @@ const KEYWORDS: &[&str] = &[
     "rtran",
 ];
 
-/// The file names of a source's `` `include "..." `` directives, with their lines.
-pub fn includes(src: &str) -> Vec<(String, u32)> {
-    tokenize(src).1
+/// A file a source names: an `` `include "..." `` or a `$readmemh`/`$readmemb` file name.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FileRef {
+    pub kind: RefKind,
+    pub name: String,
+    /// The string literal's bytes, quotes included.
+    pub at: Range<usize>,
+    pub line: u32,
+    pub col: u32,
 }
 
-fn tokenize(src: &str) -> (Vec<Token>, Vec<(String, u32)>) {
+/// What names the file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RefKind {
+    Include,
+    /// `$readmemh` or `$readmemb`.
+    Readmem,
+}
+
+/// The files a source names, in order: includes and the literal file names of `$readmemh`
+/// and `$readmemb` (comments skipped).
+///
+/// ```
+/// use botsim_core::board::scan::{file_references, RefKind};
+/// let src = "`include \"defs.vh\"\n// $readmemh(\"old.mem\", m);\ninitial $readmemh( \"icon.mem\", rom);\n";
+/// let r = file_references(src);
+/// assert_eq!((r[0].kind, r[0].name.as_str(), r[0].line), (RefKind::Include, "defs.vh", 1));
+/// assert_eq!((r[1].kind, r[1].name.as_str(), r[1].line, r[1].col), (RefKind::Readmem, "icon.mem", 3, 20));
+/// assert_eq!(&src[r[1].at.clone()], "\"icon.mem\"");
+/// ```
+pub fn file_references(src: &str) -> Vec<FileRef> {
+    let (tokens, mut refs) = tokenize(src);
+    for (k, t) in tokens.iter().enumerate() {
+        let Tok::Ident(w) = &t.tok else { continue };
+        if w != "$readmemh" && w != "$readmemb" {
+            continue;
+        }
+        let (Some(open), Some(lit)) = (tokens.get(k + 1), tokens.get(k + 2)) else { continue };
+        if open.tok != Tok::Punct('(') || lit.tok != Tok::Str {
+            continue;
+        }
+        let end = src[lit.at + 1..].find('"').map_or(src.len(), |e| lit.at + 1 + e + 1);
+        let name = src[lit.at + 1..end.saturating_sub(1)].to_string();
+        refs.push(FileRef { kind: RefKind::Readmem, name, at: lit.at..end, line: lit.line, col: lit.col });
+    }
+    refs.sort_by_key(|r| r.at.start);
+    refs
+}
+
+fn tokenize(src: &str) -> (Vec<Token>, Vec<FileRef>) {
     let b = src.as_bytes();
     let (mut i, mut line, mut line_start) = (0usize, 1u32, 0usize);
     let mut out = Vec::new();
@@ -267,10 +311,13 @@ fn tokenize(src: &str) -> (Vec<Token>, Vec<(String, u32)>) {
                 let takes_line = !matches!(word, "else" | "endif" | "celldefine" | "endcelldefine" | "resetall");
                 i = j;
                 if word == "include" {
-                    let rest = &src[j..src[j..].find('\n').map_or(src.len(), |e| j + e)];
-                    let name = rest.trim().trim_start_matches(['"', '<']);
-                    if let Some(end) = name.find(['"', '>']) {
-                        includes.push((name[..end].to_string(), line));
+                    let line_end = src[j..].find('\n').map_or(src.len(), |e| j + e);
+                    if let Some(q) = src[j..line_end].find('"').map(|q| j + q) {
+                        if let Some(e) = src[q + 1..line_end].find('"').map(|e| q + 1 + e) {
+                            let col = (q - line_start + 1) as u32;
+                            let name = src[q + 1..e].to_string();
+                            includes.push(FileRef { kind: RefKind::Include, name, at: q..e + 1, line, col });
+                        }
                     }
                 }
                 if takes_line {
@@ -834,7 +881,7 @@ mod tests {
     }
 
     #[test]
-    fn an_empty_module_declares_and_include_directives_are_listed() {
+    fn an_empty_module_declares_and_include_directives_are_found() {
         let src = "`include \"defs.vh\"\nmodule clk_wiz_0(clk_out1, clk_in1) /* synthesis syn_black_box */;\n\
                    output clk_out1;\n input clk_in1;\nendmodule\n\
                    module w(output y); assign y = 1'b0; endmodule\nmodule r(output reg q = 1'b0); endmodule\n\
@@ -842,7 +889,8 @@ mod tests {
         let empty: Vec<_> = scan(src).iter().map(|m| (m.name.clone(), m.empty)).collect();
         let want = [("clk_wiz_0", true), ("w", false), ("r", true), ("i", false)];
         assert_eq!(empty, want.map(|(n, e)| (n.to_string(), e)));
-        assert_eq!(includes(src), [("defs.vh".to_string(), 1)]);
+        let refs = file_references(src);
+        assert_eq!((refs[0].name.as_str(), refs[0].line, refs[0].col), ("defs.vh", 1, 10));
     }
 
     #[test]

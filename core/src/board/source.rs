@@ -52,6 +52,18 @@ impl Source {
         self.modules.iter().find(|m| m.name == name)
     }
 
+    /// Replace the bytes `at` of the text with `with` (no newline in either), keeping the
+    /// modules' and the dropped parts' spans on the text; marks the source edited.
+    pub fn replace(&mut self, at: Range<usize>, with: &str) {
+        let delta = with.len() as isize - at.len() as isize;
+        let shift = |x: usize| if x >= at.end { (x as isize + delta) as usize } else { x };
+        for span in self.modules.iter_mut().map(|m| &mut m.span).chain(self.dropped.iter_mut()) {
+            *span = shift(span.start)..shift(span.end);
+        }
+        self.text.replace_range(at, with);
+        self.edited = true;
+    }
+
     /// The text the build compiles: `dropped` and `also` blanked (newlines kept).
     pub fn compiled_text(&self, also: &[Range<usize>]) -> String {
         let mut text = self.text.clone().into_bytes();

@@ -22,6 +22,7 @@ pub use botsim_core::{
 };
 
 pub mod board;
+pub mod interrupt;
 pub mod sim;
 
 pub use sim::iss::IssBot;

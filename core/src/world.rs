@@ -290,10 +290,18 @@ impl World {
             if tok.is_empty() {
                 return Ok(());
             }
-            let v = u32::from_str_radix(tok, radix)
-                .ok()
-                .filter(|&v| v <= 3)
-                .ok_or_else(|| err(path, pos.0, pos.1, format!("'{tok}' is not a cell value 0-3")))?;
+            // The radix first: a '2' in a radix-2 file is a digit it cannot have.
+            let v = u32::from_str_radix(tok, radix).map_err(|_| {
+                err(
+                    path,
+                    pos.0,
+                    pos.1,
+                    format!("'{tok}' is not a radix-{radix} number (the file's memory_initialization_radix)"),
+                )
+            })?;
+            if v > 3 {
+                return Err(err(path, pos.0, pos.1, format!("'{tok}' is not a cell value 0-3")));
+            }
             if *n == CELLS {
                 return Err(err(path, pos.0, pos.1, "more than 16384 values"));
             }

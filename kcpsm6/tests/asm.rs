@@ -514,3 +514,12 @@ fn leniencies_of_the_syntax_give_the_same_words() {
     ];
     assert_eq!(words(src), expect);
 }
+
+#[test]
+fn a_byte_order_mark_is_skipped_as_kcpsm6_skips_it() {
+    // Windows editors begin a UTF-8 file with U+FEFF; the program is the same without it, and
+    // an error on the first line keeps the column the editor shows.
+    assert_eq!(words("\u{feff}start: LOAD s0, 01\nJUMP start\n"), words("start: LOAD s0, 01\nJUMP start\n"));
+    let e = assemble_str("\u{feff}LOAD s0, 0G\n").unwrap_err().to_string();
+    assert!(e.contains(":1:10:"), "{e}");
+}

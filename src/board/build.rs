@@ -14,8 +14,11 @@ use botsim_core::board::plan::{Plan, OWN_MODULES};
 use botsim_core::board::wrapper;
 use botsim_core::board::BoardError;
 
+use crate::interrupt::interrupted;
+
 const HARNESS: &str = include_str!("harness.cpp");
 const ABI: &str = include_str!("board_abi.h");
+const PRINT: &str = include_str!("botsim_print.h");
 const XILINX: &str = include_str!("../../rtl/board/xilinx.v");
 const CLKGEN: &str = include_str!("../../rtl/board/botsim_clkgen.v");
 const KCPSM6_ISS: &str = include_str!("../../rtl/board/kcpsm6_iss.v");
@@ -71,12 +74,11 @@ const VERILATOR_FLAGS: &[&str] = &[
     "-Wno-style",
     "-Wno-MULTITOP",
     "-Wno-TIMESCALEMOD",
-    // Vivado reads `.v` files as Verilog-2005 (a variable may be called `bit` or `do`).
-    "+1364-2005ext+v",
     // Vivado builds a variable given both blocking and non-blocking assignments; said once.
     "-Wwarn-BLKANDNBLK",
     "-CFLAGS",
-    "-fPIC -O2 -fvisibility-inlines-hidden -fno-semantic-interposition -DVL_USER_FINISH -DVL_USER_FATAL -I..",
+    "-fPIC -O2 -fvisibility-inlines-hidden -fno-semantic-interposition -DVL_USER_FINISH -DVL_USER_FATAL \
+     -DVL_USER_STOP -DVL_USER_WARN -DVL_PRINTF=botsim_printf -DVL_VPRINTF=botsim_vprintf -include ../botsim_print.h -I..",
     "-LDFLAGS",
     "-shared -Wl,-Bsymbolic",
 ];
@@ -93,7 +95,27 @@ pub struct Built {
     pub warnings: Vec<(String, usize, String)>,
     /// The build's duration in seconds; `None` when the cache had it.
     pub seconds: Option<f64>,
+    /// Where the design's first delay is (`file:line:col`), when it has delays: the build
+    /// simulates them (Verilator's timing support).
+    pub delays: Option<String>,
+    /// The names Verilator knows the user's files by (the build's copies, absolute paths),
+    /// with the user's paths.
+    names: Vec<(String, String)>,
 }
+
+impl Built {
+    /// `msg` (a message of Verilator's or of the model's runtime) with the user's paths.
+    pub fn user_paths(&self, msg: &str) -> String {
+        let mut m = msg.to_string();
+        for (name, user) in &self.names {
+            m = m.replace(name.as_str(), user);
+        }
+        m
+    }
+}
+
+/// The file of a build folder that says where the design's first delay is (empty: none).
+const DELAYS_FILE: &str = "delays.txt";
 
 /// The cache folder.
 pub fn cache_dir() -> PathBuf {
@@ -143,8 +165,7 @@ fn files(plan: &Plan, params: &[(String, String)], cpu: CpuModel, bot: BotKind) 
             }
             _ => own_rtl(file).to_string(),
         };
-        // botsim's own files are SystemVerilog (the models' DPI imports); the user's `.v`
-        // files are Verilog-2005, as Vivado reads them.
+        // botsim's own files are SystemVerilog (the models' DPI imports).
         generated.push((format!("botsim_{}", file.replace(".v", ".sv")), text));
     }
     for (module, text) in wrapper::roms(plan) {
@@ -193,6 +214,7 @@ pub fn build(
     MAKE_VARS.hash(&mut h);
     include_str!("observed.rs").hash(&mut h);
     ABI.hash(&mut h);
+    PRINT.hash(&mut h);
     // The check whose verdict the build keeps.
     include_str!("checks.rs").hash(&mut h);
     f.generated.hash(&mut h);
@@ -226,14 +248,20 @@ pub fn build(
         }
     }
     let key = format!("{:016x}", h.finish());
-    let dir = cache_dir().join("boards").join(format!("{}-{key}", plan.top));
+    let boards = cache_dir().join("boards");
+    let dir = boards.join(format!("{}-{key}", plan.top));
     let library = dir.join("libboard.so");
+    // One build per design at a time: a second run waits for the first's, then reuses it.
+    let lock = cache_dir().join("locks").join(format!("{}-{key}.lock", plan.top));
+    let _lock = if library.exists() { None } else { Some(Lock::take(&lock, quiet)?) };
     if library.exists() {
         let warnings =
             std::fs::read_to_string(dir.join("warnings.txt")).map(|t| parse_warnings(&t, &f)).unwrap_or_default();
-        return Ok(Built { library, warnings, seconds: None });
+        let delays = std::fs::read_to_string(dir.join(DELAYS_FILE)).ok().filter(|d| !d.is_empty());
+        return Ok(Built { library, warnings, seconds: None, delays, names: names(&f) });
     }
     let t0 = Instant::now();
+    remove_stale_builds(&boards);
     let tmp = dir.with_extension(format!("tmp{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&tmp);
     std::fs::create_dir_all(&tmp)
@@ -248,6 +276,7 @@ pub fn build(
     }
     write("harness.cpp", HARNESS)?;
     write("board_abi.h", ABI)?;
+    write("botsim_print.h", PRINT)?;
     for (name, text, _) in &f.user {
         if let Some(t) = text {
             write(name, t)?;
@@ -291,7 +320,21 @@ pub fn build(
         let _ = std::fs::remove_dir_all(&tmp);
         e
     };
-    let out = run_with_budget(&mut cmd, budget, t0).map_err(fail)?;
+    let mut out = run_with_budget(&mut cmd, budget, t0).map_err(fail)?;
+    // A design with delays (`q <= #1 d`, `initial #10_000_000 $finish`): Verilator asks how
+    // to treat them, and botsim simulates them (Vivado's synthesis ignores them; a
+    // simulation of the board keeps what the design says). Said once, at the first.
+    let mut delays = None;
+    if !out.status.success() {
+        let text = String::from_utf8_lossy(&out.stderr).into_owned();
+        if let Some(line) = text.lines().find(|l| l.starts_with("%Error-NEEDTIMINGOPT: ")) {
+            let at = line["%Error-NEEDTIMINGOPT: ".len()..].split(": ").next().unwrap_or("").to_string();
+            delays = Some(user_paths(&at, &f));
+            let _ = std::fs::remove_dir_all(tmp.join("obj"));
+            cmd.arg("--timing").args(["-CFLAGS", "-DBOTSIM_TIMING"]);
+            out = run_with_budget(&mut cmd, budget, t0).map_err(fail)?;
+        }
+    }
     let mut stderr = String::from_utf8_lossy(&out.stderr).into_owned();
     let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
     if !out.status.success() {
@@ -299,7 +342,16 @@ pub fn build(
     }
     // What the harness may assume of the design (BoardModel::load reads the verdicts; the
     // harness compiles in which variables a run observes), then the C++.
-    let checked = super::checks::Checked::of(&tmp.join("obj"));
+    let mut checked = super::checks::Checked::of(&tmp.join("obj"));
+    if let Some(at) = &delays {
+        // Timed events wait in Verilator's own queue, outside the state the fast-forward
+        // compares; every edge is evaluated.
+        let why = format!("the design has delays ({at}): every edge is simulated, and the delays with them");
+        checked.verdicts.fast_forward = Some(why.clone());
+        checked.verdicts.falling_edges = Some(why.clone());
+        checked.verdicts.observed = Some(why.clone());
+        checked.unshown = Err(why);
+    }
     write("botsim_observed.h", &super::observed::header(&checked.members))?;
     let mut make = Command::new("make");
     make.current_dir(tmp.join("obj")).args(["-f", "Vboard.mk", "-j"]).arg(jobs.to_string()).args(MAKE_VARS);
@@ -313,12 +365,81 @@ pub fn build(
     std::fs::rename(tmp.join("obj/libboard.so"), tmp.join("libboard.so"))
         .and_then(|_| std::fs::write(tmp.join("warnings.txt"), &stderr))
         .and_then(|_| verdicts.save(&tmp))
+        .and_then(|_| std::fs::write(tmp.join(DELAYS_FILE), delays.as_deref().unwrap_or("")))
         .and_then(|_| super::checks::save_unshown(&tmp, &checked.unshown))
         .map_err(|e| BoardError::at(&tmp, 0, 0, format!("cannot keep the build: {e}")))?;
     let _ = std::fs::remove_dir_all(tmp.join("obj"));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::rename(&tmp, &dir).map_err(|e| BoardError::at(&dir, 0, 0, format!("cannot keep the build: {e}")))?;
-    Ok(Built { library, warnings: parse_warnings(&stderr, &f), seconds: Some(t0.elapsed().as_secs_f64()) })
+    Ok(Built {
+        library,
+        warnings: parse_warnings(&stderr, &f),
+        seconds: Some(t0.elapsed().as_secs_f64()),
+        delays,
+        names: names(&f),
+    })
+}
+
+/// An exclusive lock on a build (a lock file beside its folder, `flock`), released when
+/// dropped (or when the process ends, however it ends).
+struct Lock {
+    _file: std::fs::File,
+}
+
+impl Lock {
+    /// Take the lock at `path`, waiting (within the build's budget, and until Ctrl-C) for a
+    /// run that holds it.
+    fn take(path: &Path, quiet: bool) -> Result<Lock, BoardError> {
+        use std::os::fd::AsRawFd;
+        if let Some(d) = path.parent() {
+            std::fs::create_dir_all(d)
+                .map_err(|e| BoardError::at(d, 0, 0, format!("cannot create the build folder: {e}")))?;
+        }
+        let file = std::fs::OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(path)
+            .map_err(|e| BoardError::at(path, 0, 0, format!("cannot lock the build: {e}")))?;
+        let start = Instant::now();
+        let mut said = false;
+        loop {
+            // SAFETY: flock on a descriptor this function owns.
+            if unsafe { libc::flock(file.as_raw_fd(), libc::LOCK_EX | libc::LOCK_NB) } == 0 {
+                return Ok(Lock { _file: file });
+            }
+            if !said && !quiet {
+                eprintln!("botsim board: waiting for another botsim that is building this design");
+                said = true;
+            }
+            if interrupted() {
+                return Err(BoardError::plain("interrupted (Ctrl-C) while waiting for another build"));
+            }
+            if start.elapsed() > build_budget() {
+                return Err(BoardError::plain(format!(
+                    "another botsim has been building this design for more than {} s ({} is locked)",
+                    build_budget().as_secs(),
+                    path.display()
+                )));
+            }
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    }
+}
+
+/// Remove the temporary folders of builds whose process is gone (stopped by a crash or a
+/// kill; Ctrl-C removes its own): `<design>.tmp<pid>`.
+fn remove_stale_builds(boards: &Path) {
+    for e in std::fs::read_dir(boards).into_iter().flatten().flatten() {
+        let name = e.file_name().to_string_lossy().into_owned();
+        let Some(pid) = name.rsplit_once(".tmp").and_then(|(_, p)| p.parse::<libc::pid_t>().ok()) else { continue };
+        // SAFETY: signal 0 only asks whether the process exists.
+        let alive =
+            unsafe { libc::kill(pid, 0) } == 0 || std::io::Error::last_os_error().raw_os_error() == Some(libc::EPERM);
+        if !alive {
+            let _ = std::fs::remove_dir_all(e.path());
+        }
+    }
 }
 
 /// The longest a build may take: `$BOTSIM_BUILD_TIMEOUT` seconds, else 20 minutes.
@@ -349,11 +470,14 @@ fn run_with_budget(cmd: &mut Command, budget: Duration, start: Instant) -> Resul
     let status = loop {
         match child.try_wait() {
             Ok(Some(status)) => break status,
-            Ok(None) if start.elapsed() < budget => std::thread::sleep(Duration::from_millis(50)),
+            Ok(None) if start.elapsed() < budget && !interrupted() => std::thread::sleep(Duration::from_millis(50)),
             Ok(None) => {
                 // SAFETY: signals the build's own process group (process_group(0) above).
                 unsafe { libc::kill(-(child.id() as libc::pid_t), libc::SIGKILL) };
                 let _ = child.wait();
+                if interrupted() {
+                    return Err(BoardError::plain("interrupted (Ctrl-C): the build was stopped"));
+                }
                 return Err(BoardError::plain(format!(
                     "the build took longer than {} s and was stopped (BOTSIM_BUILD_TIMEOUT sets the limit)",
                     budget.as_secs()
@@ -371,13 +495,30 @@ fn absolute(p: &Path) -> PathBuf {
     std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf())
 }
 
+/// The names Verilator is given the user's files by, with the user's paths: the build
+/// folder's copies of edited files, the absolute paths of the others.
+fn names(f: &Files) -> Vec<(String, String)> {
+    let mut names: Vec<(String, String)> = Vec::new();
+    for (name, text, path) in &f.user {
+        let user = path.display().to_string();
+        if text.is_some() {
+            names.push((name.clone(), user));
+        } else {
+            // Verilator writes some absolute paths with a doubled first slash.
+            let given = absolute(path).display().to_string();
+            names.push((format!("/{given}"), user.clone()));
+            names.push((given, user));
+        }
+    }
+    names.retain(|(given, user)| given != user);
+    names
+}
+
 /// Replace the build folder's copies of the user's files by the user's paths.
 fn user_paths(msg: &str, f: &Files) -> String {
     let mut m = msg.to_string();
-    for (name, text, path) in &f.user {
-        if text.is_some() {
-            m = m.replace(name.as_str(), &path.display().to_string());
-        }
+    for (name, user) in names(f) {
+        m = m.replace(name.as_str(), &user);
     }
     m
 }

@@ -14,7 +14,9 @@
 #include "svdpi.h"
 
 #include <algorithm>
+#include <cstdarg>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -183,11 +185,29 @@ struct Board {
     bool last_upd = false;
     uint64_t samples = 0;
     std::string fatal;
+    std::string finish;      // where the design called $finish
+    std::string error_said;  // the message of the design's last $error or $fatal
     BoardHost* host = nullptr;  // the KCPSM6 models of a --cpu iss build
     FastForward ff;
 };
 
 static thread_local Board* current = nullptr;
+
+// Thrown by the runtime's fatal-error, $stop and $readmem handlers (below) out of the
+// model's evaluation to the harness's entry point.
+struct Stopped {};
+
+// Close a board's waveform. One that could not be written (a full disk) stopped the run;
+// closing it writes no more.
+static void close_vcd(Board* b) {
+    if (!b->vcd) return;
+    try {
+        b->vcd->close();
+    } catch (const Stopped&) {
+    }
+    delete b->vcd;
+    b->vcd = nullptr;
+}
 
 // Every call into a board first makes it the thread's current one: for the harness's DPI
 // functions and vl_fatal, and for Verilator's runtime, which reaches the model's context
@@ -211,7 +231,12 @@ Board* board_new_hosted(int argc, const char** argv, BoardHost* host) {
     b->top->reset_pressed = 0;
     b->top->btn = 0;
     b->top->sw = 0;
-    b->top->eval();
+    // A design that stops at power-up (a $fatal, a loop that never settles) is a board that
+    // has finished: its first run says so.
+    try {
+        b->top->eval();
+    } catch (const Stopped&) {
+    }
     // The oscillator, then every generated clock.
     Clock osc(&b->top->clk, nullptr, 10000, 1, 0, 500);
     osc.schedule_from(1);
@@ -239,11 +264,11 @@ Board* board_new(int argc, const char** argv) { return board_new_hosted(argc, ar
 void board_free(Board* b) {
     if (!b) return;
     enter(b);
-    if (b->vcd) {
-        b->vcd->close();
-        delete b->vcd;
+    close_vcd(b);
+    try {
+        b->top->final();
+    } catch (const Stopped&) {
     }
-    b->top->final();
     delete b->top;
     delete b;
 }
@@ -265,11 +290,7 @@ int board_open_vcd(Board* b, const char* path) {
 
 void board_close_vcd(Board* b) {
     enter(b);
-    if (b->vcd) {
-        b->vcd->close();
-        delete b->vcd;
-        b->vcd = nullptr;
-    }
+    close_vcd(b);
 }
 
 size_t board_clock_count(Board* b) { return b->clocks.size(); }
@@ -284,7 +305,10 @@ void board_set_inputs(Board* b, uint32_t reset_pressed, uint32_t buttons, uint32
     b->top->reset_pressed = reset_pressed & 1;
     b->top->btn = buttons & 0x1F;
     b->top->sw = switches & 0xFFFF;
-    b->top->eval();
+    try {
+        b->top->eval();
+    } catch (const Stopped&) {
+    }
     b->evals++;
     // The fast-forward's mark and snapshots hold the inputs they saw: look for a new period.
     b->ff.marked = false;
@@ -590,6 +614,11 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
             t = UINT64_MAX;
             for (size_t i = 0; i < nc; i++)
                 if (!clocks[i].stopped && clocks[i].next_t < t) t = clocks[i].next_t;
+#ifdef BOTSIM_TIMING
+            // A design with delays: the next of its timed events (in picoseconds, the
+            // build's time precision) is a moment to evaluate too.
+            if (top->eventsPending() && top->nextTimeSlot() < t) t = top->nextTimeSlot();
+#endif
         }
         if (t > until_ps) {
             b->now = until_ps;
@@ -723,8 +752,17 @@ uint32_t board_run(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boa
     // Parked clocks are not run: the oscillator alone is then the one-clock loop's.
     bool one = true;
     for (size_t i = 1; i < b->clocks.size(); i++) one &= b->clocks[i].parked;
-    return one ? run_loop<true>(b, until_ps, stop_after_samples, buf, cap, n)
-                                 : run_loop<false>(b, until_ps, stop_after_samples, buf, cap, n);
+#ifdef BOTSIM_TIMING
+    one = false;  // the design's own timed events are moments too (run_loop)
+#endif
+    if (b->ctx.gotFinish()) return BOARD_FINISHED;
+    try {
+        return one ? run_loop<true>(b, until_ps, stop_after_samples, buf, cap, n)
+                   : run_loop<false>(b, until_ps, stop_after_samples, buf, cap, n);
+    } catch (const Stopped&) {
+        // The records written before the stop stand (*n counts them).
+        return BOARD_FINISHED;
+    }
 }
 
 const char* board_fatal(Board* b) { return b->fatal.c_str(); }
@@ -735,13 +773,16 @@ const char* board_fatal(Board* b) { return b->fatal.c_str(); }
 void board_bench_minimal(Board* b, uint64_t cycles) {
     enter(b);
     Vboard* top = b->top;
-    for (uint64_t i = 0; i < cycles; i++) {
-        b->ctx.timeInc(5000);
-        top->clk = 1;
-        top->eval();
-        b->ctx.timeInc(5000);
-        top->clk = 0;
-        top->eval();
+    try {
+        for (uint64_t i = 0; i < cycles && !b->ctx.gotFinish(); i++) {
+            b->ctx.timeInc(5000);
+            top->clk = 1;
+            top->eval();
+            b->ctx.timeInc(5000);
+            top->clk = 0;
+            top->eval();
+        }
+    } catch (const Stopped&) {
     }
 }
 
@@ -853,18 +894,153 @@ extern "C" void botsim_probe(void* probe, long long pins, long long state) {
     (*(const BoardProbeFns* const*)probe)->record(probe, (uint64_t)pins, (uint64_t)state, current->now);
 }
 
-// $finish ends the run (the runtime is built with VL_USER_FINISH); a fatal runtime error
-// ($fatal, a failed VCD write) too, keeping its message for the board that raised it.
+// How the design's run ends, and what it prints. The runtime is built with VL_USER_FINISH,
+// VL_USER_FATAL, VL_USER_STOP and VL_USER_WARN, and with VL_PRINTF/VL_VPRINTF as the
+// functions below (botsim_print.h).
+//
+// $finish ends the run at the end of its evaluation. A fatal runtime error ($fatal, a model
+// that does not settle: Verilator's "did not converge"), $stop and a $readmem file that cannot
+// be read stop it at once: the harness unwinds out of the evaluation to its entry point
+// (returning would let Verilator's convergence loop go round forever), keeping the message for
+// the board that raised it.
 void vl_finish(const char* filename, int linenum, const char* hier) VL_MT_UNSAFE {
-    (void)filename;
-    (void)linenum;
     (void)hier;
     Verilated::threadContextp()->gotFinish(true);
+    if (current && current->finish.empty())
+        current->finish = std::string(filename ? filename : "") + ":" + std::to_string(linenum);
 }
+
+namespace {
+[[noreturn]] void stop(const char* filename, int linenum, const std::string& msg) {
+    Verilated::threadContextp()->gotFinish(true);
+    if (current && current->fatal.empty()) {
+        current->fatal = filename && filename[0] ? std::string(filename) + ":" + std::to_string(linenum) + ": " + msg : msg;
+    }
+    throw Stopped{};
+}
+}  // namespace
 
 void vl_fatal(const char* filename, int linenum, const char* hier, const char* msg) VL_MT_UNSAFE {
     (void)hier;
-    Verilated::threadContextp()->gotFinish(true);
-    if (current && current->fatal.empty())
-        current->fatal = std::string(filename ? filename : "") + ":" + std::to_string(linenum) + ": " + (msg ? msg : "");
+    stop(filename, linenum, msg ? msg : "fatal error");
 }
+
+void vl_stop(const char* filename, int linenum, const char* hier) VL_MT_UNSAFE {
+    (void)hier;
+    // $error and $fatal print their message (as an %Error line) and then stop.
+    std::string said = current ? current->error_said : std::string();
+    if (said.empty()) stop(filename, linenum, "the design called $stop");
+    stop(filename, linenum, "the design reported an error: " + said + " (botsim stops at a design's first $error or $fatal, as Verilator does)");
+}
+
+void vl_warn(const char* filename, int linenum, const char* hier, const char* msg) VL_MT_UNSAFE {
+    (void)hier;
+    std::string m = msg ? msg : "";
+    if (m.find("$readmem") != std::string::npos) stop(filename, linenum, m);
+    botsim_printf("%%Warning: %s:%d: %s\n", filename ? filename : "", linenum, m.c_str());
+}
+
+// The design's printing ($display, $write, runtime warnings): to a log file when one is set
+// (board_output), and to standard error up to a number of lines, then one line saying how
+// much more there is. The caller learns how many lines there were and whether the last one
+// is unfinished, so that its own summary starts on a line of its own.
+namespace {
+struct DesignOutput {
+    FILE* log = nullptr;
+    uint64_t limit = 200;
+    uint64_t lines = 0;
+    bool mid_line = false;  // what stderr shows ends without a newline
+    bool cut = false;
+};
+DesignOutput g_out;
+
+void design_output(const char* text, size_t len) {
+    if (g_out.log) fwrite(text, 1, len, g_out.log);
+    // The message of a $error or $fatal ("[time] %Error: file:line: Assertion failed in
+    // scope: message"), for the line that says why the run stopped.
+    if (current) {
+        std::string t(text, len);
+        size_t e = t.find("%Error: ");
+        if (e != std::string::npos) {
+            size_t m = t.find("Assertion failed in ", e);
+            m = m == std::string::npos ? e + 8 : t.find(": ", m);
+            std::string said = m == std::string::npos ? std::string() : t.substr(m + (t[m] == ':' ? 2 : 0));
+            while (!said.empty() && (said.back() == '\n' || said.back() == '\r')) said.pop_back();
+            current->error_said = said.empty() ? "(no message)" : said;
+        }
+    }
+    for (size_t i = 0; i < len;) {
+        const char* nl = (const char*)memchr(text + i, '\n', len - i);
+        size_t end = nl ? (size_t)(nl - text) + 1 : len;
+        if (g_out.lines < g_out.limit) {
+            fwrite(text + i, 1, end - i, stderr);
+            g_out.mid_line = !nl;
+        } else if (!g_out.cut) {
+            g_out.cut = true;
+            fputs(g_out.mid_line ? "\n" : "", stderr);
+            fprintf(stderr, "botsim board: the design prints more than %llu lines; the rest is not shown (--design-log FILE keeps it all)\n",
+                    (unsigned long long)g_out.limit);
+            g_out.mid_line = false;
+        }
+        if (nl) g_out.lines++;
+        i = end;
+    }
+}
+}  // namespace
+
+extern "C" int botsim_vprintf(const char* format, va_list ap) {
+    char small[512];
+    va_list again;
+    va_copy(again, ap);
+    int n = vsnprintf(small, sizeof small, format, ap);
+    if (n < 0) {
+        va_end(again);
+        return n;
+    }
+    if ((size_t)n < sizeof small) {
+        design_output(small, (size_t)n);
+    } else {
+        std::string big((size_t)n + 1, '\0');
+        vsnprintf(&big[0], big.size(), format, again);
+        design_output(big.data(), (size_t)n);
+    }
+    va_end(again);
+    return n;
+}
+
+extern "C" int botsim_printf(const char* format, ...) {
+    va_list ap;
+    va_start(ap, format);
+    int n = botsim_vprintf(format, ap);
+    va_end(ap);
+    return n;
+}
+
+extern "C" {
+
+// Where the design's printing goes: `log` (a file, or null) and at most `limit` lines on
+// standard error. Returns 0 when the log cannot be opened.
+int board_output(const char* log, uint64_t limit) {
+    g_out.limit = limit;
+    if (log) {
+        g_out.log = fopen(log, "wb");
+        if (!g_out.log) return 0;
+    }
+    return 1;
+}
+
+// How many lines the design printed, and whether standard error ends in the middle of one;
+// closes the log.
+uint64_t board_output_done(int* mid_line) {
+    fflush(stderr);
+    if (g_out.log) {
+        fclose(g_out.log);
+        g_out.log = nullptr;
+    }
+    *mid_line = g_out.mid_line;
+    return g_out.lines;
+}
+
+const char* board_finish(Board* b) { return b->finish.c_str(); }
+
+}  // extern "C"

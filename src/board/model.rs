@@ -113,10 +113,31 @@ struct Api {
     clock_count: unsafe extern "C" fn(*mut Opaque) -> usize,
     clock: unsafe extern "C" fn(*mut Opaque, usize, *mut u64, *mut u64),
     fatal: unsafe extern "C" fn(*mut Opaque) -> *const c_char,
+    finish: unsafe extern "C" fn(*mut Opaque) -> *const c_char,
+    output_done: unsafe extern "C" fn(*mut c_int) -> u64,
     bench_minimal: unsafe extern "C" fn(*mut Opaque, u64),
     fast_forward: unsafe extern "C" fn(*mut Opaque, c_int) -> c_int,
     rising_edges_only: unsafe extern "C" fn(*mut Opaque, c_int) -> c_int,
     fast_forwarded: unsafe extern "C" fn(*mut Opaque, *mut u64, *mut u64),
+}
+
+/// Where a design's own printing (`$display`, `$write`, runtime warnings) goes: every line to
+/// `log` when there is one, and the first `lines` lines to standard error.
+#[derive(Clone, Debug)]
+pub struct Printing {
+    pub log: Option<PathBuf>,
+    pub lines: u64,
+}
+
+impl Printing {
+    /// Nothing shown, nothing kept (a second board of a lock-step run, a bench).
+    pub const SILENT: Printing = Printing { log: None, lines: 0 };
+}
+
+impl Default for Printing {
+    fn default() -> Printing {
+        Printing { log: None, lines: 200 }
+    }
 }
 
 /// What the fast-forward compares to find a period, and so what a run that uses it keeps
@@ -162,7 +183,12 @@ impl BoardModel {
     /// Load the library at `path` and create the model with the plusargs `args`
     /// (`+botsim_world=FILE`); a design built for `--cpu iss` takes its KCPSM6 models from
     /// `host`.
-    pub fn load(path: &Path, args: &[String], host: Option<Box<Host>>) -> Result<BoardModel, BoardError> {
+    pub fn load(
+        path: &Path,
+        args: &[String],
+        host: Option<Box<Host>>,
+        printing: &Printing,
+    ) -> Result<BoardModel, BoardError> {
         // libloading's message names the file.
         let fail = |e: libloading::Error| BoardError::plain(format!("cannot load the built design: {e}"));
         // The library uses its own Verilator runtime, never one linked into botsim.
@@ -193,8 +219,18 @@ impl BoardModel {
             clock_count: sym!(b"board_clock_count"),
             clock: sym!(b"board_clock"),
             fatal: sym!(b"board_fatal"),
+            finish: sym!(b"board_finish"),
+            output_done: sym!(b"board_output_done"),
             bench_minimal: sym!(b"board_bench_minimal"),
         };
+        // Where the design prints, before anything of it runs (its initial blocks print too).
+        let output: unsafe extern "C" fn(*const c_char, u64) -> c_int = sym!(b"board_output");
+        let log = printing.log.as_ref().map(|p| CString::new(p.to_string_lossy().into_owned()).unwrap_or_default());
+        // SAFETY: the path is a NUL-terminated string that outlives the call.
+        if unsafe { output(log.as_ref().map_or(std::ptr::null(), |c| c.as_ptr()), printing.lines) } == 0 {
+            let p = printing.log.as_deref().unwrap_or(Path::new(""));
+            return Err(BoardError::at(p, 0, 0, "cannot write the design's log"));
+        }
         let cargs: Vec<CString> = std::iter::once("botsim".to_string())
             .chain(args.iter().cloned())
             .map(|a| CString::new(a).unwrap_or_default())
@@ -336,6 +372,22 @@ impl BoardModel {
                 })
                 .collect()
         }
+    }
+
+    /// Where the design called `$finish` (file:line), if it did.
+    pub fn finish(&self) -> Option<String> {
+        // SAFETY: the harness returns a NUL-terminated string owned by the model.
+        let s = unsafe { CStr::from_ptr((self.api.finish)(self.ptr)) }.to_string_lossy().into_owned();
+        (!s.is_empty()).then_some(s)
+    }
+
+    /// How many lines the design printed, and whether standard error now ends in the middle
+    /// of one of them; closes the design's log.
+    pub fn printed(&self) -> (u64, bool) {
+        let mut mid = 0;
+        // SAFETY: a plain call into the library.
+        let lines = unsafe { (self.api.output_done)(&mut mid) };
+        (lines, mid != 0)
     }
 
     /// The fatal error that stopped the design, if any.

@@ -7,7 +7,7 @@ use std::time::Instant;
 use botsim::board::build::{build, BotKind, CpuModel};
 use botsim::board::iss::{Breaks, Host, TraceRequest};
 use botsim::board::lockstep::Lockstep;
-use botsim::board::model::{BoardModel, Event, FastForward, RawEvent, Stop};
+use botsim::board::model::{BoardModel, Event, FastForward, Printing, RawEvent, Stop};
 use botsim::files::{check_writable, write_atomic};
 use botsim::firmware::{SOURCE, SOURCE_PATH};
 use botsim::kcpsm6::loader;
@@ -70,9 +70,13 @@ pub struct Args {
     /// reset, as in botsim run: the trace has samples 0 to N)
     #[arg(long, value_name = "N")]
     samples: Option<u64>,
-    /// Stop after S seconds of simulated time [default: 1, or unlimited with --samples]
-    #[arg(long, value_name = "S")]
+    /// Stop after S seconds of simulated time [default: 1, or unlimited with --samples]; more
+    /// than 600 s (ten minutes of the board) needs --long
+    #[arg(long, value_name = "S", allow_negative_numbers = true)]
     seconds: Option<f64>,
+    /// Allow a run of more than 600 s of board time (it takes about as long, or longer)
+    #[arg(long)]
+    long: bool,
     /// Press a button: NAME@TIME[+DURATION] (btnC, btnU, btnD, btnL, btnR, btnCpuReset; times
     /// in ms, or with a unit: 250us, 2s, 5000000c for cycles of 100 MHz; 100 ms by default)
     #[arg(long, value_name = "BTN@MS[+MS]")]
@@ -118,6 +122,11 @@ pub struct Args {
     /// part as x: see --vcd-all-signals)
     #[arg(long, value_name = "FILE")]
     vcd: Option<PathBuf>,
+    /// With --vcd: the largest waveform to write, e.g. 500M or 8G [default: 2G]; a run whose
+    /// waveform grows past it stops and says so (a window, --trace-from/--trace-to, keeps it
+    /// small)
+    #[arg(long, value_name = "SIZE", requires = "vcd")]
+    vcd_max: Option<String>,
     /// With --vcd: start the waveform at bot sample N (its iteration in full), at cycle Nc of
     /// the 100 MHz clock, or at a time (2ms, 250us, 1s)
     #[arg(long, value_name = "N|Nc|TIME", requires = "vcd")]
@@ -197,6 +206,10 @@ pub struct Args {
     /// Build the design (or find it built) and stop: for CI caches and suites
     #[arg(long)]
     build_only: bool,
+    /// Keep every line the design prints ($display, $write) in this file (standard error
+    /// shows the first 200)
+    #[arg(long, value_name = "FILE")]
+    design_log: Option<PathBuf>,
     /// Print the summary as JSON
     #[arg(long)]
     json: bool,
@@ -211,6 +224,9 @@ fn leniency(code: &str) -> Option<&'static str> {
     match code {
         "BLKANDNBLK" => Some(
             "a variable is given both blocking and non-blocking assignments; Vivado builds it, and botsim simulates each assignment as written",
+        ),
+        "MULTIDRIVEN" => Some(
+            "a signal has more than one driver (Vivado reports it too); botsim simulates the drivers as written, so what the signal shows depends on which ran last",
         ),
         _ => None,
     }
@@ -291,6 +307,9 @@ impl Sim {
 }
 
 pub fn run(a: Args) -> Result<(), String> {
+    // Ctrl-C stops a build (its compilers and its temporary folder go) or a run (its outputs
+    // written up to there), never the process in the middle of either.
+    botsim::interrupt::catch();
     if a.breaks.is_empty() || (a.vcd.is_none() && a.cpu_trace.is_none()) {
         return run_once(a).map(|_| ());
     }
@@ -341,6 +360,110 @@ struct BreakStop {
 /// What a `--break` stopped.
 type Stopped = Option<BreakStop>;
 
+/// The progress line of a long run on a terminal: board time (or samples) against the end,
+/// the rate against real time and the expected end; shown once a run has taken 2 s.
+struct Progress {
+    on: bool,
+    end_ps: u64,
+    samples: u64,
+    start: Instant,
+    bar: Option<indicatif::ProgressBar>,
+}
+
+impl Progress {
+    fn new(wanted: bool, end_ps: u64, samples: u64) -> Progress {
+        use std::io::IsTerminal;
+        let on = wanted && std::io::stderr().is_terminal();
+        Progress { on, end_ps, samples, start: Instant::now(), bar: None }
+    }
+
+    fn show(&mut self, now_ps: u64, samples: u64) {
+        if !self.on || self.start.elapsed() < std::time::Duration::from_secs(2) {
+            return;
+        }
+        let by_time = self.end_ps != u64::MAX;
+        let bar = self.bar.get_or_insert_with(|| {
+            let len = if by_time { self.end_ps / 1_000_000_000 } else { self.samples };
+            let b = indicatif::ProgressBar::new(len);
+            let unit = if by_time { "ms of board time" } else { "samples" };
+            b.set_style(
+                indicatif::ProgressStyle::with_template(&format!(
+                    "{{bar:30}} {{pos}}/{{len}} {unit}, {{msg}}, ends in {{eta}}"
+                ))
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+            );
+            b
+        });
+        bar.set_position(if by_time { now_ps / 1_000_000_000 } else { samples });
+        let real = now_ps as f64 / 1e12 / self.start.elapsed().as_secs_f64();
+        bar.set_message(format!("{real:.2} x real time"));
+    }
+
+    fn done(&mut self) {
+        if let Some(b) = self.bar.take() {
+            b.finish_and_clear();
+        }
+    }
+}
+
+/// The one line that says why a design stopped at `at` from its runtime's message `f` (the
+/// user's paths already in it).
+fn design_stopped(f: &str, built: &botsim::board::build::Built, at: &str) -> String {
+    if f.contains("did not converge") {
+        // Verilator names the loop when it builds the design (UNOPTFLAT).
+        let looped = built.warnings.iter().find(|(code, _, _)| code == "UNOPTFLAT").map(|(_, _, first)| {
+            let place = first.split(": ").next().unwrap_or("");
+            let signal = first.rsplit('\'').nth(1).unwrap_or("").trim_start_matches("botsim_board.user.");
+            format!("{place}: `{signal}` depends on itself (a combinational loop)")
+        });
+        return match looped {
+            Some(l) => format!("{l}: the design never settles, stopped at {at}"),
+            None => format!(
+                "the design never settles (a combinational loop, or an always block with no event), stopped at {at}"
+            ),
+        };
+    }
+    if let Some(file) = f.strip_suffix(":0: $readmem file not found") {
+        return format!("{file}: the design's $readmem cannot read this file (stopped at {at})");
+    }
+    format!("{f} (stopped at {at})")
+}
+
+/// The longest run `--seconds` allows without `--long`, in seconds of board time.
+const LONG_RUN_S: f64 = 600.0;
+
+/// The most board time one call into the model covers: between two calls the run checks
+/// Ctrl-C, the waveform's size and its progress line.
+const CHUNK_PS: u64 = 50_000_000_000;
+
+/// The largest waveform written without `--vcd-max`.
+const VCD_MAX: u64 = 2 << 30;
+
+/// A size in bytes from `500M`, `2G`, `4096` (K, M, G: powers of 1024).
+fn parse_size(s: &str) -> Result<u64, String> {
+    let t = s.trim();
+    let (num, unit) = match t.char_indices().find(|(_, c)| c.is_ascii_alphabetic()) {
+        Some((i, _)) => (&t[..i], t[i..].trim_end_matches(['B', 'b'])),
+        None => (t, ""),
+    };
+    let scale: u64 = match unit.to_ascii_uppercase().as_str() {
+        "" => 1,
+        "K" => 1 << 10,
+        "M" => 1 << 20,
+        "G" => 1 << 30,
+        _ => return Err("expected a size such as 500M or 4G".into()),
+    };
+    num.trim()
+        .parse::<f64>()
+        .ok()
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .map(|v| (v * scale as f64) as u64)
+        .ok_or_else(|| "expected a size such as 500M or 4G".into())
+}
+
+/// How many lines of the design's own printing standard error shows.
+const DESIGN_LINES: u64 = 200;
+
 /// How far a waveform and CPU trace written for a breakpoint go on past the stop.
 const CPU_BREAK_AFTER_PS: u64 = 40_000;
 const BOT_BREAK_AFTER_PS: u64 = 100_000_000;
@@ -380,9 +503,17 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         })
         .collect::<Result<Vec<_>, _>>()?;
     if let Some(s) = a.seconds {
-        if s.is_nan() || s <= 0.0 {
-            return Err(format!("--seconds {s}: expected a positive number"));
+        if !s.is_finite() || s <= 0.0 {
+            return Err(format!("--seconds {s}: expected a positive number of seconds of board time"));
         }
+        if s > LONG_RUN_S && !a.long {
+            return Err(format!(
+                "--seconds {s}: more than {LONG_RUN_S} s of board time takes about as long to simulate, or longer; add --long to run it"
+            ));
+        }
+    }
+    if let Some(max) = &a.vcd_max {
+        parse_size(max).map_err(|e| format!("--vcd-max {max}: {e}"))?;
     }
     let world = match &a.map {
         Some(p) => World::load(p).map_err(|d| d.to_string())?,
@@ -395,7 +526,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         let img = loader::load(p, &botsim::kcpsm6::asm::Options::default()).map_err(|d| d.to_string())?;
         programs.push((p.clone(), img));
     }
-    for p in [&a.trace_csv, &a.trace_json, &a.png, &a.display, &a.pins, &a.vcd].into_iter().flatten() {
+    for p in [&a.trace_csv, &a.trace_json, &a.png, &a.display, &a.pins, &a.vcd, &a.design_log].into_iter().flatten() {
         check_writable(p)?;
     }
     if let Some(d) = &a.frames {
@@ -416,6 +547,18 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     let design = resolve(&a.sources, &options).map_err(|e| e.to_string())?;
     let req = Request { programs, bot_firmware, force_own_firmware: a.firmware.any() };
     let mut plan = Plan::new(&design, &req).map_err(|e| e.to_string())?;
+    // Every --param names a parameter of the top.
+    if let Some((src, top)) = design.sources.iter().find_map(|s| s.module(&design.top).map(|m| (s, m))) {
+        if let Some((name, _)) = params.iter().find(|(n, _)| !top.params.contains(n)) {
+            let has = if top.params.is_empty() { "none".to_string() } else { top.params.join(", ") };
+            return Err(format!(
+                "--param {name}: the top `{}` ({}:{}) has no parameter {name} (its parameters: {has})",
+                top.name,
+                src.path.display(),
+                top.line
+            ));
+        }
+    }
     plan.replaced.extend(design.generated.iter().cloned());
     let say = |s: String| {
         if !a.quiet && !a.json {
@@ -535,6 +678,11 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         Some(s) => say(format!("  built in {s:.1} s ({})", built.library.display())),
         None => say(format!("  reused the build in {}", built.library.parent().unwrap_or(&built.library).display())),
     }
+    if let Some(at) = &built.delays {
+        say(format!(
+            "note: {at}: the design has delays (#): botsim simulates them as written (Vivado's synthesis ignores them), evaluating every clock edge"
+        ));
+    }
     for (code, n, first) in &built.warnings {
         match leniency(code) {
             Some(what) => {
@@ -578,13 +726,14 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     }
 
     // Run.
-    let mut first = load(&built.library, &world, &plan.roms, host(&plan, cpu, main_bot)?)?;
+    let printing = Printing { log: a.design_log.clone(), lines: if a.quiet { 0 } else { DESIGN_LINES } };
+    let mut first = load(&built.library, &world, &plan.roms, host(&plan, cpu, main_bot)?, &printing)?;
     if a.every_edge {
         first.every_edge();
     }
     let mut model = match &twin {
         Some(b) => {
-            let mut iss = load(&b.library, &world, &plan.roms, host(&plan, CpuModel::Iss, bot)?)?;
+            let mut iss = load(&b.library, &world, &plan.roms, host(&plan, CpuModel::Iss, bot)?, &Printing::SILENT)?;
             if a.every_edge {
                 iss.every_edge();
             }
@@ -671,6 +820,8 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     model.set_inputs(r, b, sw);
 
     let t0 = Instant::now();
+    let vcd_max = a.vcd_max.as_deref().map_or(Ok(VCD_MAX), parse_size)?;
+    let mut progress = Progress::new(!a.quiet && !a.json && !a.finding, end_ps, sample_limit);
     let mut display = Display::default();
     let mut display_log = String::new();
     let mut pins_csv = String::from("time_ps,an,seg,dp,led\n");
@@ -692,6 +843,22 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         }
         let now = model.main().time_ps();
         let mut until = stops.range(now + 1..).next().copied().unwrap_or(end_ps).min(end_ps);
+        // A waveform grows fast: its size is looked at more often.
+        until = until.min(now.saturating_add(if vcd_open { CHUNK_PS / 10 } else { CHUNK_PS }));
+        progress.show(now, snapshots.len() as u64);
+        if let (Some(v), true) = (&a.vcd, vcd_open) {
+            let size = std::fs::metadata(v).map_or(0, |m| m.len());
+            if size > vcd_max {
+                drop(model);
+                let _ = std::fs::remove_file(v);
+                return Err(format!(
+                    "{}: the waveform passed {} MB at {:.3} ms of board time and was removed: ask for a window (--trace-from/--trace-to) or allow more (--vcd-max)",
+                    v.display(),
+                    vcd_max >> 20,
+                    now as f64 / 1e9
+                ));
+            }
+        }
         // A run counted in samples waits for the next one a bounded time.
         if counted_in_samples {
             until = until.min(last_sample_ps.saturating_add(NO_SAMPLE_PS));
@@ -835,13 +1002,35 @@ fn run_once(a: Args) -> Result<Stopped, String> {
             ),
         }
     });
+    progress.done();
     let stopped = cpu_stop.or(bot_stop).or(a.stopped_at.clone());
+    // The design's own printing ends here: botsim's lines start on lines of their own.
+    let (design_lines, mid_line) = model.main().printed();
+    if mid_line {
+        eprintln!();
+    }
     if let Some(s) = &stopped {
         if !a.json && !a.finding {
             eprintln!("{}", s.message);
         }
     } else if let Some(f) = model.main().fatal() {
-        return Err(format!("the design stopped: {f}"));
+        let at = format!("{:.6} ms", model.main().time_ps() as f64 / 1e9);
+        if let (Some(v), Some(why)) = (&a.vcd, f.strip_prefix(":0: VerilatedVcd::bufferFlush: ")) {
+            drop(model);
+            let _ = std::fs::remove_file(v);
+            return Err(format!(
+                "{}: the waveform could not be written ({why}) at {at}; the part written was removed",
+                v.display()
+            ));
+        }
+        return Err(design_stopped(&built.user_paths(&f), &built, &at));
+    }
+    if let (Some(f), false) = (model.main().finish(), a.json || a.quiet || a.finding) {
+        eprintln!(
+            "botsim board: the design called $finish at {} ({:.6} ms)",
+            built.user_paths(&f),
+            model.main().time_ps() as f64 / 1e9
+        );
     }
     let finished = if stopped.is_some() { Some("break") } else { finished };
     model.main().close_vcd().map_err(|e| e.to_string())?;
@@ -903,6 +1092,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
             "wall_seconds": wall,
             "build_seconds": built.seconds,
             "cpu_traces": traces,
+            "design_lines": design_lines,
             "fast_forward": {"skips": skips, "skipped_seconds": skipped_ps as f64 / 1e12, "off_because": fast_forward_off},
             "break": stopped.as_ref().map(|s| serde_json::json!({"time_ps": s.time_ps, "what": s.message})),
         });
@@ -1179,7 +1369,13 @@ fn parse_mark(s: &str, name: &str) -> Result<Mark, String> {
 
 /// Create the model of a built design on `world` with the programs of `roms` (the files are
 /// read when the model is created, then removed).
-fn load(library: &Path, world: &World, roms: &[Rom], host: Option<Box<Host>>) -> Result<BoardModel, String> {
+fn load(
+    library: &Path,
+    world: &World,
+    roms: &[Rom],
+    host: Option<Box<Host>>,
+    printing: &Printing,
+) -> Result<BoardModel, String> {
     let dir = std::env::temp_dir();
     let stem = format!("botsim-{}-{}", std::process::id(), LOADS.fetch_add(1, std::sync::atomic::Ordering::Relaxed));
     let mut files = vec![(dir.join(format!("{stem}-world.mem")), world.to_mem(), "botsim_world".to_string())];
@@ -1191,7 +1387,7 @@ fn load(library: &Path, world: &World, roms: &[Rom], host: Option<Box<Host>>) ->
         std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))?;
         args.push(format!("+{arg}={}", path.display()));
     }
-    let model = BoardModel::load(library, &args, host);
+    let model = BoardModel::load(library, &args, host, printing);
     for (path, _, _) in &files {
         let _ = std::fs::remove_file(path);
     }
@@ -1223,7 +1419,7 @@ fn board_rate(
     cycles: u64,
     fast_forward: bool,
 ) -> Result<f64, String> {
-    let mut m = load(library, world, roms, host)?;
+    let mut m = load(library, world, roms, host, &Printing::SILENT)?;
     m.set_inputs(false, 0, 0);
     m.fast_forward(if fast_forward { FastForward::Recorded } else { FastForward::Off });
     let mut buf = vec![RawEvent::default(); 4096];
@@ -1312,7 +1508,7 @@ fn bench(
     let (mut board_rates, mut minimal_rates) = (Vec::new(), Vec::new());
     for _ in 0..ROUNDS {
         board_rates.push(board_rate(library, world, roms, host()?, cycles, false)?);
-        let mut m = load(library, world, roms, host()?)?;
+        let mut m = load(library, world, roms, host()?, &Printing::SILENT)?;
         m.set_inputs(false, 0, 0);
         let t = Instant::now();
         m.bench_minimal(cycles);

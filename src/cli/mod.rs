@@ -21,13 +21,7 @@ pub const EXIT_ERROR: i32 = 1;
 /// Exit status after Ctrl-C (SIGINT) stopped a run: its outputs are complete up to there.
 pub const EXIT_INTERRUPTED: i32 = 130;
 
-/// Set by the Ctrl-C handler that `botsim run` installs; long loops stop at the next check.
-pub static INTERRUPTED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
-
-/// Whether Ctrl-C was pressed.
-pub fn interrupted() -> bool {
-    INTERRUPTED.load(std::sync::atomic::Ordering::Relaxed)
-}
+pub use botsim::interrupt::interrupted;
 
 #[derive(Parser)]
 #[command(name = "botsim", version, about = "Cycle-exact RTL co-simulation of the Rojobot BotSim 2.0", long_about = None)]
@@ -75,7 +69,11 @@ pub fn main() -> i32 {
         Ok(()) => EXIT_OK,
         Err(msg) => {
             eprintln!("{msg}");
-            EXIT_ERROR
+            if interrupted() {
+                EXIT_INTERRUPTED
+            } else {
+                EXIT_ERROR
+            }
         }
     }
 }

@@ -123,6 +123,7 @@ struct Outcome {
 }
 
 pub fn run(a: Args) -> Result<(), String> {
+    botsim::interrupt::catch();
     let text =
         std::fs::read_to_string(&a.suite).map_err(|e| format!("{}: error: cannot read: {e}", a.suite.display()))?;
     let suite: SuiteFile = toml::from_str(&text).map_err(|e| {

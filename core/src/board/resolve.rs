@@ -917,6 +917,22 @@ impl<'a> Walk<'a> {
             s.text.replace_range(o.at.clone(), &padded);
             s.edited = true;
         }
+        // SystemVerilog's keywords are names in a Verilog file (Vivado reads `.v` as
+        // Verilog-2005): escaped, they stay names for Verilator, which reads SystemVerilog.
+        let verilog = s.path.extension().is_some_and(|e| e.eq_ignore_ascii_case("v"));
+        if verilog {
+            let names: Vec<_> = scan::sv_keywords_as_names(&s.text).into_iter().filter(|(at, ..)| kept(at)).collect();
+            if let Some((_, line, col, word)) = names.first() {
+                self.notes.push(format!(
+                    "{}:{line}:{col}: `{word}` is a name here (a Verilog file), not SystemVerilog's keyword: botsim reads it so, as Vivado does{}",
+                    s.path.display(),
+                    if names.len() > 1 { format!(" ({} places in the file)", names.len()) } else { String::new() }
+                ));
+            }
+            for (at, _, _, word) in names.into_iter().rev() {
+                s.replace(at, &format!("\\{word} "));
+            }
+        }
         for o in &fixes {
             self.notes.push(format!(
                 "{}:{}:{}: `{}` has more digits than its width holds; Vivado keeps the low bits (`{}`), and so does botsim",

@@ -766,6 +766,158 @@ fn connections(p: &Parser, from: usize, to: usize) -> Vec<(String, String)> {
     out
 }
 
+/// The keywords SystemVerilog (IEEE 1800-2017) adds to Verilog-2005: in a `.v` file, which
+/// Vivado reads as Verilog, they are ordinary names.
+pub const SV_KEYWORDS: &[&str] = &[
+    "accept_on",
+    "alias",
+    "always_comb",
+    "always_ff",
+    "always_latch",
+    "assert",
+    "assume",
+    "before",
+    "bind",
+    "bins",
+    "binsof",
+    "bit",
+    "break",
+    "byte",
+    "chandle",
+    "checker",
+    "class",
+    "clocking",
+    "const",
+    "constraint",
+    "context",
+    "continue",
+    "cover",
+    "covergroup",
+    "coverpoint",
+    "cross",
+    "dist",
+    "do",
+    "endchecker",
+    "endclass",
+    "endclocking",
+    "endgroup",
+    "endinterface",
+    "endpackage",
+    "endprogram",
+    "endproperty",
+    "endsequence",
+    "enum",
+    "eventually",
+    "expect",
+    "export",
+    "extends",
+    "extern",
+    "final",
+    "first_match",
+    "foreach",
+    "forkjoin",
+    "global",
+    "iff",
+    "ignore_bins",
+    "illegal_bins",
+    "implements",
+    "implies",
+    "import",
+    "inside",
+    "int",
+    "interconnect",
+    "interface",
+    "intersect",
+    "join_any",
+    "join_none",
+    "let",
+    "local",
+    "logic",
+    "longint",
+    "matches",
+    "modport",
+    "nettype",
+    "new",
+    "nexttime",
+    "null",
+    "package",
+    "packed",
+    "priority",
+    "program",
+    "property",
+    "protected",
+    "pure",
+    "rand",
+    "randc",
+    "randcase",
+    "randsequence",
+    "ref",
+    "reject_on",
+    "restrict",
+    "return",
+    "s_always",
+    "s_eventually",
+    "s_nexttime",
+    "s_until",
+    "s_until_with",
+    "sequence",
+    "shortint",
+    "shortreal",
+    "soft",
+    "solve",
+    "static",
+    "string",
+    "strong",
+    "struct",
+    "super",
+    "sync_accept_on",
+    "sync_reject_on",
+    "tagged",
+    "this",
+    "throughout",
+    "timeprecision",
+    "timeunit",
+    "type",
+    "typedef",
+    "union",
+    "unique",
+    "unique0",
+    "until",
+    "until_with",
+    "untyped",
+    "var",
+    "virtual",
+    "void",
+    "wait_order",
+    "weak",
+    "wildcard",
+    "with",
+    "within",
+];
+
+/// Every name of `src` that is a SystemVerilog keyword (`bit`, `byte`, `do`...): where it is
+/// and the name. In a Verilog file they are names; written as escaped identifiers
+/// (`\bit `) they stay names for a SystemVerilog parser too.
+///
+/// ```
+/// use botsim_core::board::scan::sv_keywords_as_names;
+/// let found = sv_keywords_as_names("wire [7:0] byte = x; // int\nassign y = byte;");
+/// let words: Vec<_> = found.iter().map(|(at, line, _, w)| (at.start, *line, w.as_str())).collect();
+/// assert_eq!(words, [(11, 1, "byte"), (39, 2, "byte")]);
+/// ```
+pub fn sv_keywords_as_names(src: &str) -> Vec<(Range<usize>, u32, u32, String)> {
+    let (tokens, _) = tokenize(src);
+    tokens
+        .iter()
+        .filter_map(|t| match &t.tok {
+            Tok::Ident(w) if SV_KEYWORDS.binary_search(&w.as_str()).is_ok() && !src[t.at..].starts_with('\\') => {
+                Some((t.at..t.at + w.len(), t.line, t.col, w.clone()))
+            }
+            _ => None,
+        })
+        .collect()
+}
+
 /// The module at `span` of `src` with comments and layout taken out: two copies of a module
 /// that differ in nothing else have the same normalized text.
 pub fn normalized(src: &str, span: Range<usize>) -> String {
@@ -901,6 +1053,11 @@ mod tests {
         let n = |s: &str| normalized(s, scan(s)[0].span.clone());
         assert_eq!(n(a), n(b));
         assert_ne!(n(a), n(c));
+    }
+
+    #[test]
+    fn the_systemverilog_keywords_are_sorted_for_the_search() {
+        assert!(SV_KEYWORDS.windows(2).all(|w| w[0] < w[1]));
     }
 
     #[test]

@@ -11,6 +11,8 @@ const MAX_INCLUDE_DEPTH: usize = 32;
 
 impl Assembler<'_> {
     pub(super) fn load(&mut self, path: &Path, text: &str, stack: &mut Vec<PathBuf>) {
+        // A UTF-8 byte-order mark (Windows editors write one) is not text: KCPSM6 skips it.
+        let text = text.strip_prefix('\u{feff}').unwrap_or(text);
         self.files.push(path.to_path_buf());
         stack.push(path.to_path_buf());
         for (n, raw) in text.lines().enumerate() {

@@ -131,7 +131,7 @@ pub fn run_with_frame(args: Args, end_frame: Option<PathBuf>) -> Result<(), Stri
     });
     // Ctrl-C stops the run between two checks (at most ~1 M cycles apart); the outputs are
     // then written for the samples taken, as at a normal end.
-    let _ = ctrlc::set_handler(|| crate::cli::INTERRUPTED.store(true, std::sync::atomic::Ordering::Relaxed));
+    botsim::interrupt::catch();
     let start = Instant::now();
     let mut taken = Taken::default();
     let (samples, frames) = (plan.samples, plan.frames.as_ref().zip(video.as_ref()));

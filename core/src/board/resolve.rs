@@ -638,6 +638,37 @@ impl<'a> Walk<'a> {
         if !defs.is_empty() {
             return Some(self.user(name, &defs, file));
         }
+        // A program ROM whose Verilog was never committed, only its program: assembled here.
+        let connects = |p: &str| inst.connections.iter().any(|(c, _)| c == p);
+        if connects("instruction") && connects("address") {
+            let dir = file.parent().unwrap_or(Path::new("."));
+            if let Some(psm) = self.repo.find_near(&format!("{name}.psm"), dir) {
+                match kcpsm6::asm::assemble_file(&psm, &Default::default()) {
+                    Ok(program) => {
+                        let text = kcpsm6::output::verilog_rom(
+                            &program.image,
+                            name,
+                            &psm.display().to_string(),
+                            kcpsm6::asm::RomSize::K4,
+                            None,
+                        );
+                        self.notes.push(format!(
+                            "`{name}` (instance `{}` in `{parent}`) is in no Verilog file: its program is {}, assembled",
+                            inst.name,
+                            psm.display()
+                        ));
+                        return Some(Choice::Generated(
+                            Source::generated(psm.with_extension("v"), text),
+                            Replacement { module: String::new(), from: String::new(), with: String::new() },
+                        ));
+                    }
+                    Err(e) => {
+                        self.missing(inst, parent, file, format!("its program {} does not assemble: {e}", psm.display()));
+                        return None;
+                    }
+                }
+            }
+        }
         // The course's modules.
         if let Some((text, module)) = course::stand_in(name) {
             let unknown: Vec<&str> = inst
@@ -878,7 +909,10 @@ impl<'a> Walk<'a> {
                 Some(Choice::User(d)) => by_file.entry(d.src).or_default().push(d.module),
                 Some(Choice::Generated(src, rep)) => {
                     sources.push(src.clone());
-                    generated.push(rep.clone());
+                    // (A program ROM made from its .psm is reported by the plan, as ROMs are.)
+                    if !rep.module.is_empty() {
+                        generated.push(rep.clone());
+                    }
                 }
                 _ => {}
             }
@@ -1182,5 +1216,19 @@ mod tests {
             e.ends_with("top.v:3:21: $readmem reads \"gone.mem\", which is not in the repository (add the file)"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn a_program_rom_committed_only_as_its_psm_is_assembled() {
+        let top = "module top(input clk);\n  wire [11:0] a; wire [17:0] i; wire e;\n\
+                   kcpsm6 cpu (.address(a), .instruction(i), .bram_enable(e), .clk(clk));\n\
+                   prog rom (.address(a), .instruction(i), .enable(e), .clk(clk));\n  bot b (.clk(clk));\nendmodule\n";
+        let t = tree(&[("hdl/top.v", top), ("psm/prog.psm", "start: LOAD s0, 2A\n       JUMP start\n")]);
+        let d = resolve(&[t.path().to_path_buf()], &Options::default()).unwrap();
+        let rom = d.sources.iter().find(|s| s.module("prog").is_some()).unwrap();
+        assert!(rom.path.ends_with("psm/prog.v"), "{:?}", rom.path);
+        let image = kcpsm6::Image::parse_verilog(&rom.path, &rom.text).unwrap();
+        assert_eq!(image.words[0], 0x0102A);
+        assert!(d.notes.iter().any(|n| n.contains("`prog` (instance `rom` in `top`) is in no Verilog file: its program is")), "{:?}", d.notes);
     }
 }

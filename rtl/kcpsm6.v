@@ -159,7 +159,11 @@ module kcpsm6 #(
     // instruction does not pop; the entry D pushes.
     wire        stack_push  = active_interrupt | do_call;
     wire        stack_pop   = ~active_interrupt & (do_return | op_returni);
-    wire [14:0] stack_top   = stack_ram[depth - 5'd1];
+    // The pop index wraps modulo 32 (0 - 1 = 31: the entry below the bottom, 000 at
+    // configuration, 2.8). Kept in a 5-bit wire: a simulator may take `depth - 1` inside the
+    // brackets at a wider width, and -1 is then no entry at all (Icarus reads x).
+    wire [ 4:0] stack_below = depth - 5'd1;
+    wire [14:0] stack_top   = stack_ram[stack_below];
     // Overflow (30 + 1) and underflow (0 - 1) both leave 31; checked in F only.
     wire        stack_error = in_fetch & (depth == 5'd31);
 

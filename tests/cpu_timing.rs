@@ -35,6 +35,19 @@ fn writes(t: &[Ports]) -> Vec<(usize, u8, u8)> {
     t.iter().enumerate().filter(|(_, p)| p.write_strobe).map(|(i, p)| (i, p.port_id, p.out_port)).collect()
 }
 
+/// The ports of cycles 0..n of `src` with `pins(cycle)`, on every core: the RTL under
+/// Verilator, the ISS, and the RTL under Icarus, a four-state simulator, where a RAM entry or
+/// index the device does not define reads `x` (`icarus::X`).
+fn traces(src: &str, n: u64, pins: impl Fn(u64) -> Pins) -> Vec<(&'static str, Vec<Ports>)> {
+    let mut out: Vec<(&'static str, Vec<Ports>)> =
+        cores(src).into_iter().map(|mut c| (c.name(), trace(&mut *c, n, &pins))).collect();
+    let pins: Vec<Pins> = (0..n).map(pins).collect();
+    if let Some(t) = common::icarus::trace(&program(src), &pins) {
+        out.push(("icarus", t));
+    }
+    out
+}
+
 fn reset_in(cycles: std::ops::RangeInclusive<u64>) -> impl Fn(u64) -> Pins {
     move |c| Pins { reset: cycles.contains(&c), ..Pins::default() }
 }
@@ -307,15 +320,28 @@ fn sleep_completes_the_instruction_and_wakes_two_cycles_after_release() {
 // ---- §2.5: the call stack ------------------------------------------------------------------------
 
 #[test]
+fn the_stack_ram_holds_000_at_configuration_so_a_first_underflow_returns_to_001() {
+    // §2.8: the stack RAM is configured to 000, and an underflow pops entry 31, which nothing
+    // has written yet: the RETURN's n+2 is the D at 001 (000 + 1), in every core, the
+    // four-state one included. Three programs: the RETURN first, after an OUTPUT, and a
+    // LOAD&RETURN.
+    for (src, d) in [("RETURN\n", 5), ("OUTPUT s0, 01\nRETURN\n", 7), ("LOAD&RETURN s1, 42\n", 5)] {
+        for (name, t) in traces(src, 16, |_| Pins::default()) {
+            assert_eq!(t[d + 1].address, 1, "{name} {src:?}: the F after the underflow fetches 001");
+            assert_eq!(t[d + 2].address, 1, "{name} {src:?}: n+2 is the D of the popped address");
+            assert!(t[d + 3..d + 5].iter().all(|p| p.address == 0 && !p.bram_enable), "{name} {src:?}: idle");
+        }
+    }
+}
+
+#[test]
 fn stack_error_sequence_n1_to_n6_and_the_underflow_reads_entry_31() {
     // §2.5, underflow. RETURN at 001 (D 7 = n) pops entry 31, 000 at configuration: n+1 = 8 is
     // an F at 001; n+2 = 9 the D of that RETURN with internal_reset = 1, which writes entry 31
     // = {001, ...} while the depth is 31; 10, 11 idle; n+5 = 12 F at 000; n+6 = 13 D at 000.
     // The second underflow (RETURN's D 15 = n') returns to 001 + 1 = 002: its OUTPUT's D is
     // n'+2 = 17 and still strobes in 18; the restart fetches 000 in 20.
-    for mut core in cores("OUTPUT s0, 01\nRETURN\nOUTPUT s0, 02\n") {
-        let t = trace(&mut *core, 24, |_| Pins::default());
-        let name = core.name();
+    for (name, t) in traces("OUTPUT s0, 01\nRETURN\nOUTPUT s0, 02\n", 24, |_| Pins::default()) {
         assert_eq!(
             writes(&t).iter().map(|w| (w.0, w.1)).collect::<Vec<_>>(),
             vec![(6, 1), (14, 1), (18, 2), (22, 1)],

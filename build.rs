@@ -16,6 +16,8 @@ use std::process::Command;
 
 #[path = "build/sources.rs"]
 mod sources;
+#[path = "build/verilator.rs"]
+mod verilator;
 
 /// One verilated design: a prefix, a top module, its sources and parameters.
 struct Design {
@@ -237,26 +239,10 @@ fn assemble_firmware(root: &Path, out: &Path) -> PathBuf {
     path
 }
 
-/// `verilator --getenv VERILATOR_ROOT`, after checking the version.
+/// The Verilator runtime's root, after checking the version (build/verilator.rs).
 fn verilator_root(verilator: &str) -> PathBuf {
-    let version = Command::new(verilator).arg("--version").output();
-    let text = match version {
-        Ok(o) if o.status.success() => String::from_utf8_lossy(&o.stdout).into_owned(),
-        _ => fail("verilator not found: run `bash scripts/setup.sh` (installs Verilator 5.006 from Debian)"),
-    };
-    let major = text.split_whitespace().nth(1).and_then(|v| v.split('.').next()).and_then(|m| m.parse::<u32>().ok());
-    if major != Some(5) {
-        fail(&format!("Verilator 5 is needed, found '{}': run `bash scripts/setup.sh`", text.trim()));
-    }
-    let o = Command::new(verilator)
-        .args(["--getenv", "VERILATOR_ROOT"])
-        .output()
-        .unwrap_or_else(|e| fail(&format!("cannot run verilator: {e}")));
-    let root = PathBuf::from(String::from_utf8_lossy(&o.stdout).trim());
-    if !root.join("include/verilated.h").exists() {
-        fail(&format!("verilated.h not found under {}: run `bash scripts/setup.sh`", root.display()));
-    }
-    root
+    let v = verilator::find(verilator).unwrap_or_else(|e| fail(&e));
+    v.root
 }
 
 fn verilate(verilator: &str, root: &Path, mdir: &Path, d: &Design, coverage: bool) {

@@ -16,6 +16,9 @@ use botsim_core::board::BoardError;
 
 use crate::interrupt::interrupted;
 
+#[path = "../../build/verilator.rs"]
+mod verilator;
+
 const HARNESS: &str = include_str!("harness.cpp");
 const ABI: &str = include_str!("board_abi.h");
 const PRINT: &str = include_str!("botsim_print.h");
@@ -98,6 +101,8 @@ pub struct Built {
     /// Where the design's first delay is (`file:line:col`), when it has delays: the build
     /// simulates them (Verilator's timing support).
     pub delays: Option<String>,
+    /// The Verilator that built it, e.g. "5.006 2023-01-22".
+    pub verilator: String,
     /// The names Verilator knows the user's files by (the build's copies, absolute paths),
     /// with the user's paths.
     names: Vec<(String, String)>,
@@ -207,8 +212,13 @@ pub fn build(
     if debug {
         f.defines.push("BOTSIM_DEBUG".into());
     }
+    let program = std::env::var("VERILATOR").unwrap_or_else(|_| "verilator".into());
+    let v = verilator::find(&program).map_err(BoardError::plain)?;
     let mut h = DefaultHasher::new();
     env!("CARGO_PKG_VERSION").hash(&mut h);
+    // A design built by another Verilator is another build.
+    v.version.hash(&mut h);
+    v.root.hash(&mut h);
     HARNESS.hash(&mut h);
     VERILATOR_FLAGS.hash(&mut h);
     MAKE_VARS.hash(&mut h);
@@ -258,7 +268,7 @@ pub fn build(
         let warnings =
             std::fs::read_to_string(dir.join("warnings.txt")).map(|t| parse_warnings(&t, &f)).unwrap_or_default();
         let delays = std::fs::read_to_string(dir.join(DELAYS_FILE)).ok().filter(|d| !d.is_empty());
-        return Ok(Built { library, warnings, seconds: None, delays, names: names(&f) });
+        return Ok(Built { library, warnings, seconds: None, delays, verilator: v.version, names: names(&f) });
     }
     let t0 = Instant::now();
     remove_stale_builds(&boards);
@@ -290,7 +300,7 @@ pub fn build(
     }
     let jobs = std::thread::available_parallelism().map_or(2, |n| n.get());
     let budget = build_budget();
-    let mut cmd = Command::new(std::env::var_os("VERILATOR").unwrap_or_else(|| "verilator".into()));
+    let mut cmd = Command::new(&program);
     cmd.current_dir(&tmp)
         .args(["--cc", "--exe"])
         .args(["--prefix", "Vboard", "--top-module", wrapper::TOP, "--Mdir", "obj", "-o", "libboard.so"])
@@ -352,7 +362,7 @@ pub fn build(
         checked.verdicts.observed = Some(why.clone());
         checked.unshown = Err(why);
     }
-    write("botsim_observed.h", &super::observed::header(&checked.members))?;
+    write("botsim_observed.h", &super::observed::header(&checked.members, checked.triggers_fn.as_deref()))?;
     let mut make = Command::new("make");
     make.current_dir(tmp.join("obj")).args(["-f", "Vboard.mk", "-j"]).arg(jobs.to_string()).args(MAKE_VARS);
     let out = run_with_budget(&mut make, budget, t0).map_err(fail)?;
@@ -376,6 +386,7 @@ pub fn build(
         warnings: parse_warnings(&stderr, &f),
         seconds: Some(t0.elapsed().as_secs_f64()),
         delays,
+        verilator: v.version,
         names: names(&f),
     })
 }

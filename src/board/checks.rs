@@ -90,6 +90,9 @@ pub struct Checked {
     pub verdicts: Verdicts,
     pub members: Result<Vec<Member>, String>,
     pub unshown: Result<Vec<Unshown>, String>,
+    /// The generated function that computes the active triggers alone (its name differs
+    /// between Verilator versions), for the harness's rising-edges-only evaluation.
+    pub triggers_fn: Option<String>,
 }
 
 impl Checked {
@@ -116,7 +119,12 @@ impl Checked {
                     falling_edges,
                     observed: members.as_ref().err().cloned(),
                 };
-                Checked { verdicts, members, unshown }
+                let triggers_fn =
+                    ["Vboard___024root___eval_triggers__act", "Vboard___024root___eval_triggers_vec__act"]
+                        .into_iter()
+                        .find(|f| g.eval.iter().any(|c| function(c, f).is_some()))
+                        .map(str::to_string);
+                Checked { verdicts, members, unshown, triggers_fn }
             }
             None => {
                 let why = "Verilator's output could not be read".to_string();
@@ -125,7 +133,7 @@ impl Checked {
                     falling_edges: Some(why.clone()),
                     observed: Some(why.clone()),
                 };
-                Checked { verdicts, members: Err(why.clone()), unshown: Err(why) }
+                Checked { verdicts, members: Err(why.clone()), unshown: Err(why), triggers_fn: None }
             }
         }
     }

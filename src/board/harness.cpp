@@ -41,8 +41,11 @@ struct BoardMember {
 void Vboard___024root___eval(Vboard___024root* vlSelf);
 // Its trigger computation alone: at a falling edge of a board whose only trigger is the
 // clock's rising edge, it notes the clock's level and nothing else happens (the build checks
-// the design for this: src/board/checks.rs).
-void Vboard___024root___eval_triggers__act(Vboard___024root* vlSelf);
+// the design for this: src/board/checks.rs). Its name is the Verilator version's
+// (BOTSIM_EVAL_TRIGGERS, from botsim_observed.h); without one, every edge is evaluated.
+#ifdef BOTSIM_EVAL_TRIGGERS
+void BOTSIM_EVAL_TRIGGERS(Vboard___024root* vlSelf);
+#endif
 
 namespace {
 
@@ -334,6 +337,9 @@ static inline void record(BoardEvent* buf, uint32_t* n, uint64_t t, uint32_t kin
 // Evaluate at rising clock edges only (the build found that nothing happens on the falling
 // ones); a waveform still gets every edge.
 int board_rising_edges_only(Board* b, int on) {
+#ifndef BOTSIM_EVAL_TRIGGERS
+    on = 0;  // without the trigger function the levels cannot be noted alone
+#endif
     b->rising_only = on != 0;
     return b->rising_only;
 }
@@ -646,7 +652,9 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
         // runs on rising edges: Verilator notes the levels, and nothing is evaluated.
         const bool evaluate = rose || !rising_only;
         if (!evaluate) {
-            Vboard___024root___eval_triggers__act(top->rootp);
+#ifdef BOTSIM_EVAL_TRIGGERS
+            BOTSIM_EVAL_TRIGGERS(top->rootp);
+#endif
         } else if (b->vcd) {
             top->eval();
             b->vcd->dump(t);

@@ -675,7 +675,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     let debug = a.vcd.is_some();
     let built = build(&plan, &params, cpu, main_bot, debug, a.quiet || a.json).map_err(|e| e.to_string())?;
     match built.seconds {
-        Some(s) => say(format!("  built in {s:.1} s ({})", built.library.display())),
+        Some(s) => say(format!("  built in {s:.1} s with Verilator {} ({})", built.verilator, built.library.display())),
         None => say(format!("  reused the build in {}", built.library.parent().unwrap_or(&built.library).display())),
     }
     if let Some(at) = &built.delays {
@@ -1091,6 +1091,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
             "evaluations": evals,
             "wall_seconds": wall,
             "build_seconds": built.seconds,
+            "verilator": built.verilator,
             "cpu_traces": traces,
             "design_lines": design_lines,
             "fast_forward": {"skips": skips, "skipped_seconds": skipped_ps as f64 / 1e12, "off_because": fast_forward_off},

@@ -26,8 +26,10 @@ pub fn trace(program: &[u32], pins: &[Pins]) -> Option<Vec<Ports>> {
     }
     let dir = tempfile::tempdir().unwrap();
     let rom: String = program.iter().map(|w| format!("{w:05X}\n")).collect();
-    let pin_text: String =
-        pins.iter().map(|p| format!("{:X}\n", p.reset as u8 | (p.sleep as u8) << 1 | (p.interrupt as u8) << 2)).collect();
+    let pin_text: String = pins
+        .iter()
+        .map(|p| format!("{:X}\n", p.reset as u8 | (p.sleep as u8) << 1 | (p.interrupt as u8) << 2))
+        .collect();
     std::fs::write(dir.path().join("rom.mem"), rom).unwrap();
     std::fs::write(dir.path().join("pins.mem"), pin_text).unwrap();
     let sim = dir.path().join("sim");

@@ -663,7 +663,12 @@ impl<'a> Walk<'a> {
                         ));
                     }
                     Err(e) => {
-                        self.missing(inst, parent, file, format!("its program {} does not assemble: {e}", psm.display()));
+                        self.missing(
+                            inst,
+                            parent,
+                            file,
+                            format!("its program {} does not assemble: {e}", psm.display()),
+                        );
                         return None;
                     }
                 }
@@ -1229,6 +1234,12 @@ mod tests {
         assert!(rom.path.ends_with("psm/prog.v"), "{:?}", rom.path);
         let image = kcpsm6::Image::parse_verilog(&rom.path, &rom.text).unwrap();
         assert_eq!(image.words[0], 0x0102A);
-        assert!(d.notes.iter().any(|n| n.contains("`prog` (instance `rom` in `top`) is in no Verilog file: its program is")), "{:?}", d.notes);
+        assert!(
+            d.notes
+                .iter()
+                .any(|n| n.contains("`prog` (instance `rom` in `top`) is in no Verilog file: its program is")),
+            "{:?}",
+            d.notes
+        );
     }
 }

@@ -80,7 +80,11 @@ fn main() {
     let mut bot_sources = file_list(&root, "rtl/bot.f");
     bot_sources.push(root.join("rtl/sim/bot.vlt"));
     bot_sources.push(bot_pgm);
-    designs.push(Design { prefix: "Vbot", top: "bot", sources: bot_sources, params: vec![] });
+    designs.push(Design { prefix: "Vbot", top: "bot", sources: bot_sources.clone(), params: vec![] });
+    // Again with the KCPSM6's debug signals (Xilinx's names, for waveforms: the instruction's
+    // text, the status, the registers), as a board's waveform build has them.
+    let debug = vec!["+define+BOTSIM_DEBUG".to_string(), "--trace-max-array".into(), "256".into()];
+    designs.push(Design { prefix: "Vbotdbg", top: "bot", sources: bot_sources, params: debug });
     designs.sort_by_key(|d| d.prefix);
 
     // Each design, the runtime and the shims become their own static library. A library is

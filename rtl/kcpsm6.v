@@ -298,7 +298,9 @@ module kcpsm6 #(
     // interrupt enable, then Reset, Sleep or Intrp for an interrupt entry) and the active
     // bank's registers. The scratch pad is the `scratch_pad` array.
     import "DPI-C" function void botsim_disasm(input int word, output bit [159:0] text);
+    /* verilator lint_off LITENDIAN */  // [1:160] and [1:128]: the names' ranges in Xilinx's model
     reg  [1:160] kcpsm6_opcode;
+    initial botsim_disasm({14'd0, instruction}, kcpsm6_opcode);  // the power-up word's text too
     always @(instruction) botsim_disasm({14'd0, instruction}, kcpsm6_opcode);
     wire [1:128] kcpsm6_status = {bank ? "B" : "A", zero ? ", Z" : ",NZ", carry ? ", C" : ",NC",
                                   interrupt_enable ? ",IE" : ",ID",
@@ -312,6 +314,7 @@ module kcpsm6 #(
     wire [7:0] sim_sA = registers[{bank, 4'hA}], sim_sB = registers[{bank, 4'hB}];
     wire [7:0] sim_sC = registers[{bank, 4'hC}], sim_sD = registers[{bank, 4'hD}];
     wire [7:0] sim_sE = registers[{bank, 4'hE}], sim_sF = registers[{bank, 4'hF}];
+    /* verilator lint_on LITENDIAN */
 `endif
 
 endmodule

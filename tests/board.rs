@@ -548,23 +548,6 @@ fn an_iss_cpu_whose_rom_does_not_give_it_the_program_is_one_error() {
 }
 
 /// The trace lines of `file`: (pc, source file name and line, instruction text).
-fn trace_lines(file: &Path) -> Vec<(u16, String, String)> {
-    std::fs::read_to_string(file)
-        .unwrap()
-        .lines()
-        .skip(1)
-        .map(|l| {
-            let f: Vec<&str> = l.split_whitespace().collect();
-            // cycle time pc where source instruction...
-            let pc = u16::from_str_radix(f[2], 16).unwrap();
-            let source = f[4].to_string();
-            let instruction = l[l.find(&source).unwrap() + source.len()..].trim_start();
-            let instruction = instruction.split("  ").next().unwrap().trim().to_string();
-            (pc, source, instruction)
-        })
-        .collect()
-}
-
 #[test]
 fn the_cpu_trace_names_the_source_lines_of_the_assemblers_listing() {
     let dir = tempfile::tempdir().unwrap();
@@ -588,7 +571,7 @@ fn the_cpu_trace_names_the_source_lines_of_the_assemblers_listing() {
     for (cpu, program, name) in
         [("SYS.APPCPU", &team, "linefollow.psm"), ("SYS.ROJOBOT.BOTSIMCPU", &bot, "bot_pgm.psm")]
     {
-        check_trace_against_listing(&t, cpu, program, name, 1000);
+        common::debug::check_trace_against_listing(&t.join(format!("{cpu}.trace.txt")), program, name, 1000);
     }
 
     // Without --program the team's ROM runs its INIT strings, and the .psm beside the ROM's
@@ -600,33 +583,12 @@ fn the_cpu_trace_names_the_source_lines_of_the_assemblers_listing() {
     );
     assert!(o.status.success(), "{}", stderr(&o));
     let own = kcpsm6::asm::assemble_file(&root().join("examples/common/proj2demo.psm"), &Default::default()).unwrap();
-    check_trace_against_listing(&t, "SYS.APPCPU", &own, "proj2demo.psm", 100);
+    common::debug::check_trace_against_listing(&t.join("SYS.APPCPU.trace.txt"), &own, "proj2demo.psm", 100);
 }
 
 /// Every line of `cpu`'s trace in `dir` names the source line the assembler's listing of
 /// `program` (from the file `name`) gives for its address, and its instruction text
 /// assembles to the word there.
-fn check_trace_against_listing(dir: &Path, cpu: &str, program: &kcpsm6::asm::Program, name: &str, at_least: usize) {
-    let lines = trace_lines(&dir.join(format!("{cpu}.trace.txt")));
-    assert!(lines.len() > at_least, "{cpu}: {} lines", lines.len());
-    let mut pcs = std::collections::BTreeSet::new();
-    for (pc, source, instruction) in &lines {
-        let listed = program.listing.iter().find(|l| l.address == Some(*pc) && l.word.is_some()).unwrap();
-        assert_eq!(source, &format!("{name}:{}", listed.loc.line), "{cpu} at {pc:03X}");
-        pcs.insert(*pc);
-        if instruction.starts_with("(interrupt") {
-            continue; // an interrupt entry: the instruction at pc was cancelled
-        }
-        // The instruction text assembles to the word at that address.
-        let word =
-            kcpsm6::asm::assemble_str(&format!("ADDRESS {pc:03X}\n{instruction}\n")).unwrap().image.words[*pc as usize];
-        assert_eq!(word, program.image.words[*pc as usize], "{cpu} at {pc:03X}: {instruction}");
-    }
-    assert!(pcs.len() > 10, "{cpu}: only {} addresses traced", pcs.len());
-    let profile = std::fs::read_to_string(dir.join(format!("{cpu}.profile.txt"))).unwrap();
-    assert!(profile.lines().any(|l| l.starts_with("label")), "{profile}");
-}
-
 #[test]
 fn a_breakpoint_stops_at_the_instruction_and_the_sample_the_full_run_records() {
     let dir = tempfile::tempdir().unwrap();
@@ -662,71 +624,6 @@ fn a_breakpoint_stops_at_the_instruction_and_the_sample_the_full_run_records() {
 
 /// A vector's value as a number (up to 64 bits) and as ASCII text (VCD drops leading zeros:
 /// the text is a whole number of characters).
-fn vector(v: &vcd::Vector) -> (u64, String) {
-    let bits: Vec<bool> = v.into_iter().map(|b| b == vcd::Value::V1).collect();
-    let n = bits.iter().fold(0u64, |a, b| a << 1 | *b as u64);
-    let mut text = String::new();
-    let pad = (8 - bits.len() % 8) % 8;
-    let all: Vec<bool> = std::iter::repeat(false).take(pad).chain(bits).collect();
-    for c in all.chunks(8) {
-        text.push(c.iter().fold(0u8, |a, b| a << 1 | *b as u8) as char);
-    }
-    (n, text)
-}
-
-/// In a board waveform, every KCPSM6's `kcpsm6_opcode` is the disassembly of the word on its
-/// `instruction` port at every time stamp; returns how many changes were checked per CPU.
-fn check_debug_signals(vcd_path: &Path, cpus: &[&[&str]]) -> Vec<usize> {
-    let f = std::fs::File::open(vcd_path).unwrap();
-    let mut parser = vcd::Parser::new(std::io::BufReader::new(f));
-    let header = parser.parse_header().unwrap();
-    let code = |scope: &[&str], name: &str| {
-        let mut path: Vec<&str> = scope.to_vec();
-        path.push(name);
-        header.find_var(&path).unwrap_or_else(|| panic!("{path:?} in the waveform")).code
-    };
-    let ids: Vec<_> =
-        cpus.iter().map(|s| (code(s, "instruction"), code(s, "kcpsm6_opcode"), code(s, "kcpsm6_status"))).collect();
-    let mut words = vec![0u32; cpus.len()];
-    let mut texts = vec![String::new(); cpus.len()];
-    let mut checked = vec![0; cpus.len()];
-    let mut status0 = vec![None; cpus.len()];
-    let check = |words: &[u32], texts: &[String], checked: &mut [usize]| {
-        for i in 0..words.len() {
-            let want = kcpsm6::disasm::disassemble_word(words[i]);
-            assert_eq!(texts[i].trim_end(), want, "CPU {:?}: word {:05X}", cpus[i], words[i]);
-            checked[i] += 1;
-        }
-    };
-    let mut started = false;
-    for cmd in parser {
-        match cmd.unwrap() {
-            vcd::Command::Timestamp(_) => {
-                if started {
-                    check(&words, &texts, &mut checked);
-                }
-                started = true;
-            }
-            vcd::Command::ChangeVector(c, v) => {
-                for (i, (instr, text, status)) in ids.iter().enumerate() {
-                    if c == *instr {
-                        words[i] = vector(&v).0 as u32;
-                    } else if c == *text {
-                        texts[i] = vector(&v).1;
-                    } else if c == *status && status0[i].is_none() {
-                        status0[i] = Some(vector(&v).1);
-                    }
-                }
-            }
-            _ => {}
-        }
-    }
-    for s in status0 {
-        assert_eq!(s.as_deref(), Some("A,NZ,NC,ID,Reset"), "the status at power-up");
-    }
-    checked
-}
-
 #[test]
 fn waveforms_show_each_cpus_instruction_as_the_disassembler_writes_it() {
     let dir = tempfile::tempdir().unwrap();
@@ -751,7 +648,7 @@ fn waveforms_show_each_cpus_instruction_as_the_disassembler_writes_it() {
         assert!(o.status.success(), "{cpu}: {}", stderr(&o));
         let team: &[&str] = &["TOP", "botsim_board", "user", "SYS", "APPCPU"];
         let bot: &[&str] = &["TOP", "botsim_board", "user", "SYS", "ROJOBOT", "BOTSIMCPU"];
-        let checked = check_debug_signals(&vcd, &[team, bot]);
+        let checked = common::debug::check_debug_signals(&vcd, &[team, bot]);
         assert!(checked.iter().all(|&n| n > 1000), "{cpu}: {checked:?}");
         // The save file beside it names the groups and the signals.
         let gtkw = std::fs::read_to_string(vcd.with_extension("gtkw")).unwrap();
@@ -964,7 +861,7 @@ fn a_late_waveform_of_a_vga_design_skips_ahead_and_shows_x_for_what_the_run_did_
 /// value), an alias listed under each of its names.
 fn vcd_changes(path: &Path) -> std::collections::BTreeMap<String, Vec<(u64, String)>> {
     let mut parser = vcd::Parser::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
-    let names = vcd_names(&parser.parse_header().unwrap());
+    let names = common::debug::vcd_names(&parser.parse_header().unwrap());
     let mut by_code: std::collections::HashMap<vcd::IdCode, Vec<(u64, String)>> = Default::default();
     let mut t = 0;
     for cmd in parser {
@@ -983,29 +880,6 @@ fn vcd_changes(path: &Path) -> std::collections::BTreeMap<String, Vec<(u64, Stri
         }
     }
     out
-}
-
-/// The names of each signal of a VCD header, as GTKWave gives them (`TOP.a.b.sig[7:0]`).
-fn vcd_names(header: &vcd::Header) -> std::collections::HashMap<vcd::IdCode, Vec<String>> {
-    fn walk(items: &[vcd::ScopeItem], path: &str, names: &mut std::collections::HashMap<vcd::IdCode, Vec<String>>) {
-        for item in items {
-            match item {
-                vcd::ScopeItem::Scope(s) => walk(&s.items, &format!("{path}{}.", s.identifier), names),
-                vcd::ScopeItem::Var(v) => {
-                    let range = match v.index {
-                        Some(vcd::ReferenceIndex::Range(a, b)) => format!("[{a}:{b}]"),
-                        Some(vcd::ReferenceIndex::BitSelect(a)) => format!("[{a}]"),
-                        None => String::new(),
-                    };
-                    names.entry(v.code).or_default().push(format!("{path}{}{range}", v.reference));
-                }
-                _ => {}
-            }
-        }
-    }
-    let mut names = Default::default();
-    walk(&header.items, "", &mut names);
-    names
 }
 
 /// Run an example design with and without the fast-forward; the same records, pin for pin.
@@ -1276,11 +1150,6 @@ fn a_run_counted_in_samples_stops_when_the_bot_stops_sampling() {
 }
 
 /// The signals a VCD file declares, named as GTKWave names them (`TOP.a.b.sig[7:0]`).
-fn vcd_signals(path: &Path) -> std::collections::BTreeSet<String> {
-    let mut parser = vcd::Parser::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
-    vcd_names(&parser.parse_header().unwrap()).into_values().flatten().collect()
-}
-
 #[test]
 fn the_save_file_lists_only_signals_the_waveform_has() {
     // --cpu iss runs the bot as its model: the waveform has the bot's ports but no bot CPU,
@@ -1290,7 +1159,7 @@ fn the_save_file_lists_only_signals_the_waveform_has() {
         let vcd = dir.path().join(format!("{bot}.vcd"));
         let o = follower(&["--cpu", "iss", "--bot", bot, "--seconds", "0.0003", "--vcd", vcd.to_str().unwrap(), "-q"]);
         assert!(o.status.success(), "{}", stderr(&o));
-        let have = vcd_signals(&vcd);
+        let have = common::debug::vcd_signals(&vcd);
         let gtkw = std::fs::read_to_string(vcd.with_extension("gtkw")).unwrap();
         let listed: Vec<&str> = gtkw.lines().filter(|l| l.starts_with("TOP.")).collect();
         let missing: Vec<&&str> = listed.iter().filter(|l| !have.contains(**l)).collect();

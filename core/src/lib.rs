@@ -26,6 +26,7 @@
 //! ```
 
 pub mod board;
+pub mod debug;
 pub mod driver;
 pub mod files;
 pub mod firmware;

@@ -22,6 +22,7 @@ mod verilator;
 const HARNESS: &str = include_str!("harness.cpp");
 const ABI: &str = include_str!("board_abi.h");
 const PRINT: &str = include_str!("botsim_print.h");
+const DISASM: &str = include_str!("../sim/rtl/ffi/botsim_disasm.h");
 const XILINX: &str = include_str!("../../rtl/board/xilinx.v");
 const CLKGEN: &str = include_str!("../../rtl/board/botsim_clkgen.v");
 const KCPSM6_ISS: &str = include_str!("../../rtl/board/kcpsm6_iss.v");
@@ -225,6 +226,7 @@ pub fn build(
     include_str!("observed.rs").hash(&mut h);
     ABI.hash(&mut h);
     PRINT.hash(&mut h);
+    DISASM.hash(&mut h);
     // The check whose verdict the build keeps.
     include_str!("checks.rs").hash(&mut h);
     f.generated.hash(&mut h);
@@ -287,6 +289,7 @@ pub fn build(
     write("harness.cpp", HARNESS)?;
     write("board_abi.h", ABI)?;
     write("botsim_print.h", PRINT)?;
+    write("botsim_disasm.h", DISASM)?;
     for (name, text, _) in &f.user {
         if let Some(t) = text {
             write(name, t)?;

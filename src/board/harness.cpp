@@ -12,6 +12,7 @@
 #include "verilated_syms.h"
 #include "verilated_vcd_c.h"
 #include "svdpi.h"
+#include "botsim_disasm.h"
 
 #include <algorithm>
 #include <cstdarg>
@@ -852,28 +853,12 @@ extern "C" long long botsim_iss_tick(void* cpu, long long pins) {
 // Debug builds (--vcd): the text of an instruction word, packed for `output bit [159:0]`
 // with the first character in the top byte, as Verilog holds a string.
 extern "C" void botsim_disasm(int word, svBitVecVal* text) {
-    // A word's text never changes, and a program shows few words at a time (a loop's):
-    // the last ones are kept.
-    struct Entry {
-        int word = -1;
-        svBitVecVal text[5];
-    };
-    static thread_local Entry cache[256];
-    Entry& e = cache[(word ^ word >> 8 ^ word >> 16) & 255];
     Board* b = current;
-    if (e.word != word) {
-        char s[20];
-        for (char& c : s) c = ' ';
-        if (!b || !b->host || !b->host->disasm) {
-            for (int w = 0; w < 5; w++) text[w] = 0x20202020;
-            return;
-        }
-        b->host->disasm((uint32_t)word, s);
-        for (int w = 0; w < 5; w++) e.text[w] = 0;
-        for (int i = 0; i < 20; i++) e.text[(159 - 8 * i) / 32] |= (uint32_t)(uint8_t)s[i] << ((152 - 8 * i) % 32);
-        e.word = word;
-    }
-    for (int w = 0; w < 5; w++) text[w] = e.text[w];
+    botsim_disasm_pack(word, text, [b](uint32_t w, char* s) {
+        if (!b || !b->host || !b->host->disasm) return false;
+        b->host->disasm(w, s);
+        return true;
+    });
 }
 
 extern "C" void botsim_iss_debug(void* cpu, svBitVecVal* regs, int* flags) {

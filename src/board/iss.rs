@@ -60,17 +60,6 @@ fn debug_words(c: &Cpu) -> DebugWords {
     words
 }
 
-/// The disassembly of `word` into 20 characters, padded with spaces (the longest,
-/// `LOAD&RETURN sF, FF`, has 18).
-unsafe extern "C" fn disasm_ffi(word: u32, text: *mut u8) {
-    let s = kcpsm6::disasm::disassemble_word(word & 0x3FFFF);
-    // SAFETY: the harness passes 20 bytes.
-    let out = unsafe { std::slice::from_raw_parts_mut(text, 20) };
-    for (i, b) in out.iter_mut().enumerate() {
-        *b = s.as_bytes().get(i).copied().unwrap_or(b' ');
-    }
-}
-
 /// The bus of a pin-level core: `in_port` as the design drives it.
 #[derive(Default)]
 struct Pinned {
@@ -130,12 +119,7 @@ pub struct IssCpu {
     replay: Replay,
 }
 
-/// Where a run should stop, for one CPU: addresses, port writes (port, value or any).
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct Breaks {
-    pub pcs: Vec<(u16, String)>,
-    pub port_writes: Vec<(u8, Option<u8>, String)>,
-}
+pub use botsim_core::debug::Breaks;
 
 /// A breakpoint that stopped the run: which CPU, what, and when.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -226,20 +210,7 @@ impl IssCpu {
     fn check_breaks(&mut self, r: &kcpsm6::iss::Retired) -> bool {
         let Some(b) = &self.breaks else { return false };
         let (breaks, now) = (&b.0, b.1);
-        let what = if r.kind != kcpsm6::iss::RetireKind::Executed {
-            None
-        } else if let Some((_, w)) = breaks.pcs.iter().find(|(pc, _)| *pc == r.pc) {
-            Some(w.clone())
-        } else {
-            r.port.filter(|p| p.kind != PortKind::Read).and_then(|p| {
-                breaks
-                    .port_writes
-                    .iter()
-                    .find(|(port, value, _)| *port == p.port && value.map_or(true, |v| v == p.value))
-                    .map(|(_, _, w)| w.clone())
-            })
-        };
-        let Some(what) = what else { return false };
+        let Some(what) = breaks.hit(r).map(str::to_string) else { return false };
         // SAFETY: `now` points into the board, which outlives its CPUs' models.
         let time_ps = unsafe { *now };
         self.hit.get_or_insert(Hit { cpu: self.path.clone(), what, pc: r.pc, cycle: r.cycle, time_ps });
@@ -470,7 +441,7 @@ impl Host {
                 cpu_new: cpu_new_ffi,
                 probe_new: probe_new_ffi,
                 bot_new: bot_new_ffi,
-                disasm: disasm_ffi,
+                disasm: crate::sim::rtl::botsim_disasm_text,
                 activity: 0,
                 ff_mark: ff_mark_ffi,
                 ff_snap: ff_snap_ffi,

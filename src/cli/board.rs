@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use botsim::board::build::{build, BotKind, CpuModel};
-use botsim::board::iss::{Breaks, Host, TraceRequest};
+use botsim::board::iss::{Host, TraceRequest};
 use botsim::board::lockstep::Lockstep;
 use botsim::board::model::{BoardModel, Event, FastForward, Printing, RawEvent, Stop};
 use botsim::files::{check_writable, write_atomic};
@@ -22,6 +22,7 @@ use botsim_core::board::resolve::{resolve, Options};
 use botsim_core::board::stimulus::{parse_press, parse_time, Stimulus};
 use botsim_core::board::vga::Capture;
 use botsim_core::board::wrapper;
+use botsim_core::debug::{cpu_signals, describe_pc, register_filters, sample_state, Break, BreakSpec, Breaks};
 
 use crate::cli::args::FirmwareArgs;
 use crate::cli::run::{csv_row, json_row, CSV_HEADER};
@@ -437,10 +438,10 @@ const LONG_RUN_S: f64 = 600.0;
 const CHUNK_PS: u64 = 50_000_000_000;
 
 /// The largest waveform written without `--vcd-max`.
-const VCD_MAX: u64 = 2 << 30;
+pub const VCD_MAX: u64 = 2 << 30;
 
 /// A size in bytes from `500M`, `2G`, `4096` (K, M, G: powers of 1024).
-fn parse_size(s: &str) -> Result<u64, String> {
+pub fn parse_size(s: &str) -> Result<u64, String> {
     let t = s.trim();
     let (num, unit) = match t.char_indices().find(|(_, c)| c.is_ascii_alphabetic()) {
         Some((i, _)) => (&t[..i], t[i..].trim_end_matches(['B', 'b'])),
@@ -901,11 +902,16 @@ fn run_once(a: Args) -> Result<Stopped, String> {
                     if bot_stop.is_none() {
                         let before = snapshots.last();
                         if let Some(b) = bot_breaks.iter().find(|b| b.hit(before, &snapshot, fw.threshold)) {
-                            bot_stop = Some(BreakStop { time_ps, bot: true, message: format!(
-                                "stopped by --break {}: sample {} at {:.6} ms, the bot at ({}, {}) facing {}, {}, sensors {:02X}",
-                                b.text, snapshot.sample, time_ps as f64 / 1e9, snapshot.regs.loc_x, snapshot.regs.loc_y,
-                                snapshot.orientation().name(), snapshot.movement().name(), snapshot.regs.sensors
-                            )});
+                            let at = sample_state(&snapshot).replacen(
+                                ',',
+                                &format!(" at {:.6} ms,", time_ps as f64 / 1e9),
+                                1,
+                            );
+                            bot_stop = Some(BreakStop {
+                                time_ps,
+                                bot: true,
+                                message: format!("stopped by --break {}: {at}", b.text),
+                            });
                         }
                     }
                     snapshots.push(snapshot);
@@ -990,7 +996,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     let traces = model.finish_traces()?;
     // A breakpoint in a CPU stops the model like $finish.
     let cpu_stop = model.hit().map(|h| {
-        let (path, at) = (h.cpu.clone(), describe_pc(&maps, &h.cpu, h.pc));
+        let (path, at) = (h.cpu.clone(), describe_pc(maps.get(&h.cpu), h.pc));
         BreakStop {
             time_ps: h.time_ps,
             bot: false,
@@ -1154,7 +1160,6 @@ fn write_save_file(
     bot_model: bool,
     view: View,
 ) -> Result<(), String> {
-    use botsim::regs::{MotCtl, Registers};
     use botsim_core::board::gtkw::{filter_text, Format, SaveFile};
     let top = "TOP.botsim_board";
     let side = |suffix: &str| {
@@ -1181,20 +1186,11 @@ fn write_save_file(
         ("vsync", Format::Binary),
     ];
     s.group("Board pins", PINS.iter().map(|(n, f)| sig(n, *f)).collect());
+    let (info, motctl) = register_filters();
     let info_file = side("botinfo.txt");
-    let info = filter_text(
-        (0..256u32).map(|v| {
-            let r = Registers { bot_info: v as u8, ..Registers::default() };
-            (v, format!("{}_{}", r.orientation().name(), r.movement().name()))
-        }),
-        2,
-    );
     write_atomic(&info_file, info.as_bytes())?;
     let motctl_file = side("motctl.txt");
-    write_atomic(
-        &motctl_file,
-        filter_text((0..256u32).map(|v| (v, MotCtl(v as u8).movement().name().to_string())), 2).as_bytes(),
-    )?;
+    write_atomic(&motctl_file, motctl.as_bytes())?;
     let (fi, fm) = (s.filter(&info_file), s.filter(&motctl_file));
     s.group(
         "Bot registers",
@@ -1221,135 +1217,48 @@ fn write_save_file(
             }
             None => None,
         };
-        let mut v = vec![
-            (format!("{at}.address[11:0]"), Format::Hex, labels),
-            (format!("{debug}.kcpsm6_opcode[1:160]"), Format::Ascii, None),
-            (format!("{debug}.kcpsm6_status[1:128]"), Format::Ascii, None),
-            (format!("{at}.instruction[17:0]"), Format::Hex, None),
-        ];
-        for r in 0..16 {
-            v.push((format!("{debug}.sim_s{r:X}[7:0]"), Format::Hex, None));
-        }
-        for p in ["port_id[7:0]", "out_port[7:0]", "in_port[7:0]"] {
-            v.push((format!("{at}.{p}"), Format::Hex, None));
-        }
-        for p in ["write_strobe", "k_write_strobe", "read_strobe", "interrupt", "interrupt_ack", "sleep", "reset"] {
-            v.push((format!("{at}.{p}"), Format::Binary, None));
-        }
+        let v = cpu_signals(&at, &debug, labels);
         s.group(&site.path, v);
     }
     write_atomic(&vcd.with_extension("gtkw"), s.text().as_bytes())
 }
 
-/// A `--break bot=...`: a condition on the bot's samples.
-struct BotBreak {
-    text: String,
-    kind: BotCondition,
-}
-
-enum BotCondition {
-    /// The world refused the move of the sample before.
-    Blocked,
-    /// No line sensor sees the line.
-    OffLine,
-    Sensors(u8),
-}
-
-impl BotBreak {
-    fn hit(&self, before: Option<&Snapshot>, s: &Snapshot, threshold: u8) -> bool {
-        match self.kind {
-            BotCondition::Blocked => before.is_some_and(|b| b.move_refused(s, threshold)),
-            BotCondition::OffLine => s.sensors().line_bits() == [true; 3],
-            BotCondition::Sensors(v) => s.regs.sensors == v,
-        }
-    }
-}
-
-/// The `--break`s: per CPU instance (addresses, port writes), and the bot conditions.
+/// The `--break` specs: each CPU's breakpoints by instance path (addresses and port writes
+/// apply to the team's CPUs; labels and lines to the CPU whose program has them), and the
+/// conditions on the bot's samples.
 fn breakpoints(
     specs: &[String],
     plan: &Plan,
     sources: &BTreeMap<String, SourceMap>,
-) -> Result<(BTreeMap<String, Breaks>, Vec<BotBreak>), String> {
+) -> Result<(BTreeMap<String, Breaks>, Vec<BreakSpec>), String> {
     let bot_cpu = format!("{}.{}", plan.bot_path, botsim_core::board::plan::BOT_CPU_INSTANCE);
     let team: Vec<&str> = plan.cpus.iter().map(|c| c.path.as_str()).filter(|p| *p != bot_cpu).collect();
     let mut cpu: BTreeMap<String, Breaks> = BTreeMap::new();
     let mut bot = Vec::new();
-    let hex = |v: &str, spec: &str| {
-        u8::from_str_radix(v, 16).map_err(|_| format!("--break {spec}: `{v}` is not a hexadecimal byte"))
-    };
-    for spec in specs {
-        let (kind, value) = spec
-            .split_once('=')
-            .ok_or_else(|| format!("--break {spec}: expected pc=, label=, line=, port= or bot="))?;
-        match kind {
-            "pc" => {
-                let pc = u16::from_str_radix(value, 16)
-                    .ok()
-                    .filter(|&p| p < 0x1000)
-                    .ok_or_else(|| format!("--break {spec}: expected a 3-digit hexadecimal address"))?;
+    for text in specs {
+        let spec = BreakSpec::parse(text)?;
+        match &spec.kind {
+            Break::Bot(_) => bot.push(spec),
+            Break::Pc(_) | Break::Port(..) => {
                 for p in &team {
-                    cpu.entry(p.to_string()).or_default().pcs.push((pc, spec.clone()));
+                    cpu.entry(p.to_string()).or_default().add(&spec, sources.get(*p))?;
                 }
             }
-            "label" | "line" => {
+            Break::Label(_) | Break::Line(..) => {
                 let mut found = false;
                 for (path, map) in sources {
-                    let at = if kind == "label" {
-                        map.label_address(value)
-                    } else {
-                        let (file, line) = value
-                            .rsplit_once(':')
-                            .and_then(|(f, l)| Some((f, l.parse().ok()?)))
-                            .ok_or_else(|| format!("--break {spec}: expected line=FILE:LINE"))?;
-                        map.line_address(file, line)
-                    };
-                    if let Some(pc) = at {
-                        cpu.entry(path.clone()).or_default().pcs.push((pc, spec.clone()));
-                        found = true;
-                    }
+                    found |= cpu.entry(path.clone()).or_default().add(&spec, Some(map))?;
                 }
                 if !found {
                     return Err(format!(
-                        "--break {spec}: no CPU's program has it (the source is known for programs given with --program and for the bot's firmware)"
+                        "--break {text}: no CPU's program has it (the source is known for programs given with --program and for the bot's firmware)"
                     ));
                 }
             }
-            "port" => {
-                let (port, v) = match value.split_once(':') {
-                    Some((p, v)) => (hex(p, spec)?, Some(hex(v, spec)?)),
-                    None => (hex(value, spec)?, None),
-                };
-                for p in &team {
-                    cpu.entry(p.to_string()).or_default().port_writes.push((port, v, spec.clone()));
-                }
-            }
-            "bot" => {
-                let kind = match value {
-                    "blocked" => BotCondition::Blocked,
-                    "off-line" => BotCondition::OffLine,
-                    v if v.starts_with("sensors:") => BotCondition::Sensors(hex(&v[8..], spec)?),
-                    _ => return Err(format!("--break {spec}: expected bot=blocked, bot=off-line or bot=sensors:XX")),
-                };
-                bot.push(BotBreak { text: spec.clone(), kind });
-            }
-            _ => return Err(format!("--break {spec}: expected pc=, label=, line=, port= or bot=")),
         }
     }
+    cpu.retain(|_, b| !b.is_empty());
     Ok((cpu, bot))
-}
-
-/// `00B wait (linefollow.psm:89)` for a CPU's address.
-fn describe_pc(sources: &BTreeMap<String, SourceMap>, cpu: &str, pc: u16) -> String {
-    match sources.get(cpu) {
-        Some(m) => {
-            let line = m.line(pc).map_or(String::new(), |l| {
-                format!(" ({}:{})", l.file.file_name().map(|n| n.to_string_lossy()).unwrap_or_default(), l.line)
-            });
-            format!("pc {pc:03X} {}{line}", m.describe(pc))
-        }
-        None => format!("pc {pc:03X}"),
-    }
 }
 
 /// Where a waveform window opens or closes: after a bot sample, or at a time (cycles of the

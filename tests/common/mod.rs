@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 pub mod cpu_coverage;
+pub mod debug;
 pub mod icarus;
 pub mod lockstep;
 pub mod repo;

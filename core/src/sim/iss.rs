@@ -411,6 +411,36 @@ impl IssBot {
         Err(Error::no_update(budget, self.cpu.cycle(), self.cpu_at()))
     }
 
+    /// As [`IssBot::wait_update_within`], one instruction at a time: each instruction the CPU
+    /// retires goes to `watch` with the cycle after it (for a source-level trace, or a
+    /// breakpoint); when `watch` says stop, the run stops right after that instruction and
+    /// this returns `None`.
+    pub fn wait_update_watched(
+        &mut self,
+        budget: u64,
+        mut watch: impl FnMut(&kcpsm6::iss::Retired, u64) -> bool,
+    ) -> Result<Option<Snapshot>, Error> {
+        let end = self.cpu.cycle() + budget;
+        while self.cpu.cycle() < end {
+            let Ok(r) = self.cpu.step(&mut self.bus, end - self.cpu.cycle()) else { break };
+            if watch(&r, self.cpu.cycle()) {
+                return Ok(None);
+            }
+            if let Some(p) = self.bus.pulse.take() {
+                self.bus.catch_up();
+                let s = Snapshot { sample: self.next_sample, cycle: p, regs: self.bus.visible };
+                self.next_sample += 1;
+                return Ok(Some(s));
+            }
+        }
+        Err(Error::no_update(budget, self.cpu.cycle(), self.cpu_at()))
+    }
+
+    /// The samples taken so far.
+    pub fn samples(&self) -> u64 {
+        self.next_sample
+    }
+
     /// One rising edge of the bot's clock inside a board design (`--bot model`):
     /// `reset` and `motctl` as they were in the cycle the edge ends; returns what world_if
     /// holds after it, packed as [`BotPins`]. Equal to rtl/bot.v at every edge (the board's

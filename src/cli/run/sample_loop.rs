@@ -7,11 +7,14 @@ use std::path::Path;
 use botsim::sim::rtl::VcdWindow;
 use botsim::{Backend, Error, RtlBot, Snapshot};
 
+use super::watch::Watched;
 use crate::cli::interrupted;
 
-/// What runs the bot: the RTL (which can also write a waveform), or another [`Backend`].
+/// What runs the bot: the RTL (which can also write a waveform), the ISS watched by a trace
+/// and breakpoints, or another [`Backend`].
 pub enum Engine {
     Rtl(RtlBot),
+    Watched(Box<Watched>),
     Other(Box<dyn Backend>),
 }
 
@@ -19,7 +22,16 @@ impl Engine {
     pub fn backend(&mut self) -> &mut dyn Backend {
         match self {
             Engine::Rtl(b) => b,
+            Engine::Watched(b) => b.as_mut(),
             Engine::Other(b) => b.as_mut(),
+        }
+    }
+
+    /// The watched ISS, if that is what runs.
+    pub fn watched(&mut self) -> Option<&mut Watched> {
+        match self {
+            Engine::Watched(w) => Some(w),
+            _ => None,
         }
     }
 
@@ -27,15 +39,17 @@ impl Engine {
     fn rtl(&mut self) -> &mut RtlBot {
         match self {
             Engine::Rtl(b) => b,
-            Engine::Other(_) => unreachable!("a waveform is planned only with the RTL backend"),
+            _ => unreachable!("a waveform is planned only with the RTL backend"),
         }
     }
 }
 
-/// Why the loop stopped before its last sample.
+/// Why the loop stopped before its last sample: Ctrl-C, or a breakpoint (the watched ISS
+/// says which).
 pub struct Interrupted {
     pub sample: u64,
     pub cycle: u64,
+    pub by_break: bool,
 }
 
 /// Cycles between two looks at the Ctrl-C flag (~0.07 s of RTL time here).
@@ -65,7 +79,10 @@ pub fn run(
         }
         let s = match next_sample(engine, window.as_deref_mut()) {
             Ok(Some(s)) => s,
-            Ok(None) => return Ok(Some(Interrupted { sample: k, cycle: engine.backend().cycle() })),
+            Ok(None) => return Ok(Some(Interrupted { sample: k, cycle: engine.backend().cycle(), by_break: false })),
+            Err(Error::Stopped(_)) if engine.watched().is_some_and(|w| w.hit.is_some()) => {
+                return Ok(Some(Interrupted { sample: k, cycle: engine.backend().cycle(), by_break: true }))
+            }
             Err(e) => return Err(fail(e, k)),
         };
         let (m, stop) = each(k, &s)?;

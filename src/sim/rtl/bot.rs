@@ -40,6 +40,7 @@ pub struct Builder {
     motors: MotCtl,
     vcd: Option<PathBuf>,
     budget: Option<u64>,
+    debug: bool,
 }
 
 impl Builder {
@@ -76,6 +77,13 @@ impl Builder {
         self.motors = m;
         self
     }
+    /// The build of the model with the KCPSM6's debug signals (Xilinx's names: the
+    /// instruction's text `kcpsm6_opcode`, `kcpsm6_status`, `sim_s0`..`sim_sF`) for waveforms;
+    /// a fifth slower.
+    pub fn debug(mut self, on: bool) -> Builder {
+        self.debug = on;
+        self
+    }
     /// Write a VCD of the whole design.
     pub fn vcd(mut self, path: impl AsRef<Path>) -> Builder {
         self.vcd = Some(path.as_ref().to_path_buf());
@@ -94,7 +102,7 @@ impl Builder {
             None => self.firmware.assemble().map_err(Error::Program)?,
         };
         // SAFETY: bot_sim_new returns a new, live model.
-        let sim = NonNull::new(unsafe { ffi::bot_sim_new() }).expect("model allocation");
+        let sim = NonNull::new(unsafe { ffi::bot_sim_new(self.debug as i32) }).expect("model allocation");
         let mut bot = RtlBot {
             sim,
             budget: self.budget.unwrap_or(self.firmware.timing.update_budget()),
@@ -130,6 +138,7 @@ impl RtlBot {
             motors: MotCtl::STOP,
             vcd: None,
             budget: None,
+            debug: false,
         }
     }
 

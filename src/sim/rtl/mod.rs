@@ -24,3 +24,19 @@ mod ffi {
 }
 
 include!(concat!(env!("OUT_DIR"), "/variants.rs"));
+
+/// The text of a KCPSM6 instruction word for a waveform's debug signal `kcpsm6_opcode` (the
+/// DPI function `botsim_disasm` of the bot model's shim and of the board harness, through
+/// ffi/botsim_disasm.h): the disassembler's text in `text`'s 20 bytes, blank-padded.
+///
+/// # Safety
+/// `text` points to 20 writable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn botsim_disasm_text(word: u32, text: *mut u8) {
+    let s = kcpsm6::disasm::disassemble_word(word & 0x3FFFF);
+    // SAFETY: the caller passes 20 bytes.
+    let out = unsafe { std::slice::from_raw_parts_mut(text, 20) };
+    for (i, b) in out.iter_mut().enumerate() {
+        *b = s.as_bytes().get(i).copied().unwrap_or(b' ');
+    }
+}

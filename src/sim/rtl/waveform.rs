@@ -73,6 +73,11 @@ impl VcdWindow {
         &self.path
     }
 
+    /// The file it is written to until it is finished (then renamed to [`VcdWindow::path`]).
+    pub fn part(&self) -> &Path {
+        &self.part
+    }
+
     fn open(&mut self, bot: &mut RtlBot) -> Result<(), Error> {
         bot.open_vcd(&self.part)?;
         self.state = State::Open;

@@ -1,10 +1,27 @@
 // bot_shim.cpp: the BotSim `bot` model behind shim.h. The clock loop runs here, in C++, so
-// a whole sample costs one call from Rust.
+// a whole sample costs one call from Rust. Two builds of rtl/bot.v: `Vbot`, and `Vbotdbg`
+// with the KCPSM6's debug signals for waveforms (BOTSIM_DEBUG: the instruction's text, the
+// status, the registers), whose `always @(instruction)` costs a fifth of the speed, so runs
+// without a waveform use the first.
 #include "shim.h"
 #include "sim.h"
 
 #include "Vbot.h"
 #include "Vbot___024root.h"
+#include "Vbotdbg.h"
+#include "Vbotdbg___024root.h"
+#include "botsim_disasm.h"
+
+// The text of an instruction word, from Rust's disassembler (src/sim/rtl/mod.rs).
+extern "C" void botsim_disasm_text(uint32_t word, char* text);
+
+// rtl/kcpsm6.v's debug signal kcpsm6_opcode, in Vbotdbg.
+extern "C" void botsim_disasm(int word, svBitVecVal* text) {
+    botsim_disasm_pack(word, text, [](uint32_t w, char* s) {
+        botsim_disasm_text(w, s);
+        return true;
+    });
+}
 
 // Port accesses of the CPU, appended to a caller's buffer.
 struct Recorder {
@@ -13,7 +30,8 @@ struct Recorder {
     size_t* count;
 
     // Record this cycle's access, if any; false when the buffer is full.
-    bool take(const Sim<Vbot>& sim) {
+    template <class V>
+    bool take(const Sim<V>& sim) {
         const auto* r = sim.top->rootp;
         // The strobes are registered in the CPU: at most one is high in a cycle.
         const int kind = r->bot__DOT__read_strobe    ? 0
@@ -31,9 +49,33 @@ struct Recorder {
     }
 };
 
+// The interface shim.h's functions reach either model through.
 struct BotSim {
-    Sim<Vbot> sim;
+    virtual ~BotSim() {}
+    virtual int open_vcd(const char* path) = 0;
+    virtual void close_vcd() = 0;
+    virtual void load_program(const uint32_t* words, size_t count) = 0;
+    virtual void load_world(const uint8_t* cells, size_t count) = 0;
+    virtual void set_inputs(const uint8_t* motctl, const uint8_t* reset, const uint16_t* row, const uint16_t* col) = 0;
+    virtual int tick(BotOutputs* out) = 0;
+    virtual int run(uint64_t budget, bool stop_on_update, uint64_t* cycle, BotRegs* regs, Recorder* rec) = 0;
+    virtual uint64_t cycle() const = 0;
+    virtual void bench_minimal(uint64_t cycles) = 0;
+    virtual size_t take_fatal(char* buf, size_t len) = 0;
+    virtual int cpu_in_reset(uint16_t* pc) const = 0;
+};
+
+template <class V>
+struct BotModel final : BotSim {
+    Sim<V> sim;
     bool prev_upd = false;  // upd_sysregs in the previous cycle
+
+    BotModel() {
+        sim.top->reset = 0;
+        sim.top->MotCtl_in = 0;
+        sim.top->vid_row = 0;
+        sim.top->vid_col = 0;
+    }
 
     void settle() { sim.settle(); }
 
@@ -68,7 +110,7 @@ struct BotSim {
     }
 
     void regs(BotRegs* r) const {
-        const Vbot* t = sim.top;
+        const V* t = sim.top;
         r->loc_x = t->LocX_reg;
         r->loc_y = t->LocY_reg;
         r->sensors = t->Sensors_reg;
@@ -76,108 +118,114 @@ struct BotSim {
         r->lm_dist = t->LMDist_reg;
         r->rm_dist = t->RMDist_reg;
     }
+    int open_vcd(const char* path) override { return sim.open_vcd(path, 99) ? 0 : -1; }
+
+    void close_vcd() override {
+        sim.enter();
+        sim.close_vcd();
+    }
+
+    void load_program(const uint32_t* words, size_t count) override {
+        sim.enter();
+        auto& rom = sim.top->rootp->bot__DOT__BOTSIMPGM__DOT__rom;
+        for (size_t i = 0; i < 1024; i++) rom[i] = i < count ? (words[i] & 0x3FFFF) : 0;
+    }
+
+    void load_world(const uint8_t* cells, size_t count) override {
+        sim.enter();
+        auto& map = sim.top->rootp->bot__DOT__MAP__DOT__world__DOT__cells;
+        for (size_t i = 0; i < 16384; i++) map[i] = i < count ? (cells[i] & 3) : 0;
+    }
+
+    // Each input that is given (not null) from the next cycle on.
+    void set_inputs(const uint8_t* motctl, const uint8_t* reset, const uint16_t* row, const uint16_t* col) override {
+        if (motctl) sim.top->MotCtl_in = *motctl;
+        if (reset) sim.top->reset = *reset;
+        if (row) sim.top->vid_row = *row & 0x3FF;
+        if (col) sim.top->vid_col = *col & 0x3FF;
+    }
+
+    int tick(BotOutputs* out) override {
+        sim.enter();
+        if (sim.finished()) return -1;
+        settle();
+        if (out) {
+            regs(&out->regs);
+            out->upd_sysregs = sim.top->upd_sysregs;
+            out->vid_pixel_out = sim.top->vid_pixel_out;
+        }
+        rise();
+        return 0;
+    }
+
+    int run(uint64_t budget, bool stop_on_update, uint64_t* cycle, BotRegs* regs, Recorder* rec) override {
+        return rec ? clock<true>(budget, stop_on_update, cycle, regs, rec)
+                   : clock<false>(budget, stop_on_update, cycle, regs, nullptr);
+    }
+
+    uint64_t cycle() const override { return sim.cycle; }
+
+    void bench_minimal(uint64_t cycles) override {
+        sim.enter();
+        V* top = sim.top;
+        VerilatedContext* ctx = sim.ctx;
+        for (uint64_t i = 0; i < cycles; i++) {
+            top->clk = 0;
+            top->eval();
+            ctx->timeInc(HALF_PERIOD_PS);
+            top->clk = 1;
+            top->eval();
+            ctx->timeInc(HALF_PERIOD_PS);
+        }
+        sim.cycle += cycles;
+    }
+
+    size_t take_fatal(char* buf, size_t len) override { return sim.take_fatal(buf, len); }
+
+    int cpu_in_reset(uint16_t* pc) const override {
+        const auto* r = sim.top->rootp;
+        *pc = r->bot__DOT__BOTSIMCPU__DOT__pc;
+        return r->bot__DOT__BOTSIMCPU__DOT__internal_reset;
+    }
 };
 
 extern "C" {
 
-BotSim* bot_sim_new(void) {
-    BotSim* b = new BotSim;
-    b->sim.top->reset = 0;
-    b->sim.top->MotCtl_in = 0;
-    b->sim.top->vid_row = 0;
-    b->sim.top->vid_col = 0;
-    return b;
+BotSim* bot_sim_new(int debug) {
+    if (debug) return new BotModel<Vbotdbg>;
+    return new BotModel<Vbot>;
 }
 
 void bot_sim_free(BotSim* b) { delete b; }
-
-int bot_sim_open_vcd(BotSim* b, const char* path) {
-    return b->sim.open_vcd(path, 99) ? 0 : -1;
-}
-
-void bot_sim_close_vcd(BotSim* b) {
-    b->sim.enter();
-    b->sim.close_vcd();
-}
-
-void bot_sim_load_program(BotSim* b, const uint32_t* words, size_t count) {
-    b->sim.enter();
-    auto& rom = b->sim.top->rootp->bot__DOT__BOTSIMPGM__DOT__rom;
-    for (size_t i = 0; i < 1024; i++) rom[i] = i < count ? (words[i] & 0x3FFFF) : 0;
-}
-
-void bot_sim_load_world(BotSim* b, const uint8_t* cells, size_t count) {
-    b->sim.enter();
-    auto& map = b->sim.top->rootp->bot__DOT__MAP__DOT__world__DOT__cells;
-    for (size_t i = 0; i < 16384; i++) map[i] = i < count ? (cells[i] & 3) : 0;
-}
-
-void bot_sim_set_motctl(BotSim* b, uint8_t v) {
-    b->sim.top->MotCtl_in = v;
-}
-
-void bot_sim_set_reset(BotSim* b, uint8_t v) {
-    b->sim.top->reset = v;
-}
-
-void bot_sim_set_video(BotSim* b, uint16_t row, uint16_t col) {
-    b->sim.top->vid_row = row & 0x3FF;
-    b->sim.top->vid_col = col & 0x3FF;
-}
-
-int bot_sim_tick(BotSim* b, BotOutputs* out) {
-    b->sim.enter();
-    if (b->sim.finished()) return -1;
-    b->settle();
-    if (out) {
-        b->regs(&out->regs);
-        out->upd_sysregs = b->sim.top->upd_sysregs;
-        out->vid_pixel_out = b->sim.top->vid_pixel_out;
-    }
-    b->rise();
-    return 0;
-}
+int bot_sim_open_vcd(BotSim* b, const char* path) { return b->open_vcd(path); }
+void bot_sim_close_vcd(BotSim* b) { b->close_vcd(); }
+void bot_sim_load_program(BotSim* b, const uint32_t* words, size_t count) { b->load_program(words, count); }
+void bot_sim_load_world(BotSim* b, const uint8_t* cells, size_t count) { b->load_world(cells, count); }
+void bot_sim_set_motctl(BotSim* b, uint8_t v) { b->set_inputs(&v, nullptr, nullptr, nullptr); }
+void bot_sim_set_reset(BotSim* b, uint8_t v) { b->set_inputs(nullptr, &v, nullptr, nullptr); }
+void bot_sim_set_video(BotSim* b, uint16_t row, uint16_t col) { b->set_inputs(nullptr, nullptr, &row, &col); }
+int bot_sim_tick(BotSim* b, BotOutputs* out) { return b->tick(out); }
 
 int bot_sim_run_until_update(BotSim* b, uint64_t budget, uint64_t* cycle, BotRegs* regs) {
-    return b->clock<false>(budget, true, cycle, regs, nullptr);
+    return b->run(budget, true, cycle, regs, nullptr);
 }
 
 int bot_sim_run_recording(BotSim* b, uint64_t budget, int stop_on_update, uint64_t* cycle, BotRegs* regs,
                           BotPortEvent* events, size_t cap, size_t* count) {
     Recorder rec{events, cap, count};
     *count = 0;
-    return b->clock<true>(budget, stop_on_update != 0, cycle, regs, &rec);
+    return b->run(budget, stop_on_update != 0, cycle, regs, &rec);
 }
 
 uint64_t bot_sim_run(BotSim* b, uint64_t cycles) {
-    const uint64_t start = b->sim.cycle;
+    const uint64_t start = b->cycle();
     uint64_t cycle;
-    b->clock<false>(cycles, false, &cycle, nullptr, nullptr);
-    return b->sim.cycle - start;
+    b->run(cycles, false, &cycle, nullptr, nullptr);
+    return b->cycle() - start;
 }
 
-uint64_t bot_sim_cycle(const BotSim* b) { return b->sim.cycle; }
-
-void bot_sim_bench_minimal(BotSim* b, uint64_t cycles) {
-    b->sim.enter();
-    Vbot* top = b->sim.top;
-    VerilatedContext* ctx = b->sim.ctx;
-    for (uint64_t i = 0; i < cycles; i++) {
-        top->clk = 0;
-        top->eval();
-        ctx->timeInc(HALF_PERIOD_PS);
-        top->clk = 1;
-        top->eval();
-        ctx->timeInc(HALF_PERIOD_PS);
-    }
-    b->sim.cycle += cycles;
-}
-
-size_t bot_sim_take_fatal(BotSim* b, char* buf, size_t len) { return b->sim.take_fatal(buf, len); }
-
-int bot_sim_cpu_in_reset(const BotSim* b, uint16_t* pc) {
-    const auto* r = b->sim.top->rootp;
-    *pc = r->bot__DOT__BOTSIMCPU__DOT__pc;
-    return r->bot__DOT__BOTSIMCPU__DOT__internal_reset;
-}
+uint64_t bot_sim_cycle(const BotSim* b) { return b->cycle(); }
+void bot_sim_bench_minimal(BotSim* b, uint64_t cycles) { b->bench_minimal(cycles); }
+size_t bot_sim_take_fatal(BotSim* b, char* buf, size_t len) { return b->take_fatal(buf, len); }
+int bot_sim_cpu_in_reset(const BotSim* b, uint16_t* pc) { return b->cpu_in_reset(pc); }
 }

@@ -104,7 +104,8 @@ typedef struct {
     uint8_t value;
 } BotPortEvent;
 
-BotSim* bot_sim_new(void);
+/* A new model; `debug`: the build with the KCPSM6's debug signals (for waveforms). */
+BotSim* bot_sim_new(int debug);
 void bot_sim_free(BotSim* sim);
 int bot_sim_open_vcd(BotSim* sim, const char* path);
 void bot_sim_close_vcd(BotSim* sim);

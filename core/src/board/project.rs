@@ -253,7 +253,7 @@ mod tests {
         assert_eq!(p.tool, Tool::Ise);
         assert_eq!(
             p.files,
-            [PathBuf::from("/r/ise/../src/nexys3fpga.v"), PathBuf::from("/r/ise/ipcore_dir/clk25.xco")]
+            [PathBuf::from("/r/src/nexys3fpga.v"), PathBuf::from("/r/ise/ipcore_dir/clk25.xco")]
         );
         assert_eq!(p.top.as_deref(), Some("Nexys3fpga"));
     }

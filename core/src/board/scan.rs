@@ -954,9 +954,10 @@ pub struct Oversized {
 ///
 /// ```
 /// use botsim_core::board::scan::oversized_literals;
-/// let o = oversized_literals("assign a = 8'h1FF; // 8'h1FF\nassign b = 6'hFF + 4'b0_1010;");
+/// // 6'hFF and 4'b0_1010 fit (their extra bits are in a digit the width needs, or zeros).
+/// let o = oversized_literals("assign a = 8'h1FF; // 8'h1FF\nassign b = 6'hFF + 4'b0_1010 + 4'b1_1010;");
 /// let fixed: Vec<_> = o.iter().map(|o| (o.line, o.text.as_str(), o.fixed.as_str())).collect();
-/// assert_eq!(fixed, [(1, "8'h1FF", "8'hFF"), (2, "4'b0_1010", "4'b1010")]);
+/// assert_eq!(fixed, [(1, "8'h1FF", "8'hFF"), (2, "4'b1_1010", "4'b1010")]);
 /// ```
 pub fn oversized_literals(src: &str) -> Vec<Oversized> {
     let (tokens, _) = tokenize(src);

@@ -540,11 +540,24 @@ fn an_iss_cpu_whose_rom_does_not_give_it_the_program_is_one_error() {
         "tests/board_designs/rom_unwired",
         "--program",
         "tests/board_designs/rom_unwired/prog.psm",
+        "--cpu",
+        "rtl",
         "--seconds",
         "0.002",
         "-q",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
+    // Without --cpu, the default ISS gives way to the RTL core, said.
+    let o = board(&[
+        "tests/board_designs/rom_unwired",
+        "--program",
+        "tests/board_designs/rom_unwired/prog.psm",
+        "--seconds",
+        "0.002",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(e.contains("its ROM gave 00000") && e.contains("running it on the RTL core (--cpu rtl)"), "{e}");
 }
 
 /// The trace lines of `file`: (pc, source file name and line, instruction text).

@@ -690,6 +690,9 @@ impl Host {
     }
 }
 
+/// How [`Host::check`]'s errors start: the ISS cannot stand for a KCPSM6 of the design.
+pub const ISS_CANNOT: &str = "--cpu iss";
+
 unsafe extern "C" fn ff_mark_ffi(ctx: *mut c_void) {
     // SAFETY: ctx is the Host that made the RawHost; the harness calls from one thread.
     unsafe { (*(ctx as *mut Host)).ff_mark() }
@@ -797,11 +800,13 @@ impl Host {
     /// that the design's ROM did not give.
     pub fn check(&self) -> Result<(), String> {
         if let Some(p) = &self.unknown {
-            return Err(format!("--cpu iss: the design has a KCPSM6 at `{p}` that botsim did not find in its sources"));
+            return Err(format!(
+                "{ISS_CANNOT}: the design has a KCPSM6 at `{p}` that botsim did not find in its sources"
+            ));
         }
         if let Some((p, m)) = self.mismatch() {
             return Err(format!(
-                "--cpu iss: the KCPSM6 `{p}` decoded {:05X} at address {:03X} in its cycle {}, but its ROM gave {:05X}: the ROM is not wired or loaded as botsim read it (run it with --cpu rtl)",
+                "{ISS_CANNOT}: the KCPSM6 `{p}` decoded {:05X} at address {:03X} in its cycle {}, but its ROM gave {:05X}: the ROM is not wired or loaded as botsim read it (run it with --cpu rtl)",
                 m.expected, m.address, m.cycle, m.found
             ));
         }

@@ -140,11 +140,13 @@ pub struct Args {
     /// parts too (without it, the run skips ahead as it does without a waveform and they read x)
     #[arg(long, requires = "trace_from")]
     vcd_all_signals: bool,
-    /// What runs every KCPSM6 of the design (the team's and the bot's): rtl (botsim's RTL core
-    /// under Verilator) or iss (the cycle-exact instruction-set simulator behind the same
-    /// ports: only the rest of the design is evaluated by Verilator; same results, faster)
-    #[arg(long, value_enum, default_value = "rtl")]
-    cpu: CpuArg,
+    /// What runs every KCPSM6 of the design (the team's and the bot's): iss (the cycle-exact
+    /// instruction-set simulator behind the same ports: only the rest of the design is
+    /// evaluated by Verilator, and the board skips what repeats; the same results as rtl, pin
+    /// for pin), rtl (botsim's RTL core under Verilator), or lockstep (both, compared every
+    /// cycle) [default: iss]
+    #[arg(long, value_enum)]
+    cpu: Option<CpuArg>,
     /// What stands for the bot: rtl (botsim's bot.v: its KCPSM6 as --cpu says, world_if and
     /// the map under Verilator) or model (the same firmware on the instruction-set simulator
     /// with Rust models of world_if and the map, behind the same ports: same results). With
@@ -311,6 +313,28 @@ pub fn run(a: Args) -> Result<(), String> {
     // Ctrl-C stops a build (its compilers and its temporary folder go) or a run (its outputs
     // written up to there), never the process in the middle of either.
     botsim::interrupt::catch();
+    if a.cpu.is_none() {
+        // The default is the ISS; a design whose KCPSM6 it cannot stand for (a ROM botsim
+        // cannot read) runs on the RTL core instead, said.
+        let mut first = a.clone();
+        first.cpu = Some(CpuArg::Iss);
+        return match run_with_breaks(first) {
+            Err(e) if e.starts_with(ISS_CANNOT) => {
+                if !a.quiet && !a.json {
+                    eprintln!("note: {e}; running it on the RTL core (--cpu rtl)");
+                }
+                run_with_breaks(Args { cpu: Some(CpuArg::Rtl), ..a })
+            }
+            r => r,
+        };
+    }
+    run_with_breaks(a)
+}
+
+/// How an error starts when the ISS cannot stand for a design's KCPSM6.
+const ISS_CANNOT: &str = botsim::board::iss::ISS_CANNOT;
+
+fn run_with_breaks(a: Args) -> Result<(), String> {
     if a.breaks.is_empty() || (a.vcd.is_none() && a.cpu_trace.is_none()) {
         return run_once(a).map(|_| ());
     }
@@ -601,7 +625,8 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         std::fs::create_dir_all(d).map_err(|e| format!("{}: error: cannot create the folder: {e}", d.display()))?;
         check_writable(&d.join("cpu.trace.txt"))?;
     }
-    let cpu = match a.cpu {
+    let cpu_arg = a.cpu.unwrap_or(CpuArg::Iss);
+    let cpu = match cpu_arg {
         // The trace comes from the ISS, which equals the RTL core at every port.
         CpuArg::Rtl if a.cpu_trace.is_some() || !a.breaks.is_empty() => {
             say("note: --cpu-trace and --break run the KCPSM6s on the ISS (--cpu iss: the same results, cycle for cycle)".into());
@@ -635,7 +660,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         }
         out
     };
-    let lockstep = a.cpu == CpuArg::Lockstep;
+    let lockstep = cpu_arg == CpuArg::Lockstep;
     if lockstep && a.bench {
         return Err("--bench measures one board: --cpu rtl or iss".into());
     }
@@ -644,7 +669,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     let (cpu_breaks, bot_breaks) = breakpoints(&a.breaks, &plan, &maps)?;
     // The models' programs are known before anything is built.
     let looks_inside = a.cpu_trace.is_some() || !a.breaks.is_empty();
-    let bot = match (a.bot, a.cpu) {
+    let bot = match (a.bot, cpu_arg) {
         (Some(BotArg::Model), _) => BotKind::Model,
         (None, CpuArg::Iss | CpuArg::Lockstep) if !looks_inside => BotKind::Model,
         _ => BotKind::Rtl,
@@ -958,6 +983,8 @@ fn run_once(a: Args) -> Result<Stopped, String> {
             }
             Stop::Finished => break Some("finish"),
             Stop::Until => {
+                // A CPU the ISS cannot stand for stops the run here, not at its end.
+                model.check()?;
                 let t = model.main().time_ps();
                 if t >= end_ps {
                     break Some("time");

@@ -251,10 +251,7 @@ mod tests {
 </project>"#;
         let p = Project::parse(Path::new("/r/ise/p.xise"), xml).unwrap();
         assert_eq!(p.tool, Tool::Ise);
-        assert_eq!(
-            p.files,
-            [PathBuf::from("/r/src/nexys3fpga.v"), PathBuf::from("/r/ise/ipcore_dir/clk25.xco")]
-        );
+        assert_eq!(p.files, [PathBuf::from("/r/src/nexys3fpga.v"), PathBuf::from("/r/ise/ipcore_dir/clk25.xco")]);
         assert_eq!(p.top.as_deref(), Some("Nexys3fpga"));
     }
 

@@ -36,6 +36,7 @@
 
 use std::path::Path;
 
+use super::cpp::{function, functions, squeeze, strip_comments};
 use super::observed::{Analysis, Member, Unshown};
 
 /// What a build may assume, kept in its folder: for each, why not (`None`: it may).
@@ -298,39 +299,6 @@ fn reads_clk(body: &str) -> bool {
         .any(|(i, m)| body[i + m.len()..].chars().next().map_or(true, |c| !(c.is_alphanumeric() || c == '_')))
 }
 
-/// The text without white space (Verilator breaks long expressions over lines).
-pub(super) fn squeeze(s: &str) -> String {
-    s.chars().filter(|c| !c.is_whitespace()).collect()
-}
-
-/// The body of the function `name` defined in `code`.
-fn function<'a>(code: &'a str, name: &str) -> Option<&'a str> {
-    functions(code).into_iter().find(|(n, _)| *n == name).map(|(_, b)| b)
-}
-
-/// The functions defined in a generated file: (name, body), a definition being a line that
-/// ends with `{` and names a function, up to the next line that is `}`.
-pub(super) fn functions(code: &str) -> Vec<(&str, &str)> {
-    let mut out = Vec::new();
-    let mut rest = code;
-    while let Some(open) = rest.find(") {\n") {
-        let line_start = rest[..open].rfind('\n').map_or(0, |i| i + 1);
-        let head = &rest[line_start..open];
-        let name = head.split('(').next().unwrap_or("").split_whitespace().last().unwrap_or("");
-        let body_start = open + 4;
-        let end = rest[body_start..].find("\n}\n").map_or(rest.len(), |i| body_start + i);
-        if !head.starts_with(' ') && !name.is_empty() {
-            out.push((name, &rest[body_start..end]));
-        }
-        rest = &rest[end.min(rest.len())..];
-        if rest.len() <= 3 {
-            break;
-        }
-        rest = &rest[3..];
-    }
-    out
-}
-
 /// Headers every build has: the model, its symbol table, its DPI imports, the root.
 const KNOWN_HEADERS: &[&str] = &["Vboard__Syms.h", "Vboard__Dpi.h", "Vboard___024root.h"];
 
@@ -384,20 +352,6 @@ fn only_plain_vl_types(code: &str) -> bool {
     })
 }
 
-pub(super) fn strip_comments(line: &str) -> String {
-    let mut out = String::new();
-    let mut rest = line;
-    while let Some(i) = rest.find("/*") {
-        out.push_str(&rest[..i]);
-        match rest[i..].find("*/") {
-            Some(j) => rest = &rest[i + j + 2..],
-            None => return out,
-        }
-    }
-    out.push_str(rest.split("//").next().unwrap_or(""));
-    out
-}
-
 /// DPI imports and exports: only botsim's own (the KCPSM6 and bot models, the disassembler).
 fn dpi_blocker(header: &str) -> Option<String> {
     let mut at = "";
@@ -446,7 +400,7 @@ fn eval_blocker(code: &str) -> Option<String> {
 mod tests {
     use super::*;
 
-    const ROOT: &str = "class Vboard__Syms;\n\nclass Vboard___024root final : public VerilatedModule {\n  public:\n\n    // DESIGN SPECIFIC STATE\n    struct {\n        VL_IN8(clk,0,0);\n        VL_OUT16(led,15,0);\n        CData/*0:0*/ botsim_board__DOT__a;\n        VlWide<1024>/*32767:0*/ w;\n        VlUnpacked<IData/*17:0*/, 4096> rom;\n        QData/*63:0*/ cpu;\n    };\n    VlTriggerVec<1> __VactTriggered;\n\n    // INTERNAL VARIABLES\n    Vboard__Syms* const vlSymsp;\n\n    // CONSTRUCTORS\n    Vboard___024root(Vboard__Syms* symsp, const char* v__name);\n    ~Vboard___024root();\n    VL_UNCOPYABLE(Vboard___024root);\n\n    // INTERNAL METHODS\n    void __Vconfigure(bool first);\n} VL_ATTR_ALIGNED(VL_CACHE_LINE_BYTES);\n";
+    const ROOT: &str = include_str!("fixtures/checks_root.h");
 
     #[test]
     fn a_root_of_plain_variables_passes() {
@@ -470,7 +424,7 @@ mod tests {
 
     #[test]
     fn only_botsims_dpi_functions_pass() {
-        let ours = "#ifdef __cplusplus\nextern \"C\" {\n#endif\n    // DPI import at botsim_kcpsm6.v:41:37\n    extern long long botsim_iss_tick(void* cpu, long long pins);\n    extern void* botsim_bot_new(const char* path);\n";
+        let ours = include_str!("fixtures/checks_dpi.h");
         assert_eq!(dpi_blocker(ours), None);
         let theirs = format!("{ours}    // DPI import at uart.v:3:5\n    extern int uart_poll(int port);\n");
         assert_eq!(
@@ -482,7 +436,7 @@ mod tests {
     #[test]
     fn one_rising_edge_trigger_lets_falling_edges_go() {
         let root = "    VlTriggerVec<1> __VactTriggered;\n";
-        let triggers = "void Vboard___024root___eval_triggers__act(Vboard___024root* vlSelf) {\n    // Body\n    vlSelf->__VactTriggered.at(0U) = ((IData)(vlSelf->clk) \n                                      & (~ (IData)(vlSelf->__Vtrigrprev__TOP__clk)));\n    vlSelf->__Vtrigrprev__TOP__clk = vlSelf->clk;\n}\n";
+        let triggers = include_str!("fixtures/checks_triggers.cpp");
         let nba = "VL_INLINE_OPT void Vboard___024root___nba_sequent__TOP__0(Vboard___024root* vlSelf) {\n    vlSelf->x = (1U + vlSelf->x);\n}\n";
         let assertions = "void Vboard___024root___eval_debug_assertions(Vboard___024root* vlSelf) {\n    if (VL_UNLIKELY((vlSelf->clk & 0xfeU))) {\n        Verilated::overWidthError(\"clk\");}\n}\n";
         assert_eq!(edge_blocker(root, &[triggers, nba, assertions]), None);

@@ -20,8 +20,8 @@
 //! read in every evaluation.
 //!
 //! ```
-//! let root = "class Vboard___024root final : public VerilatedModule {\n  public:\n    struct {\n        VL_IN8(clk,0,0);\n        VL_OUT16(led,15,0);\n        CData/*0:0*/ a;\n        CData/*0:0*/ b;\n        CData/*0:0*/ __Vtrigrprev__TOP__clk;\n    };\n    VlTriggerVec<1> __VactTriggered;\n    VlTriggerVec<1> __VnbaTriggered;\n\n    // INTERNAL VARIABLES\n    Vboard__Syms* const vlSymsp;\n};\n";
-//! let eval = "void Vboard___024root___eval_triggers__act(Vboard___024root* vlSelf) {\n    vlSelf->__VactTriggered.at(0U) = ((IData)(vlSelf->clk) & (~ (IData)(vlSelf->__Vtrigrprev__TOP__clk)));\n    vlSelf->__Vtrigrprev__TOP__clk = vlSelf->clk;\n}\n\nVL_INLINE_OPT void Vboard___024root___nba_sequent__TOP__0(Vboard___024root* vlSelf) {\n    vlSelf->led = vlSelf->a;\n    vlSelf->a = (1U & (~ (IData)(vlSelf->a)));\n    vlSelf->b = (1U & (~ (IData)(vlSelf->b)));\n}\n\nvoid Vboard___024root___eval_nba(Vboard___024root* vlSelf) {\n    if (vlSelf->__VnbaTriggered.at(0U)) {\n        Vboard___024root___nba_sequent__TOP__0(vlSelf);\n    }\n}\n\nvoid Vboard___024root___eval(Vboard___024root* vlSelf) {\n    Vboard___024root___eval_triggers__act(vlSelf);\n    Vboard___024root___eval_nba(vlSelf);\n}\n";
+//! let root = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/board/fixtures/small_root.h"));
+//! let eval = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/board/fixtures/small_eval.cpp"));
 //! let members = botsim::board::observed::members(root, &[eval]).unwrap();
 //! let seen = |n: &str| members.iter().find(|m| m.name == n).unwrap().observed;
 //! // The LEDs show `a`, which the clock's trigger runs; nothing reads `b`.
@@ -31,7 +31,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use super::checks::squeeze;
+use super::cpp::{functions, squeeze, strip_comments};
 
 /// The top's outputs the harness reads on every evaluation of a run (harness.cpp's records and
 /// the fast-forward's counter); the VGA pins are read only when frames are recorded, and such
@@ -89,9 +89,9 @@ pub struct Unshown {
 /// write).
 ///
 /// ```
-/// let root = "class Vboard___024root final : public VerilatedModule {\n  public:\n    struct {\n        VL_IN8(clk,0,0);\n        VL_OUT16(led,15,0);\n        CData/*0:0*/ a;\n        CData/*0:0*/ b;\n        CData/*0:0*/ __Vtrigrprev__TOP__clk;\n    };\n    VlTriggerVec<1> __VactTriggered;\n    VlTriggerVec<1> __VnbaTriggered;\n\n    // INTERNAL VARIABLES\n    Vboard__Syms* const vlSymsp;\n};\n";
-/// let eval = "void Vboard___024root___eval_triggers__act(Vboard___024root* vlSelf) {\n    vlSelf->__VactTriggered.at(0U) = ((IData)(vlSelf->clk) & (~ (IData)(vlSelf->__Vtrigrprev__TOP__clk)));\n    vlSelf->__Vtrigrprev__TOP__clk = vlSelf->clk;\n}\n\nvoid Vboard___024root___eval_nba(Vboard___024root* vlSelf) {\n    if (vlSelf->__VnbaTriggered.at(0U)) {\n        vlSelf->led = vlSelf->a;\n        vlSelf->b = (1U & (~ (IData)(vlSelf->b)));\n    }\n}\n\nvoid Vboard___024root___eval(Vboard___024root* vlSelf) {\n    Vboard___024root___eval_triggers__act(vlSelf);\n    Vboard___024root___eval_nba(vlSelf);\n}\n";
-/// let trace = "VL_ATTR_COLD void Vboard___024root__trace_full_sub_0(Vboard___024root* vlSelf, VerilatedVcd::Buffer* bufp) {\n    uint32_t* const oldp VL_ATTR_UNUSED = bufp->oldp(vlSymsp->__Vm_baseCode);\n    bufp->fullSData(oldp+1,(vlSelf->led),16);\n    bufp->fullBit(oldp+2,(vlSelf->a));\n    bufp->fullBit(oldp+3,(vlSelf->b));\n}\n";
+/// let root = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/board/fixtures/small_root.h"));
+/// let eval = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/board/fixtures/small_eval_nba.cpp"));
+/// let trace = include_str!(concat!(env!("CARGO_MANIFEST_DIR"), "/src/board/fixtures/small_trace.cpp"));
 /// let unshown = botsim::board::observed::unshown(root, &[eval], &[trace], "").unwrap();
 /// // `b` toggles and nothing recorded reads it; `a` is never written (a constant).
 /// assert_eq!(unshown, [botsim::board::observed::Unshown { code: 3, width: 1 }]);
@@ -114,7 +114,7 @@ impl Analysis {
         let names = root_members(root)?;
         let mut bodies: HashMap<&str, &str> = HashMap::new();
         for c in code {
-            for (name, body) in super::checks::functions(c) {
+            for (name, body) in functions(c) {
                 bodies.insert(name, body);
             }
         }
@@ -222,7 +222,7 @@ impl Analysis {
             .collect();
         let mut dumps = Vec::new();
         for file in trace {
-            for (name, body) in super::checks::functions(file) {
+            for (name, body) in functions(file) {
                 if !name.starts_with("Vboard___024root__trace_full_sub_") {
                     continue;
                 }
@@ -364,7 +364,7 @@ fn root_members(header: &str) -> Result<Vec<String>, String> {
     let start = header.find("class Vboard___024root").ok_or("Verilator's root class was not found")?;
     let mut out = Vec::new();
     for line in header[start..].lines().skip(1) {
-        let code = super::checks::strip_comments(line);
+        let code = strip_comments(line);
         let code = code.trim();
         if code.starts_with("// INTERNAL VARIABLES") || line.contains("INTERNAL VARIABLES") {
             break;
@@ -989,14 +989,12 @@ impl<'a> Parser<'a, '_> {
 mod tests {
     use super::*;
 
-    const ROOT: &str = "class Vboard___024root final : public VerilatedModule {\n  public:\n    struct {\n        VL_IN8(clk,0,0);\n        VL_OUT8(an,7,0);\n        VL_OUT8(vga_r,3,0);\n        CData/*0:0*/ q25;\n        CData/*0:0*/ __Vtrigrprev__TOP__clk;\n        CData/*0:0*/ __Vtrigrprev__TOP__q25;\n        SData/*9:0*/ col;\n        CData/*7:0*/ digit;\n        CData/*0:0*/ en;\n        CData/*7:0*/ frames;\n        QData/*63:0*/ cpu;\n        VlUnpacked<CData/*1:0*/, 16> cells;\n    };\n    VlTriggerVec<2> __VactTriggered;\n    VlTriggerVec<2> __VnbaTriggered;\n\n    // INTERNAL VARIABLES\n    Vboard__Syms* const vlSymsp;\n};\n";
+    const ROOT: &str = include_str!("fixtures/vga_root.h");
 
     /// A board: the display from a counter on the system clock, a VGA column counter and pixel
     /// on a second clock; `extra` is added to the system clock's function.
     fn code(extra: &str) -> String {
-        format!(
-            "void Vboard___024root___eval_triggers__act(Vboard___024root* vlSelf) {{\n    vlSelf->__VactTriggered.at(0U) = ((IData)(vlSelf->clk) & (~ (IData)(vlSelf->__Vtrigrprev__TOP__clk)));\n    vlSelf->__VactTriggered.at(1U) = ((IData)(vlSelf->q25) & (~ (IData)(vlSelf->__Vtrigrprev__TOP__q25)));\n    vlSelf->__Vtrigrprev__TOP__clk = vlSelf->clk;\n    vlSelf->__Vtrigrprev__TOP__q25 = vlSelf->q25;\n}}\n\nVL_INLINE_OPT void Vboard___024root___nba_sequent__TOP__0(Vboard___024root* vlSelf) {{\n    // Init\n    QData/*63:0*/ __Vfunc_tick__1__Vfuncout;\n    __Vfunc_tick__1__Vfuncout = 0;\n    // Body\n    Vboard___024root____Vdpiimwrap_tick_TOP(vlSelf->cpu, (IData)(vlSelf->en), __Vfunc_tick__1__Vfuncout);\n    vlSelf->digit = (0xffU & (IData)(__Vfunc_tick__1__Vfuncout));\n    vlSelf->an = vlSelf->digit;\n{extra}}}\n\nVL_INLINE_OPT void Vboard___024root___nba_sequent__TOP__1(Vboard___024root* vlSelf) {{\n    if ((0x31fU == (IData)(vlSelf->col))) {{\n        vlSelf->col = 0U;\n    }} else {{\n        vlSelf->col = (0x3ffU & ((IData)(1U) + (IData)(vlSelf->col)));\n    }}\n    vlSelf->vga_r = vlSelf->cells[(0xfU & (IData)(vlSelf->col))];\n}}\n\nvoid Vboard___024root___eval_nba(Vboard___024root* vlSelf) {{\n    if (vlSelf->__VnbaTriggered.at(0U)) {{\n        Vboard___024root___nba_sequent__TOP__0(vlSelf);\n    }}\n    if (vlSelf->__VnbaTriggered.at(1U)) {{\n        Vboard___024root___nba_sequent__TOP__1(vlSelf);\n    }}\n}}\n\nvoid Vboard___024root___eval(Vboard___024root* vlSelf) {{\n    // Init\n    CData/*0:0*/ __VnbaContinue;\n    // Body\n    __VnbaContinue = 1U;\n    while (__VnbaContinue) {{\n        __VnbaContinue = 0U;\n        vlSelf->__VnbaTriggered.clear();\n        vlSelf->__VactIterCount = 0U;\n        Vboard___024root___eval_triggers__act(vlSelf);\n        if (vlSelf->__VactTriggered.any()) {{\n            vlSelf->__VnbaTriggered.set(vlSelf->__VactTriggered);\n        }}\n        if (vlSelf->__VnbaTriggered.any()) {{\n            Vboard___024root___eval_nba(vlSelf);\n        }}\n    }}\n}}\n"
-        )
+        include_str!("fixtures/vga_board.cpp").replace("    // extra\n", extra)
     }
 
     fn observed(extra: &str) -> Vec<String> {
@@ -1055,7 +1053,7 @@ mod tests {
     fn a_waveform_shows_what_is_observed_or_never_written() {
         // The test board's waveform: the display, the VGA pixel, the pixel clock (written by
         // the harness: public), a cell of the map (never written), one value through a local.
-        let trace = "VL_ATTR_COLD void Vboard___024root__trace_full_sub_0(Vboard___024root* vlSelf, VerilatedVcd::Buffer* bufp) {\n    uint32_t* const oldp VL_ATTR_UNUSED = bufp->oldp(vlSymsp->__Vm_baseCode);\n    VlWide<3>/*95:0*/ __Vtemp_1;\n    bufp->fullCData(oldp+1,(vlSelf->an),8);\n    bufp->fullCData(oldp+2,(vlSelf->vga_r),4);\n    bufp->fullBit(oldp+3,(vlSelf->q25));\n    bufp->fullCData(oldp+4,(vlSelf->cells[3]),2);\n    __Vtemp_1[0U] = vlSelf->col;\n    bufp->fullWData(oldp+5,(__Vtemp_1),96);\n    bufp->fullCData(oldp+6,(vlSelf->frames),8);\n}\n";
+        let trace = include_str!("fixtures/vga_trace.cpp");
         let syms = "        __Vscope_top__clkgen.varInsert(__Vfinal,\"q\", &(TOP.q25), false, VLVT_UINT8,VLVD_NODIR|VLVF_PUB_RW,0);\n";
         let codes = |syms: &str| -> Vec<u32> {
             unshown(ROOT, &[&code("")], &[trace], syms).unwrap().iter().map(|u| u.code).collect()

@@ -1,0 +1,336 @@
+//! Everything before the board runs: the arguments checked (each bad one is one line
+//! before anything is built), the repository resolved into a design and a plan (each
+//! decision said), the design built.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use botsim::board::build::{build, BotKind, Built, CpuModel};
+use botsim::board::iss::{Host, TraceRequest};
+use botsim::files::check_writable;
+use botsim::firmware::{SOURCE, SOURCE_PATH};
+use botsim::kcpsm6::loader;
+use botsim::kcpsm6::source::SourceMap;
+use botsim::{Firmware, World};
+use botsim_core::board::ip::ClockSpec;
+use botsim_core::board::plan::{Plan, Request};
+use botsim_core::board::resolve::{resolve, Options};
+use botsim_core::board::stimulus::{parse_press, parse_time, Stimulus};
+use botsim_core::debug::{BreakSpec, Breaks};
+
+use super::breaks::{breakpoints, parse_mark, Mark};
+use super::{parse_size, Args, BotArg, CpuArg, LONG_RUN_S};
+
+/// A design ready to run, with what the arguments asked for.
+pub struct Prepared {
+    /// The inputs over time (--stimulus, --press, --switches).
+    pub stimulus: Stimulus,
+    /// Where a waveform opens and closes.
+    pub vcd_from: Mark,
+    pub vcd_to: Option<Mark>,
+    pub world: World,
+    pub fw: Firmware,
+    pub plan: Plan,
+    /// The top's --param values.
+    pub params: Vec<(String, String)>,
+    /// Each CPU's program source, by instance path, where it is known.
+    pub maps: BTreeMap<String, SourceMap>,
+    pub cpu_breaks: BTreeMap<String, Breaks>,
+    pub bot_breaks: Vec<BreakSpec>,
+    /// What runs the KCPSM6s and the bot of the board that is run (with --cpu lockstep, the
+    /// RTL board; `bot` is then the ISS board's).
+    pub cpu: CpuModel,
+    pub main_bot: BotKind,
+    pub bot: BotKind,
+    pub lockstep: bool,
+    /// --cpu-trace's folder and window.
+    cpu_trace: Option<PathBuf>,
+    trace_window: (u64, u64),
+    pub built: Built,
+    /// The lock-step's ISS board.
+    pub twin: Option<Built>,
+}
+
+impl Prepared {
+    /// A host of the models for a board of `cpu` and `bot` (each board needs its own).
+    pub fn host(&self, cpu: CpuModel, bot: BotKind) -> Result<Option<Box<Host>>, String> {
+        let plan = &self.plan;
+        let mut h = match cpu {
+            // The RTL board's host only writes debug text.
+            CpuModel::Rtl => Host::new(Vec::new(), false),
+            _ => {
+                let mut h = Host::for_plan(plan, self.lockstep).map_err(|e| e.to_string())?;
+                if let (Some(dir), CpuModel::Iss) = (&self.cpu_trace, cpu) {
+                    h.trace(TraceRequest { dir: dir.clone(), window: self.trace_window, sources: self.maps.clone() });
+                }
+                if cpu == CpuModel::Iss {
+                    h.break_at(self.cpu_breaks.clone());
+                }
+                h
+            }
+        };
+        // The bot's firmware: the plan always has a bot_pgm (the user's, or botsim's).
+        if let (BotKind::Model, Some(r)) = (bot, plan.roms.iter().find(|r| r.module == "bot_pgm")) {
+            h.model_bot(r.image.clone(), self.world.clone());
+        }
+        Ok(Some(h))
+    }
+
+    /// The main board's host.
+    pub fn main_host(&self) -> Result<Option<Box<Host>>, String> {
+        self.host(self.cpu, self.main_bot)
+    }
+}
+
+/// Check the arguments, find the design, plan it and build it.
+pub fn prepare(a: &Args) -> Result<Prepared, String> {
+    // Arguments first: every bad one is one line before anything is built.
+    let mut stimulus = match &a.stimulus {
+        Some(f) => {
+            let text = std::fs::read_to_string(f).map_err(|e| format!("{}: error: cannot read: {e}", f.display()))?;
+            Stimulus::parse(f, &text).map_err(|e| e.to_string())?
+        }
+        None => Stimulus::default(),
+    };
+    for p in &a.press {
+        stimulus.presses.push(parse_press(p)?);
+    }
+    if let Some(h) = &a.switches {
+        stimulus.initial_switches = u16::from_str_radix(h.trim_start_matches("0x"), 16)
+            .map_err(|_| format!("--switches {h}: expected up to four hexadecimal digits"))?;
+    }
+    let vcd_from = a.trace_from.as_deref().map(|m| parse_mark(m, "trace-from")).transpose()?.unwrap_or(Mark::Time(0));
+    let vcd_to = a.trace_to.as_deref().map(|m| parse_mark(m, "trace-to")).transpose()?;
+    match (vcd_from, vcd_to) {
+        (Mark::Sample(f), Some(Mark::Sample(t))) if t < f => return Err("--trace-to: before --trace-from".into()),
+        (Mark::Time(f), Some(Mark::Time(t))) if t <= f => return Err("--trace-to: before --trace-from".into()),
+        _ => {}
+    }
+    let params = a
+        .param
+        .iter()
+        .map(|p| {
+            p.split_once('=')
+                .filter(|(n, v)| !n.is_empty() && !v.is_empty())
+                .map(|(n, v)| (n.to_string(), v.to_string()))
+                .ok_or_else(|| format!("--param {p}: expected NAME=VALUE"))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    if let Some(s) = a.seconds {
+        if !s.is_finite() || s <= 0.0 {
+            return Err(format!("--seconds {s}: expected a positive number of seconds of board time"));
+        }
+        if s > LONG_RUN_S && !a.long {
+            return Err(format!(
+                "--seconds {s}: more than {LONG_RUN_S} s of board time takes about as long to simulate, or longer; add --long to run it"
+            ));
+        }
+    }
+    if let Some(max) = &a.vcd_max {
+        parse_size(max).map_err(|e| format!("--vcd-max {max}: {e}"))?;
+    }
+    let world = match &a.map {
+        Some(p) => World::load(p).map_err(|d| d.to_string())?,
+        None => World::builtin(),
+    };
+    let fw = a.firmware.firmware();
+    let bot_firmware = fw.assemble().map_err(|d| d.to_string())?;
+    let mut programs = Vec::new();
+    for p in &a.program {
+        let img = loader::load(p, &botsim::kcpsm6::asm::Options::default()).map_err(|d| d.to_string())?;
+        programs.push((p.clone(), img));
+    }
+    for p in [&a.trace_csv, &a.trace_json, &a.png, &a.display, &a.pins, &a.vcd, &a.design_log].into_iter().flatten() {
+        check_writable(p)?;
+    }
+    if let Some(d) = &a.frames {
+        std::fs::create_dir_all(d).map_err(|e| format!("{}: error: cannot create the folder: {e}", d.display()))?;
+        check_writable(&d.join("frame.png"))?;
+    }
+
+    // Find the design, plan and build.
+    let clocks = a.clock.iter().map(|c| ClockSpec::parse(c)).collect::<Result<Vec<_>, _>>()?;
+    let options = Options {
+        top: a.top.clone(),
+        prefer: a.prefer.clone(),
+        exclude: a.exclude.clone(),
+        clocks,
+        stubs: a.stub.clone(),
+        include_dirs: a.include.clone(),
+    };
+    let design = resolve(&a.sources, &options).map_err(|e| e.to_string())?;
+    let req = Request { programs, bot_firmware, force_own_firmware: a.firmware.any() };
+    let mut plan = Plan::new(&design, &req).map_err(|e| e.to_string())?;
+    // Every --param names a parameter of the top.
+    if let Some((src, top)) = design.sources.iter().find_map(|s| s.module(&design.top).map(|m| (s, m))) {
+        if let Some((name, _)) = params.iter().find(|(n, _)| !top.params.contains(n)) {
+            let has = if top.params.is_empty() { "none".to_string() } else { top.params.join(", ") };
+            return Err(format!(
+                "--param {name}: the top `{}` ({}:{}) has no parameter {name} (its parameters: {has})",
+                top.name,
+                src.path.display(),
+                top.line
+            ));
+        }
+    }
+    plan.replaced.extend(design.generated.iter().cloned());
+    if let Some(p) = &design.project {
+        a.say(format!("botsim board: the project {}", p.display()));
+    }
+    for n in &design.notes {
+        a.say(format!("note: {n}"));
+    }
+    a.say(format!("botsim board: top `{}`, bot at `{}.{}`", plan.top, plan.top, plan.bot_path));
+    for r in &plan.replaced {
+        let from = if r.from.is_empty() { String::new() } else { format!(" ({})", r.from) };
+        a.say(format!("  replaced {}{from} with {}", r.module, r.with));
+    }
+    for w in &plan.warnings {
+        a.say(format!("warning: {w}"));
+    }
+    if !plan.unknown_pins.is_empty() {
+        a.say(format!("  ports with no board pin (inputs held low, outputs open): {}", plan.unknown_pins.join(", ")));
+    }
+    let trace_window = (
+        a.cpu_trace_from
+            .as_deref()
+            .map(parse_time)
+            .transpose()
+            .map_err(|e| format!("--cpu-trace-from: {e}"))?
+            .unwrap_or(0),
+        a.cpu_trace_to
+            .as_deref()
+            .map(parse_time)
+            .transpose()
+            .map_err(|e| format!("--cpu-trace-to: {e}"))?
+            .unwrap_or(u64::MAX),
+    );
+    if let Some(d) = &a.cpu_trace {
+        std::fs::create_dir_all(d).map_err(|e| format!("{}: error: cannot create the folder: {e}", d.display()))?;
+        check_writable(&d.join("cpu.trace.txt"))?;
+    }
+    let cpu_arg = a.cpu.unwrap_or(CpuArg::Iss);
+    let cpu = match cpu_arg {
+        // The trace comes from the ISS, which equals the RTL core at every port.
+        CpuArg::Rtl if a.cpu_trace.is_some() || !a.breaks.is_empty() => {
+            a.say("note: --cpu-trace and --break run the KCPSM6s on the ISS (--cpu iss: the same results, cycle for cycle)".into());
+            CpuModel::Iss
+        }
+        CpuArg::Rtl => CpuModel::Rtl,
+        CpuArg::Iss => CpuModel::Iss,
+        CpuArg::Lockstep => CpuModel::RtlProbed,
+    };
+    // The source of each CPU's program: the .psm given with --program or found beside its
+    // ROM (the plan knows), botsim's firmware; otherwise none (the trace shows disassembly).
+    let sources = |plan: &Plan| -> BTreeMap<String, SourceMap> {
+        let mut out = BTreeMap::new();
+        for site in &plan.cpus {
+            let Ok(rom) = &site.rom else { continue };
+            let Some(r) = plan.roms.iter().find(|r| &r.module == rom) else { continue };
+            let map = if let Some(p) = &r.source {
+                match botsim::kcpsm6::asm::assemble_file(p, &Default::default()) {
+                    Ok(prog) => SourceMap::of(&prog),
+                    Err(_) => continue,
+                }
+            } else if rom == "bot_pgm" && r.origin.starts_with("botsim's firmware") {
+                match fw.program(0) {
+                    Ok(prog) => SourceMap::of_source(&prog, Path::new(SOURCE_PATH), SOURCE),
+                    Err(_) => continue,
+                }
+            } else {
+                continue;
+            };
+            out.insert(site.path.clone(), map);
+        }
+        out
+    };
+    let lockstep = cpu_arg == CpuArg::Lockstep;
+    if lockstep && a.bench {
+        return Err("--bench measures one board: --cpu rtl or iss".into());
+    }
+    // Assembled once: the breakpoints, the traces, the stop message and the save file use it.
+    let maps = sources(&plan);
+    let (cpu_breaks, bot_breaks) = breakpoints(&a.breaks, &plan, &maps)?;
+    // The models' programs are known before anything is built.
+    let looks_inside = a.cpu_trace.is_some() || !a.breaks.is_empty();
+    let bot = match (a.bot, cpu_arg) {
+        (Some(BotArg::Model), _) => BotKind::Model,
+        (None, CpuArg::Iss | CpuArg::Lockstep) if !looks_inside => BotKind::Model,
+        _ => BotKind::Rtl,
+    };
+    // The lock-step's RTL board is all RTL; --bot applies to its ISS board.
+    let main_bot = if lockstep { BotKind::Rtl } else { bot };
+    // The models' hosts can be made (every KCPSM6 has its program) before anything is built.
+    if cpu != CpuModel::Rtl {
+        Host::for_plan(&plan, lockstep).map_err(|e| e.to_string())?;
+    }
+    let debug = a.vcd.is_some();
+    let built = build(&plan, &params, cpu, main_bot, debug, a.quiet || a.json).map_err(|e| e.to_string())?;
+    match built.seconds {
+        Some(s) => {
+            a.say(format!("  built in {s:.1} s with Verilator {} ({})", built.verilator, built.library.display()))
+        }
+        None => a.say(format!("  reused the build in {}", built.library.parent().unwrap_or(&built.library).display())),
+    }
+    if let Some(at) = &built.delays {
+        a.say(format!(
+            "note: {at}: the design has delays (#): botsim simulates them as written (Vivado's synthesis ignores them), evaluating every clock edge"
+        ));
+    }
+    for (code, n, first) in &built.warnings {
+        match leniency(code) {
+            Some(what) => {
+                let at = first.split(": ").next().unwrap_or(first);
+                let more = if *n > 1 { format!(" (and {} more)", n - 1) } else { String::new() };
+                a.say(format!("note: {at}: {what}{more}"));
+            }
+            None => a.say(format!("  verilator warning {code} ({n}x), first: {first}")),
+        }
+    }
+
+    let twin = if lockstep {
+        let b = build(&plan, &params, CpuModel::Iss, bot, false, a.quiet || a.json).map_err(|e| e.to_string())?;
+        match b.seconds {
+            Some(s) => a.say(format!("  built the ISS board in {s:.1} s")),
+            None => a.say("  reused the ISS board's build".into()),
+        }
+        Some(b)
+    } else {
+        None
+    };
+    let prepared = Prepared {
+        stimulus,
+        vcd_from,
+        vcd_to,
+        world,
+        fw,
+        plan,
+        params,
+        maps,
+        cpu_breaks,
+        bot_breaks,
+        cpu,
+        main_bot,
+        bot,
+        lockstep,
+        cpu_trace: a.cpu_trace.clone(),
+        trace_window,
+        built,
+        twin,
+    };
+    Ok(prepared)
+}
+
+/// What a Verilator finding that Vivado accepts means for the simulation, for the codes the
+/// build waives (`VERILATOR_FLAGS` in src/board/build.rs).
+fn leniency(code: &str) -> Option<&'static str> {
+    match code {
+        "BLKANDNBLK" => Some(
+            "a variable is given both blocking and non-blocking assignments; Vivado builds it, and botsim simulates each assignment as written",
+        ),
+        "MULTIDRIVEN" => Some(
+            "a signal has more than one driver (Vivado reports it too); botsim simulates the drivers as written, so what the signal shows depends on which ran last",
+        ),
+        _ => None,
+    }
+}

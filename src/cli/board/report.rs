@@ -1,0 +1,88 @@
+//! What a run leaves: its output files and its summary (a line, or JSON).
+
+use botsim::files::write_atomic;
+use botsim::render::{path_picture, PathStyle};
+
+use super::breaks::Stopped;
+use super::prepare::Prepared;
+use super::session::{at_line_end, Outcome};
+use super::Args;
+use crate::cli::run::{csv_row, CSV_HEADER};
+
+/// Write the outputs the arguments ask for and say how the run went.
+pub fn report(a: &Args, p: &Prepared, o: Outcome) -> Result<Stopped, String> {
+    if let Some(f) = &a.trace_csv {
+        let mut csv = format!("{CSV_HEADER}\n");
+        for s in &o.rec.snapshots {
+            csv.push_str(&csv_row(s));
+        }
+        write_atomic(f, csv.as_bytes())?;
+    }
+    if let Some(f) = &a.trace_json {
+        write_atomic(f, o.rec.json.as_bytes())?;
+    }
+    if let Some(f) = &a.pins {
+        write_atomic(f, o.rec.pins_csv.as_bytes())?;
+    }
+    if let Some(f) = &a.display {
+        write_atomic(f, o.rec.display_log.as_bytes())?;
+    }
+    if let Some(f) = &a.png {
+        let picture = path_picture(&p.world, &o.rec.snapshots, p.fw.threshold, &PathStyle::default());
+        write_atomic(f, &picture)?;
+    }
+    let last_display = o.rec.display.lines().last().map(|l| l.text.clone()).unwrap_or_default();
+    let end = o.rec.snapshots.last().map(|s| (s.regs.loc_x, s.regs.loc_y));
+    // Moves the world refused (the destination was an obstruction): the samples with the event.
+    let blocked: Vec<u64> =
+        o.rec.snapshots.windows(2).filter(|w| w[0].move_refused(&w[1], p.fw.threshold)).map(|w| w[0].sample).collect();
+    if a.finding {
+        // The run that writes the waveform and the traces says it all.
+    } else if a.json {
+        let v = serde_json::json!({
+            "top": p.plan.top,
+            "simulated_seconds": o.sim_ps as f64 / 1e12,
+            "stopped_by": o.stopped_by,
+            "samples": o.rec.snapshots.len(),
+            "end": o.rec.snapshots.last().map(|s| serde_json::json!({
+                "loc_x": s.regs.loc_x, "loc_y": s.regs.loc_y, "sensors": s.regs.sensors,
+                "orientation": s.orientation().name(), "movement": s.movement().name(),
+                // Stopped on the line with a wall straight ahead: the end of a course.
+                "at_line_end": at_line_end(s),
+            })),
+            "blocked_moves": blocked.len(),
+            "first_blocked_sample": blocked.first(),
+            "display": last_display,
+            "leds": o.rec.last_led,
+            "vga_frames": o.rec.frames_seen,
+            "vga_frames_written": o.rec.frames_written,
+            "vga_unknown_frames": o.rec.vga.unknown,
+            "vcd_x_signals": o.vcd_x_signals,
+            "evaluations": o.evaluations,
+            "wall_seconds": o.wall_seconds,
+            "build_seconds": p.built.seconds,
+            "verilator": p.built.verilator,
+            "cpu_traces": o.traces,
+            "design_lines": o.design_lines,
+            "fast_forward": {"skips": o.skips, "skipped_seconds": o.skipped_ps as f64 / 1e12, "off_because": o.fast_forward_off},
+            "break": o.stopped.as_ref().map(|s| serde_json::json!({"time_ps": s.time_ps, "what": s.message})),
+        });
+        println!("{v}");
+    } else if !a.quiet {
+        let end = end.map_or("no sample yet".to_string(), |(x, y)| format!("({x}, {y})"));
+        println!(
+            "simulated {:.3} s in {:.1} s: {} samples, the bot ended at {end}, the display showed \"{last_display}\", LEDs {:016b}",
+            o.sim_ps as f64 / 1e12,
+            o.wall_seconds,
+            o.rec.snapshots.len(),
+            o.rec.last_led
+        );
+        if o.skips > 0 {
+            println!("  fast-forwarded {:.3} s of it in {} skips", o.skipped_ps as f64 / 1e12, o.skips);
+        }
+        for t in &o.traces {
+            println!("  wrote {}", t.display());
+        }
+    }
+    Ok(o.stopped)
+}

@@ -1,0 +1,558 @@
+//! A run of the board: the model loaded (or the RTL and ISS boards in lock-step), driven
+//! to its end through the inputs over time and the waveform's window, and what it shows
+//! recorded ([`Records`]): the display, the LEDs, the bot's samples, the VGA frames.
+
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use botsim::board::build::{BotKind, CpuModel};
+use botsim::board::iss::Host;
+use botsim::board::lockstep::Lockstep;
+use botsim::board::model::{BoardModel, Event, FastForward, Printing, RawEvent, Stop};
+use botsim::files::write_atomic;
+use botsim::{Snapshot, World};
+use botsim_core::board::display::Display;
+use botsim_core::board::plan::Rom;
+use botsim_core::board::vga::Capture;
+use botsim_core::board::wrapper;
+use botsim_core::debug::{describe_pc, sample_state};
+
+use super::breaks::{save_file_view, write_save_file, BreakStop, Mark};
+use super::prepare::Prepared;
+use super::progress::Progress;
+use super::{parse_size, Args, VCD_MAX};
+use crate::cli::run::json_row;
+
+/// How many lines of the design's own printing standard error shows.
+const DESIGN_LINES: u64 = 200;
+
+/// The most board time one call into the model covers: between two calls the run checks
+/// Ctrl-C, the waveform's size and its progress line.
+const CHUNK_PS: u64 = 50_000_000_000;
+
+/// How long a run counted in samples (--samples without --seconds) waits for the bot's next
+/// sample: 1 s of board time, about 19 samples at hw timing.
+const NO_SAMPLE_PS: u64 = 1_000_000_000_000;
+
+/// A row of --pins: the time and the display's and the LEDs' pins after a change.
+fn pins_row(time_ps: u64, (an, seg, dp, led): (u8, u8, u8, u16)) -> String {
+    format!("{time_ps},{an:02X},{seg:02X},{dp},{led:04X}\n")
+}
+
+/// Models created by this process (their temporary files' names).
+static LOADS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+
+/// What a run recorded of the board, event by event.
+pub struct Records {
+    /// The seven-segment display as a person sees it.
+    pub display: Display,
+    /// `--display`: the display's and the LEDs' changes, a line each.
+    pub display_log: String,
+    /// `--pins`: every change of the display's and the LEDs' pins.
+    pub pins_csv: String,
+    pins_now: (u8, u8, u8, u16),
+    pub last_led: u16,
+    /// The bot's samples, and their JSON lines (`--trace-json`).
+    pub snapshots: Vec<Snapshot>,
+    pub json: String,
+    pub last_sample_ps: u64,
+    /// The VGA output (with `frames`, its frames are written there).
+    pub vga: Capture,
+    frames: Option<PathBuf>,
+    frame_every: u64,
+    pub frames_seen: u64,
+    pub frames_written: u64,
+}
+
+impl Records {
+    pub fn new(frames: Option<PathBuf>, frame_every: u64) -> Records {
+        Records {
+            display: Display::default(),
+            display_log: String::new(),
+            pins_csv: String::from("time_ps,an,seg,dp,led\n"),
+            pins_now: (0xFF, 0x7F, 1, 0),
+            last_led: 0,
+            snapshots: Vec::new(),
+            json: String::new(),
+            last_sample_ps: 0,
+            vga: Capture::default(),
+            frames,
+            frame_every: frame_every.max(1),
+            frames_seen: 0,
+            frames_written: 0,
+        }
+    }
+
+    /// Record one event of the board.
+    pub fn event(&mut self, e: Event) {
+        match e {
+            Event::Display { time_ps, an, seg, dp } => {
+                self.pins_now = (an, seg, dp as u8, self.pins_now.3);
+                self.pins_csv.push_str(&pins_row(time_ps, self.pins_now));
+                let before = self.display.lines().len();
+                self.display.pins(time_ps, an, seg, dp);
+                for l in &self.display.lines()[before..] {
+                    self.display_log.push_str(&format!("{:>12.3} ms  display {}\n", l.time_ps as f64 / 1e9, l.text));
+                }
+            }
+            Event::Leds { time_ps, leds } => {
+                self.pins_now.3 = leds;
+                self.pins_csv.push_str(&pins_row(time_ps, self.pins_now));
+                self.last_led = leds;
+                self.display_log.push_str(&format!("{:>12.3} ms  leds    {leds:016b}\n", time_ps as f64 / 1e9));
+            }
+            Event::Sample { time_ps, snapshot, motctl } => {
+                self.last_sample_ps = time_ps;
+                self.json.push_str(&json_row(&snapshot, motctl));
+                self.snapshots.push(snapshot);
+            }
+            Event::Vga { time_ps, pins } => self.vga.pins(time_ps, pins),
+            // Recorded for the lock-step's comparison only.
+            Event::Bot { .. } => {}
+        }
+    }
+
+    /// Write the VGA frames completed so far (every `frame_every`-th).
+    pub fn write_frames(&mut self) -> Result<(), String> {
+        let Some(dir) = &self.frames else { return Ok(()) };
+        for f in self.vga.take() {
+            if self.frames_seen % self.frame_every == 0 {
+                write_atomic(&dir.join(format!("frame_{:05}.png", self.frames_seen)), &f.png())?;
+                self.frames_written += 1;
+            }
+            self.frames_seen += 1;
+        }
+        Ok(())
+    }
+}
+
+/// How a run ended, and what it recorded.
+pub struct Outcome {
+    pub rec: Records,
+    /// What stopped it: time, samples, line-end, blocked, break, finish, interrupt.
+    pub stopped_by: &'static str,
+    /// The breakpoint that stopped it.
+    pub stopped: Option<BreakStop>,
+    pub wall_seconds: f64,
+    pub sim_ps: u64,
+    /// The fast-forward: how many skips, how much board time they covered, and why a run
+    /// that could skip did not.
+    pub skips: u64,
+    pub skipped_ps: u64,
+    pub fast_forward_off: Option<String>,
+    pub evaluations: u64,
+    pub vcd_x_signals: usize,
+    pub traces: Vec<PathBuf>,
+    pub design_lines: u64,
+}
+
+/// Run the prepared board as the arguments say.
+pub fn simulate(a: &Args, p: &Prepared) -> Result<Outcome, String> {
+    let printing = Printing { log: a.design_log.clone(), lines: if a.quiet { 0 } else { DESIGN_LINES } };
+    let mut first = load(&p.built.library, &p.world, &p.plan.roms, p.main_host()?, &printing)?;
+    if a.every_edge {
+        first.every_edge();
+    }
+    let mut model = match &p.twin {
+        Some(b) => {
+            let mut iss = load(&b.library, &p.world, &p.plan.roms, p.host(CpuModel::Iss, p.bot)?, &Printing::SILENT)?;
+            if a.every_edge {
+                iss.every_edge();
+            }
+            Sim::Pair(Box::new(Lockstep::new(first, iss)))
+        }
+        None => Sim::One(Box::new(first)),
+    };
+    // The waveform: open from the start, or at its --trace-from mark.
+    let (mut vcd_open, mut vcd_done, mut vcd_close_at) = (false, a.vcd.is_none(), None);
+    if let (Some(v), Mark::Time(0) | Mark::Sample(0)) = (&a.vcd, p.vcd_from) {
+        model.main().open_vcd(v).map_err(|e| e.to_string())?;
+        vcd_open = true;
+    }
+    model.record_vga(a.frames.is_some());
+    // The fast-forward: every KCPSM6 and the bot are models, and nothing needs every edge
+    // (a waveform turns it off while it is written).
+    let fast_forward = !a.no_fast_forward
+        && p.cpu == CpuModel::Iss
+        && p.main_bot == BotKind::Model
+        && a.frames.is_none()
+        && a.cpu_trace.is_none()
+        && p.cpu_breaks.is_empty();
+    // Why a run that could fast-forward does not (the design, not the options).
+    let mut fast_forward_off: Option<String> = None;
+    if let Sim::One(m) = &mut model {
+        if fast_forward {
+            // A waveform window later shows every variable: compare them all until then. A
+            // board with another clock cannot; unless asked to, it skips as without a
+            // waveform, which then shows what the run did not simulate as x.
+            let mut mode = if a.vcd.is_some() { FastForward::Whole } else { FastForward::Recorded };
+            fast_forward_off = m.fast_forward_blocker().map(str::to_string);
+            let mut on = fast_forward_off.is_none() && m.fast_forward(mode);
+            if !on
+                && fast_forward_off.is_none()
+                && mode == FastForward::Whole
+                && !vcd_open
+                && !a.vcd_all_signals
+                && m.unshown_unknown().is_none()
+            {
+                mode = FastForward::Recorded;
+                on = m.fast_forward(mode);
+                if on {
+                    a.say("note: the waveform shows x for the parts of the design the run does not record (another clock drives them, and they are not simulated before it); --vcd-all-signals simulates every edge to show them".into());
+                }
+            }
+            if fast_forward_off.is_none() && !on {
+                let why = match (mode, m.observed_unknown()) {
+                    (FastForward::Whole, _) => "a waveform later shows every variable".to_string(),
+                    (_, Some(unknown)) => format!("what a run observes of it is not known: {unknown}"),
+                    _ => "one besides the oscillator drives what the run records".to_string(),
+                };
+                fast_forward_off = Some(format!(
+                    "the board has {} clocks, and {why} (the fast-forward needs one clock, or others that drive only what the run does not record)",
+                    m.clocks().len()
+                ));
+            }
+            if let Some(why) = &fast_forward_off {
+                a.say(format!("note: no fast-forward: {why}; every clock edge is simulated"));
+            }
+        } else {
+            m.fast_forward(FastForward::Off);
+        }
+    }
+    let end_ps = match (a.seconds, a.samples) {
+        (Some(s), _) => (s * 1e12) as u64,
+        (None, Some(_)) => u64::MAX,
+        (None, None) => 1_000_000_000_000,
+    };
+    // As botsim run: sample 0 is the dump after reset, --samples N stops after sample N.
+    let sample_limit = a.samples.map_or(u64::MAX, |n| n.saturating_add(1));
+    // Times at which the run stops to change something: the inputs, the waveform window.
+    let mut stops: BTreeSet<u64> = p.stimulus.change_times().into_iter().collect();
+    if a.vcd.is_some() {
+        for m in [Some(p.vcd_from), p.vcd_to].into_iter().flatten() {
+            if let Mark::Time(t) = m {
+                stops.insert(t);
+            }
+        }
+    }
+    let (r, b, sw) = p.stimulus.inputs_at(0);
+    model.set_inputs(r, b, sw);
+
+    let t0 = Instant::now();
+    let vcd_max = a.vcd_max.as_deref().map_or(Ok(VCD_MAX), parse_size)?;
+    let mut progress = Progress::new(!a.quiet && !a.json && !a.finding, end_ps, sample_limit);
+    let mut rec = Records::new(a.frames.clone(), a.frame_every);
+    let mut buf = vec![RawEvent::default(); 4096];
+    let mut at_end = false;
+    let mut blocked_now = false;
+    let mut bot_stop: Option<BreakStop> = None;
+    let counted_in_samples = a.seconds.is_none();
+    // A run repeated to a stop writes its other outputs up to the stop only.
+    let past_stop = |t: u64| a.stopped_at.as_ref().is_some_and(|s| t > s.time_ps);
+    let finished = loop {
+        if crate::cli::interrupted() {
+            break None;
+        }
+        let now = model.main().time_ps();
+        let mut until = stops.range(now + 1..).next().copied().unwrap_or(end_ps).min(end_ps);
+        // A waveform grows fast: its size is looked at more often.
+        until = until.min(now.saturating_add(if vcd_open { CHUNK_PS / 10 } else { CHUNK_PS }));
+        progress.show(now, rec.snapshots.len() as u64);
+        if let (Some(v), true) = (&a.vcd, vcd_open) {
+            let size = std::fs::metadata(v).map_or(0, |m| m.len());
+            if size > vcd_max {
+                drop(model);
+                let _ = std::fs::remove_file(v);
+                return Err(format!(
+                    "{}: the waveform passed {} MB at {:.3} ms of board time and was removed: ask for a window (--trace-from/--trace-to) or allow more (--vcd-max)",
+                    v.display(),
+                    vcd_max >> 20,
+                    now as f64 / 1e9
+                ));
+            }
+        }
+        // A run counted in samples waits for the next one a bounded time.
+        if counted_in_samples {
+            until = until.min(rec.last_sample_ps.saturating_add(NO_SAMPLE_PS));
+        }
+        // A window given in samples: stop after sample s - 1 to open, after sample s to close.
+        let window_limit = match (vcd_done, vcd_open, p.vcd_from, p.vcd_to) {
+            (false, false, Mark::Sample(s), _) => Some(s),
+            (false, true, _, Some(Mark::Sample(s))) if vcd_close_at.is_none() => Some(s + 1),
+            _ => None,
+        };
+        let mut limit = window_limit.map_or(sample_limit, |w| w.min(sample_limit));
+        if a.stop_at_line_end || a.stop_when_blocked || !p.bot_breaks.is_empty() {
+            limit = limit.min(rec.snapshots.len() as u64 + 1);
+        }
+        let (stop, n) = model.run(until, limit, &mut buf)?;
+        for e in buf[..n].iter().filter(|r| !past_stop(r.time_ps())).filter_map(Event::of) {
+            if let Event::Sample { time_ps, snapshot, .. } = &e {
+                let before = rec.snapshots.last();
+                at_end = at_end || (a.stop_at_line_end && at_line_end(snapshot));
+                blocked_now = blocked_now
+                    || (a.stop_when_blocked && before.is_some_and(|b| b.move_refused(snapshot, p.fw.threshold)));
+                if bot_stop.is_none() {
+                    if let Some(b) = p.bot_breaks.iter().find(|b| b.hit(before, snapshot, p.fw.threshold)) {
+                        let at =
+                            sample_state(snapshot).replacen(',', &format!(" at {:.6} ms,", *time_ps as f64 / 1e9), 1);
+                        bot_stop = Some(BreakStop {
+                            time_ps: *time_ps,
+                            bot: true,
+                            message: format!("stopped by --break {}: {at}", b.text),
+                        });
+                    }
+                }
+            }
+            rec.event(e);
+        }
+        rec.write_frames()?;
+        if at_end {
+            break Some("line-end");
+        }
+        if blocked_now {
+            break Some("blocked");
+        }
+        if bot_stop.is_some() {
+            break Some("break");
+        }
+        match stop {
+            Stop::BufferFull => continue,
+            Stop::Samples if rec.snapshots.len() as u64 >= sample_limit => break Some("samples"),
+            // A stop after one more sample, to look for the end of the line.
+            Stop::Samples if !window_limit.is_some_and(|w| rec.snapshots.len() as u64 >= w) => continue,
+            Stop::Samples => {
+                // A window mark in samples.
+                if let (false, Some(v)) = (vcd_open, &a.vcd) {
+                    model.main().open_vcd(v).map_err(|e| e.to_string())?;
+                    vcd_open = true;
+                } else {
+                    // Close with the whole 2-clock pulse in the window (3 clocks of 100 MHz).
+                    let t = model.main().time_ps() + 30_000;
+                    stops.insert(t);
+                    vcd_close_at = Some(t);
+                }
+            }
+            Stop::Finished => break Some("finish"),
+            Stop::Until => {
+                // A CPU the ISS cannot stand for stops the run here, not at its end.
+                model.check()?;
+                let t = model.main().time_ps();
+                if t >= end_ps {
+                    break Some("time");
+                }
+                if counted_in_samples && t >= rec.last_sample_ps.saturating_add(NO_SAMPLE_PS) {
+                    let after = match rec.snapshots.last() {
+                        None => "from the start".to_string(),
+                        Some(s) => format!("after sample {} at {:.3} ms", s.sample, rec.last_sample_ps as f64 / 1e9),
+                    };
+                    return Err(format!(
+                        "no bot sample in {} s of board time {after} (upd_sysregs never pulsed: is the bot held in reset, or its clock stopped?)",
+                        NO_SAMPLE_PS / 1_000_000_000_000
+                    ));
+                }
+                if stops.contains(&t) {
+                    let (r, b, sw) = p.stimulus.inputs_at(t);
+                    model.set_inputs(r, b, sw);
+                    if let Some(v) = &a.vcd {
+                        if !vcd_open && !vcd_done && p.vcd_from == Mark::Time(t) {
+                            model.main().open_vcd(v).map_err(|e| e.to_string())?;
+                            vcd_open = true;
+                        } else if vcd_open && (p.vcd_to == Some(Mark::Time(t)) || vcd_close_at == Some(t)) {
+                            model.main().close_vcd().map_err(|e| e.to_string())?;
+                            (vcd_open, vcd_done) = (false, true);
+                        }
+                    }
+                }
+            }
+        }
+    };
+    let wall = t0.elapsed().as_secs_f64();
+    let (skips, skipped_ps) = model.main().fast_forwarded();
+    let sim_ps = model.main().time_ps();
+    rec.display.settle(sim_ps);
+    model.check()?;
+    let traces = model.finish_traces()?;
+    // A breakpoint in a CPU stops the model like $finish.
+    let cpu_stop = model.hit().map(|h| {
+        let (path, at) = (h.cpu.clone(), describe_pc(p.maps.get(&h.cpu), h.pc));
+        BreakStop {
+            time_ps: h.time_ps,
+            bot: false,
+            message: format!(
+                "stopped by --break {}: {path} at {at} in its cycle {}, at {:.6} ms",
+                h.what,
+                h.cycle,
+                h.time_ps as f64 / 1e9
+            ),
+        }
+    });
+    progress.done();
+    let stopped = cpu_stop.or(bot_stop).or(a.stopped_at.clone());
+    // The design's own printing ends here: botsim's lines start on lines of their own.
+    let (design_lines, mid_line) = model.main().printed();
+    if mid_line {
+        eprintln!();
+    }
+    if let Some(s) = &stopped {
+        if !a.json && !a.finding {
+            eprintln!("{}", s.message);
+        }
+    } else if let Some(f) = model.main().fatal() {
+        let at = format!("{:.6} ms", model.main().time_ps() as f64 / 1e9);
+        if let (Some(v), Some(why)) = (&a.vcd, f.strip_prefix(":0: VerilatedVcd::bufferFlush: ")) {
+            drop(model);
+            let _ = std::fs::remove_file(v);
+            return Err(format!(
+                "{}: the waveform could not be written ({why}) at {at}; the part written was removed",
+                v.display()
+            ));
+        }
+        return Err(design_stopped(&p.built.user_paths(&f), &p.built, &at));
+    }
+    if let (Some(f), false) = (model.main().finish(), a.json || a.quiet || a.finding) {
+        eprintln!(
+            "botsim board: the design called $finish at {} ({:.6} ms)",
+            p.built.user_paths(&f),
+            model.main().time_ps() as f64 / 1e9
+        );
+    }
+    let finished = if stopped.is_some() { Some("break") } else { finished };
+    model.main().close_vcd().map_err(|e| e.to_string())?;
+    if let (Some(v), Some((start, end))) = (&a.vcd, model.main().vcd_span()) {
+        let view = save_file_view(start, end, stopped.as_ref());
+        write_save_file(v, &p.plan, &p.maps, p.cpu == CpuModel::RtlProbed, p.main_bot == BotKind::Model, view)?;
+    }
+    Ok(Outcome {
+        rec,
+        stopped_by: finished.unwrap_or("interrupt"),
+        stopped,
+        wall_seconds: wall,
+        sim_ps,
+        skips,
+        skipped_ps,
+        fast_forward_off,
+        evaluations: model.main().evals(),
+        vcd_x_signals: model.main().vcd_unshown(),
+        traces,
+        design_lines,
+    })
+}
+
+/// The board being run: one model, or the RTL and ISS boards in lock-step.
+enum Sim {
+    One(Box<BoardModel>),
+    Pair(Box<Lockstep>),
+}
+
+impl Sim {
+    fn main(&mut self) -> &mut BoardModel {
+        match self {
+            Sim::One(m) => m,
+            Sim::Pair(p) => &mut p.rtl,
+        }
+    }
+    fn run(&mut self, until: u64, samples: u64, buf: &mut [RawEvent]) -> Result<(Stop, usize), String> {
+        match self {
+            Sim::One(m) => Ok(m.run(until, samples, buf)),
+            Sim::Pair(p) => p.run(until, samples, buf).map_err(|d| d.to_string()),
+        }
+    }
+    fn set_inputs(&mut self, r: bool, b: u8, sw: u16) {
+        match self {
+            Sim::One(m) => m.set_inputs(r, b, sw),
+            Sim::Pair(p) => p.set_inputs(r, b, sw),
+        }
+    }
+    fn record_vga(&mut self, on: bool) {
+        match self {
+            Sim::One(m) => m.record_vga(on),
+            // Both boards' VGA pins are compared.
+            Sim::Pair(p) => {
+                p.rtl.record_vga(true);
+                p.iss.record_vga(true);
+            }
+        }
+    }
+    /// Close the --cpu-trace files (the ISS board's).
+    fn finish_traces(&mut self) -> Result<Vec<PathBuf>, String> {
+        let m = match self {
+            Sim::One(m) => m,
+            Sim::Pair(p) => &mut p.iss,
+        };
+        m.host_mut().map_or(Ok(Vec::new()), Host::finish)
+    }
+    /// The breakpoint that stopped a CPU.
+    fn hit(&self) -> Option<&botsim::board::iss::Hit> {
+        match self {
+            Sim::One(m) => m.host().and_then(Host::hit),
+            Sim::Pair(p) => p.iss.host().and_then(Host::hit),
+        }
+    }
+    /// A model error of a --cpu iss or lockstep run.
+    fn check(&self) -> Result<(), String> {
+        match self {
+            Sim::One(m) => m.host().map_or(Ok(()), Host::check),
+            Sim::Pair(p) => p.check().map_err(|e| e.to_string()),
+        }
+    }
+}
+
+/// The one line that says why a design stopped at `at` from its runtime's message `f` (the
+/// user's paths already in it).
+fn design_stopped(f: &str, built: &botsim::board::build::Built, at: &str) -> String {
+    if f.contains("did not converge") {
+        // Verilator names the loop when it builds the design (UNOPTFLAT).
+        let looped = built.warnings.iter().find(|(code, _, _)| code == "UNOPTFLAT").map(|(_, _, first)| {
+            let place = first.split(": ").next().unwrap_or("");
+            let signal = first.rsplit('\'').nth(1).unwrap_or("").trim_start_matches("botsim_board.user.");
+            format!("{place}: `{signal}` depends on itself (a combinational loop)")
+        });
+        return match looped {
+            Some(l) => format!("{l}: the design never settles, stopped at {at}"),
+            None => format!(
+                "the design never settles (a combinational loop, or an always block with no event), stopped at {at}"
+            ),
+        };
+    }
+    if let Some(file) = f.strip_suffix(":0: $readmem file not found") {
+        return format!("{file}: the design's $readmem cannot read this file (stopped at {at})");
+    }
+    format!("{f} (stopped at {at})")
+}
+
+/// Create the model of a built design on `world` with the programs of `roms` (the files are
+/// read when the model is created, then removed).
+pub fn load(
+    library: &Path,
+    world: &World,
+    roms: &[Rom],
+    host: Option<Box<Host>>,
+    printing: &Printing,
+) -> Result<BoardModel, String> {
+    let dir = std::env::temp_dir();
+    let stem = format!("botsim-{}-{}", std::process::id(), LOADS.fetch_add(1, std::sync::atomic::Ordering::Relaxed));
+    let mut files = vec![(dir.join(format!("{stem}-world.mem")), world.to_mem(), "botsim_world".to_string())];
+    for r in roms {
+        files.push((dir.join(format!("{stem}-{}.mem", r.module)), r.image.to_mem(), wrapper::rom_plusarg(&r.module)));
+    }
+    let mut args = Vec::new();
+    for (path, text, arg) in &files {
+        std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))?;
+        args.push(format!("+{arg}={}", path.display()));
+    }
+    let model = BoardModel::load(library, &args, host, printing);
+    for (path, _, _) in &files {
+        let _ = std::fs::remove_file(path);
+    }
+    model.map_err(|e| e.to_string())
+}
+
+/// Stopped on the line with a wall straight ahead: the end of a course.
+pub fn at_line_end(s: &Snapshot) -> bool {
+    s.sensors().on_line()
+        && s.sensors().prox_left()
+        && s.sensors().prox_right()
+        && s.movement() == botsim::Movement::Stopped
+}

@@ -223,7 +223,10 @@ pub fn build(
     HARNESS.hash(&mut h);
     VERILATOR_FLAGS.hash(&mut h);
     MAKE_VARS.hash(&mut h);
+    // The analyses whose results the harness is compiled with.
     include_str!("observed.rs").hash(&mut h);
+    include_str!("counters.rs").hash(&mut h);
+    include_str!("cpp.rs").hash(&mut h);
     ABI.hash(&mut h);
     PRINT.hash(&mut h);
     DISASM.hash(&mut h);
@@ -365,7 +368,10 @@ pub fn build(
         checked.verdicts.observed = Some(why.clone());
         checked.unshown = Err(why);
     }
-    write("botsim_observed.h", &super::observed::header(&checked.members, checked.triggers_fn.as_deref()))?;
+    write(
+        "botsim_observed.h",
+        &super::observed::header(&checked.members, &checked.counters, checked.triggers_fn.as_deref()),
+    )?;
     let mut make = Command::new("make");
     make.current_dir(tmp.join("obj")).args(["-f", "Vboard.mk", "-j"]).arg(jobs.to_string()).args(MAKE_VARS);
     let out = run_with_budget(&mut make, budget, t0).map_err(fail)?;

@@ -36,6 +36,7 @@
 
 use std::path::Path;
 
+use super::counters::Counter;
 use super::cpp::{function, functions, squeeze, strip_comments};
 use super::observed::{Analysis, Member, Unshown};
 
@@ -91,6 +92,8 @@ pub struct Checked {
     pub verdicts: Verdicts,
     pub members: Result<Vec<Member>, String>,
     pub unshown: Result<Vec<Unshown>, String>,
+    /// The counters the fast-forward moves on by arithmetic (super::counters).
+    pub counters: Vec<Counter>,
     /// The generated function that computes the active triggers alone (its name differs
     /// between Verilator versions), for the harness's rising-edges-only evaluation.
     pub triggers_fn: Option<String>,
@@ -114,6 +117,7 @@ impl Checked {
                 };
                 let falling_edges = falling_edge_blocker(&g).or(level);
                 let trace: Vec<&str> = g.trace.iter().map(String::as_str).collect();
+                let counters = analysis.as_ref().map_or(Vec::new(), |a| a.counters(&g.root, &code, &g.syms));
                 let unshown = analysis.and_then(|a| a.unshown(&g.root, &trace, &g.syms));
                 let verdicts = Verdicts {
                     fast_forward: fast_forward_blocker(&g),
@@ -125,7 +129,7 @@ impl Checked {
                         .into_iter()
                         .find(|f| g.eval.iter().any(|c| function(c, f).is_some()))
                         .map(str::to_string);
-                Checked { verdicts, members, unshown, triggers_fn }
+                Checked { verdicts, members, unshown, counters, triggers_fn }
             }
             None => {
                 let why = "Verilator's output could not be read".to_string();
@@ -134,7 +138,13 @@ impl Checked {
                     falling_edges: Some(why.clone()),
                     observed: Some(why.clone()),
                 };
-                Checked { verdicts, members: Err(why.clone()), unshown: Err(why), triggers_fn: None }
+                Checked {
+                    verdicts,
+                    members: Err(why.clone()),
+                    unshown: Err(why),
+                    counters: Vec::new(),
+                    triggers_fn: None,
+                }
             }
         }
     }

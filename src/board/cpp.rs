@@ -55,3 +55,104 @@ pub fn strip_comments(line: &str) -> String {
     out.push_str(rest.split("//").next().unwrap_or(""));
     out
 }
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// A token of generated C++.
+pub enum Tok<'a> {
+    Id(&'a str),
+    Num(&'a str),
+    Str,
+    P(&'a str),
+}
+
+/// A function body as tokens; comments, strings and `#ifdef VL_DEBUG` blocks dropped.
+pub fn tokens(src: &str) -> Result<Vec<Tok<'_>>, String> {
+    const PUNCT: &[&str] = &[
+        "<<=", ">>=", "->", "::", "<<", ">>", "==", "!=", "<=", ">=", "&&", "||", "|=", "&=", "^=", "+=", "-=", "*=",
+        "/=", "%=", "++", "--",
+    ];
+    let b = src.as_bytes();
+    let mut out = Vec::new();
+    let mut i = 0;
+    let mut line_start = true;
+    while i < b.len() {
+        let c = b[i];
+        if c == b'\n' {
+            line_start = true;
+            i += 1;
+            continue;
+        }
+        if c.is_ascii_whitespace() {
+            i += 1;
+            continue;
+        }
+        if line_start && c == b'#' {
+            // A directive; a debug-only block goes whole.
+            let end = src[i..].find('\n').map_or(b.len(), |e| i + e);
+            let line = src[i..end].trim();
+            i = end;
+            if line.starts_with("#if") {
+                let mut depth = 1;
+                while depth > 0 && i < b.len() {
+                    let next = src[i + 1..].find('\n').map_or(b.len(), |e| i + 1 + e);
+                    let l = src[(i + 1).min(b.len())..next].trim();
+                    if l.starts_with("#if") {
+                        depth += 1;
+                    } else if l.starts_with("#endif") {
+                        depth -= 1;
+                    } else if depth == 1 && l.starts_with("#el") {
+                        return Err(format!("a preprocessor branch in Verilator's output (`{l}`)"));
+                    }
+                    i = next;
+                }
+                if !line.contains("VL_DEBUG") {
+                    return Err(format!("a preprocessor block in Verilator's output (`{line}`)"));
+                }
+            }
+            continue;
+        }
+        line_start = false;
+        if src[i..].starts_with("//") {
+            i = src[i..].find('\n').map_or(b.len(), |e| i + e);
+            continue;
+        }
+        if src[i..].starts_with("/*") {
+            i = src[i + 2..].find("*/").map_or(b.len(), |e| i + 2 + e + 2);
+            continue;
+        }
+        if c == b'"' || c == b'\'' {
+            let mut j = i + 1;
+            while j < b.len() && b[j] != c {
+                j += if b[j] == b'\\' { 2 } else { 1 };
+            }
+            out.push(Tok::Str);
+            i = j + 1;
+            continue;
+        }
+        if c.is_ascii_alphabetic() || c == b'_' {
+            let mut j = i;
+            while j < b.len() && (b[j].is_ascii_alphanumeric() || b[j] == b'_') {
+                j += 1;
+            }
+            out.push(Tok::Id(&src[i..j]));
+            i = j;
+            continue;
+        }
+        if c.is_ascii_digit() {
+            let mut j = i;
+            while j < b.len() && (b[j].is_ascii_alphanumeric() || b[j] == b'.') {
+                j += 1;
+            }
+            out.push(Tok::Num(&src[i..j]));
+            i = j;
+            continue;
+        }
+        let p = PUNCT.iter().find(|p| src[i..].starts_with(**p)).copied().unwrap_or(&src[i..i + 1]);
+        if !p.is_ascii() {
+            return Err("a character the analysis does not know in Verilator's output".into());
+        }
+        out.push(Tok::P(p));
+        i += p.len();
+    }
+    Ok(out)
+}

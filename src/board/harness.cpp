@@ -32,6 +32,17 @@ struct BoardMember {
     size_t off, len;
     bool observed;
 };
+// A counter the fast-forward moves on by arithmetic (src/board/counters.rs): its bytes, its
+// width in bits, whether it counts down, its largest step, the lowest bit a shifted read sees
+// (64: none) and the constants it is compared with.
+struct BoardCounter {
+    size_t off, len;
+    uint32_t bits;
+    bool down;
+    uint64_t step;
+    uint32_t shift;
+    std::vector<uint64_t> consts;
+};
 #include "botsim_observed.h"
 
 // The model's evaluation proper, which Vboard::eval() wraps (Verilator 5's generated name).
@@ -121,6 +132,21 @@ struct Clock {
 
 }  // namespace
 
+// The longest period the fast-forward looks for (2^22 clocks of 100 MHz, 42 ms); how long the
+// models must have been quiet (no interrupt, nothing from or to the bot) before it marks,
+// while the firmware answers (2^14 clocks, 164 us); how long a first mark waits for its
+// period when none is known yet (each later one waits twice as long, up to the longest); how
+// many phase snapshots a period gets at most (each at least the settling time apart).
+constexpr uint64_t kMaxPeriodPs = (1ull << 22) * 10000;
+constexpr uint64_t kSettlePs = (1ull << 14) * 10000;
+constexpr uint64_t kFirstPatiencePs = (1ull << 16) * 10000;
+// After a counter's value became one the design can tell apart (a digit of the display
+// lit, a divider's toggle flipped), the board settles this long before a mark (2^8 clocks),
+// and a mark waits at least this long for its period (2^10 clocks) before another is taken.
+constexpr uint64_t kCounterSettlePs = (1ull << 8) * 10000;
+constexpr uint64_t kShortPatiencePs = (1ull << 10) * 10000;
+constexpr size_t kMaxPhases = 64;
+
 // The fast-forward (a one-clock board whose KCPSM6s are models and whose bot is a model):
 // after a rising edge, when the whole model (every byte of Verilator's state, every KCPSM6
 // model's state but for its cycle count) is as it was at a mark, with nothing written,
@@ -143,15 +169,49 @@ struct Span {
     uint32_t off, len;  // bytes of the root object
 };
 
+// A counter at run time: the values around the mark's in which no read of the design can tell
+// it apart, [lo, lo + width) modulo 2^bits, and how far it moved in the period last found.
+struct Counting {
+    BoardCounter c;
+    uint64_t mask = 0;
+    uint64_t lo = 0, width = 0;
+    uint64_t drift = 0;
+};
+
+// Where a clock is in its period at a moment `t`: its next edges after `t` (the fractions of a
+// picosecond kept), which comes next, and whether it runs. Two moments with every clock where
+// it was differ by whole periods of each.
+struct ClockPhase {
+    uint64_t rise = 0, rise_r = 0, fall = 0, fall_r = 0;
+    bool next_high = false, stopped = false;
+    bool operator==(const ClockPhase& o) const {
+        return stopped == o.stopped &&
+               (stopped || (rise == o.rise && rise_r == o.rise_r && fall == o.fall && fall_r == o.fall_r &&
+                            next_high == o.next_high));
+    }
+};
+inline ClockPhase phase_of(const Clock& c, uint64_t t) {
+    return {c.rise.q - t, c.rise.r, c.fall.q - t, c.fall.r, c.next_high, c.stopped};
+}
+inline void set_phase(Clock& c, const ClockPhase& p, uint64_t t) {
+    c.rise = {t + p.rise, p.rise_r};
+    c.fall = {t + p.fall, p.fall_r};
+    c.next_high = p.next_high;
+    c.stopped = p.stopped;
+    c.next_t = c.next_high ? c.rise.q : c.fall.q;
+}
+
 struct Phase {
     uint64_t at = 0;            // ps after the mark
     std::vector<uint8_t> root;  // Verilator's state then
+    std::vector<ClockPhase> clocks;  // and every clock's
     size_t shown = 0;           // the period's records up to then
 };
 
 struct FastForward {
     bool on = false;
     std::vector<uint8_t> mark;  // Verilator's state at the mark
+    std::vector<ClockPhase> mark_clocks;  // and every clock's
     bool marked = false;
     bool proven = false;        // the mark's period is known, and `shown` holds it
     uint64_t mark_t = 0;        // the mark's time
@@ -170,6 +230,11 @@ struct FastForward {
     size_t nphases = 0;
     uint64_t phase_every = 0;  // ps between snapshots
     uint64_t skips = 0, skipped_ps = 0;
+    // Counters (observed-only runs): compared by what the design can tell of them, moved on
+    // by their drift per period once two periods in a row moved each by the same amount.
+    std::vector<Counting> counters;
+    bool drifting = false;       // the last period moved a counter: the next must move it as far
+    uint64_t settle = 0;         // how long the models stay quiet before a mark
 };
 
 struct Board {
@@ -354,14 +419,29 @@ int board_fast_forward(Board* b, int mode) {
     FastForward& f = b->ff;
     const bool observed = mode == 2 && kObservedKnown;
     f.spans.clear();
+    f.counters.clear();
     if (observed) {
+        std::vector<BoardCounter> cs;
+        botsim_counters(b->top->rootp, cs);
+        for (const BoardCounter& c : cs) {
+            Counting k;
+            k.c = c;
+            k.mask = c.bits >= 64 ? ~0ull : (1ull << c.bits) - 1;
+            f.counters.push_back(k);
+        }
+        auto counter_at = [&](size_t off) {
+            for (const Counting& k : f.counters)
+                if (k.c.off == off) return true;
+            return false;
+        };
         std::vector<BoardMember> ms;
         botsim_members(b->top->rootp, ms);
         std::sort(ms.begin(), ms.end(), [](const BoardMember& x, const BoardMember& y) { return x.off < y.off; });
-        // Observed variables, neighbours merged across padding (no variable between them).
+        // Observed variables, neighbours merged across padding (no variable between them); the
+        // counters apart.
         bool open = false;  // the last span may grow: no unobserved variable since it began
         for (const BoardMember& m : ms) {
-            if (!m.observed) {
+            if (!m.observed || counter_at(m.off)) {
                 open = false;
             } else if (open) {
                 f.spans.back().len = (uint32_t)(m.off + m.len - f.spans.back().off);
@@ -373,21 +453,20 @@ int board_fast_forward(Board* b, int mode) {
     } else {
         f.spans.push_back({0, (uint32_t)sizeof(Vboard___024root)});
     }
-    // A second clock may be left out only if it drives nothing observed.
-    bool clocks_ok = true;
-    for (size_t i = 1; i < b->clocks.size(); i++) {
-        const size_t q = (size_t)((const uint8_t*)b->clocks[i].q - (const uint8_t*)b->top->rootp);
-        clocks_ok &= observed;
-        for (const Span& x : f.spans) clocks_ok &= !(q >= x.off && q < x.off + x.len);
-    }
-    f.on = mode != 0 && b->host && b->host->ff_same && clocks_ok && !f.spans.empty();
+    // Comparing the whole state (for a waveform that opens later) finds a period only on a
+    // one-clock board: a second clock's part (a VGA frame) and the rest repeat together too
+    // rarely; the caller then compares what the run observes.
+    f.on = mode != 0 && b->host && b->host->ff_same && !f.spans.empty() && (observed || b->clocks.size() == 1);
     f.observed_only = observed;
-    // The other clocks drive only what the run does not observe: they are not run at all
-    // (what they drive stays as it is), and the board runs as a one-clock board. A clock
-    // taken back goes on from now.
+    // A clock that drives only what the run does not observe is not run at all (what it
+    // drives stays as it is); the others run, and the fast-forward compares where each is in
+    // its period too. A clock taken back goes on from now.
     for (size_t i = 1; i < b->clocks.size(); i++) {
         Clock& c = b->clocks[i];
-        const bool park = f.on && observed;
+        const size_t q = (size_t)((const uint8_t*)c.q - (const uint8_t*)b->top->rootp);
+        bool seen = !observed;
+        for (const Span& x : f.spans) seen |= q >= x.off && q < x.off + x.len;
+        const bool park = f.on && !seen;
         if (c.parked && !park && !c.stopped) c.schedule_from(b->now + 1);
         c.parked = park;
     }
@@ -396,6 +475,8 @@ int board_fast_forward(Board* b, int mode) {
     f.mark.assign(sizeof(Vboard___024root), 0);
     f.marked = false;
     f.activity = ~0ull;
+    f.drifting = false;
+    f.settle = kSettlePs;
     f.bot_cycles = (size_t)((const uint8_t*)&b->top->rootp->bot_cycles - (const uint8_t*)b->top->rootp);
     return f.on;
 }
@@ -420,15 +501,6 @@ struct Shown {
     uint64_t samples, evals;
 };
 
-// The longest period the fast-forward looks for (2^22 clocks of 100 MHz, 42 ms); how long the
-// models must have been quiet (no interrupt, nothing from or to the bot) before it marks,
-// while the firmware answers (2^14 clocks, 164 us); how long a first mark waits for its
-// period when none is known yet (each later one waits twice as long, up to the longest); how
-// many phase snapshots a period gets at most (each at least the settling time apart).
-constexpr uint64_t kMaxPeriodPs = (1ull << 22) * 10000;
-constexpr uint64_t kSettlePs = (1ull << 14) * 10000;
-constexpr uint64_t kFirstPatiencePs = (1ull << 16) * 10000;
-constexpr size_t kMaxPhases = 64;
 
 // Eight bytes of the root (or its copy, of the same size: a multiple of the cache line).
 inline uint64_t load64(const uint8_t* p) {
@@ -437,10 +509,66 @@ inline uint64_t load64(const uint8_t* p) {
     return v;
 }
 
-// Mark the state the fast-forward compares with.
-void ff_mark(Board* b, uint64_t t) {
+// A counter's value in the root (or a copy of it), and a new one (Verilator keeps the bits
+// above its width zero).
+inline uint64_t counter_value(const uint8_t* root, const Counting& k) {
+    uint64_t v = 0;
+    std::memcpy(&v, root + k.c.off, k.c.len);
+    return v & k.mask;
+}
+inline void set_counter(uint8_t* root, const Counting& k, uint64_t v) {
+    v &= k.mask;
+    std::memcpy(root + k.c.off, &v, k.c.len);
+}
+// `x` moved on by `n` drifts, in the counter's direction.
+inline uint64_t counter_after(const Counting& k, uint64_t x, uint64_t n) {
+    return (k.c.down ? x - n * k.drift : x + n * k.drift) & k.mask;
+}
+
+// The values around `x` that no read of the design tells apart from it: the same bits at and
+// above the lowest shifted read, the same side of every compared constant (and not it), no
+// wrap.
+void counter_interval(Counting& k, uint64_t x) {
+    const BoardCounter& c = k.c;
+    uint64_t below = x, above = k.mask - x;
+    if (c.shift < c.bits) {
+        const uint64_t low = (1ull << c.shift) - 1;
+        below = std::min(below, x & low);
+        above = std::min(above, low - (x & low));
+    }
+    for (uint64_t v : c.consts) {
+        if (v > k.mask) continue;  // never reached
+        if (v == x) {
+            below = above = 0;
+        } else if (v > x) {
+            above = std::min(above, v - x - 1);
+        } else {
+            below = std::min(below, x - v - 1);
+        }
+    }
+    k.lo = x - below;
+    k.width = below + above == ~0ull ? ~0ull : below + above + 1;
+}
+
+// Every counter is still in its interval.
+inline bool counters_inside(const FastForward& f, const uint8_t* root) {
+    for (const Counting& k : f.counters)
+        if (((counter_value(root, k) - k.lo) & k.mask) >= k.width) return false;
+    return true;
+}
+
+// Mark the state the fast-forward compares with. `drifting`: the counters' drifts found in the
+// period that ends here stay, for the next to confirm.
+void ff_mark(Board* b, uint64_t t, bool drifting = false) {
     FastForward& f = b->ff;
     std::memcpy(f.mark.data(), (const void*)b->top->rootp, f.mark.size());
+    f.drifting = drifting;
+    for (Counting& k : f.counters) {
+        counter_interval(k, counter_value(f.mark.data(), k));
+        if (!drifting) k.drift = 0;
+    }
+    f.mark_clocks.resize(b->clocks.size());
+    for (size_t i = 0; i < b->clocks.size(); i++) f.mark_clocks[i] = phase_of(b->clocks[i], t);
     f.mark_t = t;
     f.marked = true;
     f.proven = false;
@@ -469,12 +597,26 @@ void ff_snap_take(Board* b, uint64_t t) {
     p.at = t - f.mark_t;
     const uint8_t* root = (const uint8_t*)b->top->rootp;
     p.root.assign(root, root + f.mark.size());
+    p.clocks.resize(b->clocks.size());
+    for (size_t i = 0; i < b->clocks.size(); i++) p.clocks[i] = phase_of(b->clocks[i], t);
     p.shown = f.shown.size();
     b->host->ff_snap(b->host->ctx);
 }
 
 uint64_t ff_compare(Board* b, uint64_t t, uint64_t until_ps, BoardEvent* buf, uint32_t cap, uint32_t* n, Shown& s);
 uint64_t ff_restart(Board* b, uint64_t t);
+
+// A counter took a value the design can tell apart: the mark is no more; another once the
+// board has settled, waiting a few periods for its own.
+__attribute__((noinline)) uint64_t ff_counter_moved(Board* b, uint64_t t) {
+    FastForward& f = b->ff;
+    f.marked = false;
+    f.drifting = false;
+    f.quiet_from = t;
+    f.settle = kCounterSettlePs;
+    f.patience = std::max(4 * f.last_period, kShortPatiencePs);
+    return 0;
+}
 
 // After the rising edge at `t`: mark, or compare with the mark and skip what repeats. The
 // records of the skipped time go to `buf` (room permitting) and `s` is what the board shows
@@ -486,6 +628,7 @@ inline __attribute__((always_inline)) uint64_t ff_step(Board* b, uint64_t t, uin
     if (b->host->activity != f.activity || !f.marked || f.overflow || t - f.mark_t > f.patience)
         return ff_restart(b, t);
     uint8_t* root = (uint8_t*)b->top->rootp;
+    if (!f.counters.empty() && !counters_inside(f, root)) return ff_counter_moved(b, t);
     uint8_t* m = f.mark.data();
     std::memcpy(m + f.bot_cycles, root + f.bot_cycles, 8);  // a counter, not state
     if ((load64(root + f.hint) ^ load64(m + f.hint)) & f.hint_mask) {
@@ -502,13 +645,14 @@ __attribute__((noinline)) uint64_t ff_restart(Board* b, uint64_t t) {
     if (h->activity != f.activity) {
         f.activity = h->activity;
         f.quiet_from = t;
+        f.settle = kSettlePs;
         f.marked = false;
         // The period found last, and a little more; or a first guess.
         f.patience = std::max(kFirstPatiencePs, f.last_period + f.last_period / 4);
         return 0;
     }
     if (!f.marked) {
-        if (t - f.quiet_from >= kSettlePs) ff_mark(b, t);
+        if (t - f.quiet_from >= f.settle) ff_mark(b, t);
         return 0;
     }
     if (f.overflow || t - f.mark_t > f.patience) {
@@ -541,12 +685,37 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
         ff_snap(b, t);
         return 0;
     }
+    // Every clock that runs where it was in its period (the oscillator is: this is its
+    // rising edge).
+    for (size_t i = 1; i < b->clocks.size(); i++) {
+        if (!b->clocks[i].parked && !(phase_of(b->clocks[i], t) == f.mark_clocks[i])) {
+            ff_snap(b, t);
+            return 0;
+        }
+    }
     if (!h->ff_same(h->ctx)) {
         ff_mark(b, t);
         return 0;
     }
+    // The counters: how far each moved in the period. A period that moved one is taken once the
+    // next moved each as far: neither set one to a constant (that would have ended both at the
+    // same value), and no read could tell any apart in either (they stayed in their intervals),
+    // so every period from the mark's on does the same, each moving them as far.
+    bool drift = false, same = f.drifting;
+    for (Counting& k : f.counters) {
+        const uint64_t now = counter_value(root, k), then = counter_value(m, k);
+        const uint64_t d = (k.c.down ? then - now : now - then) & k.mask;
+        drift |= d != 0;
+        same &= d == k.drift;
+        k.drift = d;
+    }
+    if (drift && !same) {
+        ff_mark(b, t, true);
+        return 0;
+    }
     // The board repeats the period since the mark. Whole periods, then a phase of the next,
-    // within the run, with room for their records, up to the bot's next port write.
+    // within the run, with room for their records, up to the bot's next port write, and with
+    // every counter in its interval.
     const uint64_t period = t - f.mark_t;
     f.last_period = period;
     f.proven = true;
@@ -556,9 +725,18 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
     const size_t per = f.shown.size(), room = cap - *n - 8;
     uint64_t most = ahead / period;
     if (per) most = std::min<uint64_t>(most, room / per);
+    // Whole periods the counters allow (a phase of the next needs one more).
+    uint64_t counted = ~0ull;
+    for (const Counting& c : f.counters) {
+        if (!c.drift) continue;
+        const uint64_t at = (counter_value(root, c) - c.lo) & c.mask;
+        const uint64_t left = c.c.down ? at : c.width - 1 - at;
+        counted = std::min(counted, left / c.drift);
+    }
+    most = std::min(most, counted);
     const uint64_t k = most ? h->ff_room(h->ctx, most) : 0;
     size_t phase = 0;
-    for (size_t j = f.nphases; j > 0; j--) {
+    for (size_t j = f.nphases; j > 0 && k < counted; j--) {
         const Phase& p = f.phases[j - 1];
         if (k * period + p.at <= ahead && k * per + p.shown <= room && h->ff_fits(h->ctx, k, (uint32_t)j)) {
             phase = j;
@@ -577,13 +755,29 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
     }
     uint64_t skipped = k * period;
     const uint64_t bot_cycles = b->top->rootp->bot_cycles;
+    // The counters move on with the board: the mark and the snapshots to the period it is now
+    // in, the board to its place in it.
+    for (const Counting& c : f.counters) {
+        if (!c.drift) continue;
+        const uint64_t here = counter_after(c, counter_value(root, c), k);
+        set_counter(m, c, counter_after(c, counter_value(m, c), k + 1));
+        for (size_t j = 0; j < f.nphases; j++) {
+            uint8_t* q = f.phases[j].root.data();
+            set_counter(q, c, counter_after(c, counter_value(q, c), k + 1));
+        }
+        set_counter(root, c, phase ? counter_value(f.phases[phase - 1].root.data(), c) : here);
+    }
     if (phase) {
         const Phase& p = f.phases[phase - 1];
         for (size_t i = 0; i < nspans; i++) std::memcpy(root + spans[i].off, p.root.data() + spans[i].off, spans[i].len);
         skipped += p.at;
     }
     f.mark_t += (k + 1) * period;  // the start of the period the board is now in
-    b->clocks[0].skip(skipped / b->clocks[0].num);
+    // Every clock that runs where it was at the phase, or now, that much later.
+    for (size_t i = 0; i < b->clocks.size(); i++) {
+        Clock& c = b->clocks[i];
+        if (!c.parked) set_phase(c, phase ? f.phases[phase - 1].clocks[i] : phase_of(c, t), t + skipped);
+    }
     b->top->rootp->bot_cycles = bot_cycles + edges;
     b->now = t + skipped;
     b->ctx.time(b->now);
@@ -608,7 +802,7 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
     const bool vga = b->vga, watch_bot = b->bot;
     // The fast-forward, without a waveform (the oscillator's period is a whole number of
     // picoseconds), after the oscillator's rising edges.
-    const bool ff = kOneClock && b->ff.on && !b->vcd && clocks[0].den == 1 && !(vga && b->ff.observed_only);
+    const bool ff = b->ff.on && !b->vcd && clocks[0].den == 1 && !(vga && b->ff.observed_only);
     const bool rising_only = b->rising_only && !b->vcd;
     Shown s{b->last_an, b->last_seg, b->last_dp, b->last_led, b->last_vga, b->last_bot, b->last_upd, b->samples, b->evals};
     uint32_t why = BOARD_BUFFER_FULL;
@@ -620,7 +814,7 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
         } else {
             t = UINT64_MAX;
             for (size_t i = 0; i < nc; i++)
-                if (!clocks[i].stopped && clocks[i].next_t < t) t = clocks[i].next_t;
+                if (!clocks[i].stopped && !clocks[i].parked && clocks[i].next_t < t) t = clocks[i].next_t;
 #ifdef BOTSIM_TIMING
             // A design with delays: the next of its timed events (in picoseconds, the
             // build's time precision) is a moment to evaluate too.
@@ -634,16 +828,17 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
         }
         b->ctx.time(t);
         const uint32_t n0 = *n;
-        bool rose = false;
+        bool rose = false, osc_rose = false;
         if (kOneClock) {
-            rose = clocks[0].next_high;
+            rose = osc_rose = clocks[0].next_high;
             *clocks[0].q = clocks[0].next_high;
             clocks[0].advance();
         } else {
             for (size_t i = 0; i < nc; i++) {
                 Clock& c = clocks[i];
-                if (c.stopped || c.next_t != t) continue;
+                if (c.stopped || c.parked || c.next_t != t) continue;
                 rose |= c.next_high;
+                osc_rose |= i == 0 && c.next_high;
                 *c.q = c.next_high;
                 c.advance();
             }
@@ -671,6 +866,7 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
             // Clocks that start or stop with this evaluation.
             for (size_t i = 1; i < nc; i++) {
                 Clock& c = clocks[i];
+                if (c.parked) continue;
                 bool runs = *c.run != 0;
                 if (c.stopped && runs) {
                     c.stopped = false;
@@ -735,7 +931,7 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
                     }
                 }
             }
-            if (rose) s.evals += (rising_only ? 1 : 2) * ff_step(b, t, until_ps, buf, cap, n, s);
+            if (osc_rose) s.evals += (rising_only ? 1 : 2) * ff_step(b, t, until_ps, buf, cap, n, s);
         }
     }
     b->last_an = s.an;

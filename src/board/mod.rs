@@ -4,6 +4,7 @@
 
 pub mod build;
 pub mod checks;
+pub mod counters;
 pub mod cpp;
 pub mod iss;
 pub mod lockstep;

@@ -5,7 +5,8 @@
 // every 8.2 M clocks, more than a sample. With FEEDBACK 0 the frame counter drives VGA pins
 // alone, which a run without frames does not record: the fast-forward compares and puts
 // back the rest, and skips. With FEEDBACK 1 each frame also toggles LED 15, so the pixel
-// clock drives what the run records and every edge is simulated.
+// clock drives what the run records: it runs, and the fast-forward compares where it is in
+// its period too and moves the pixel counter on between its wraps.
 `timescale 1ns / 1ps
 module pixel_top #(
     parameter FEEDBACK = 0

@@ -1,0 +1,172 @@
+// nexys4fpga.v: a course Project 2 board in the shapes teams' designs have and botsim's own
+// examples did not (clean-room, written for botsim): a team firmware that polls in a tight
+// loop (teampgm.psm), a seven-segment display refreshed from a 2^REFRESH_BITS counter, a
+// 32-bit free-running counter, 25 Hz and 10 Hz toggles from clock dividers, and clocks from a
+// DCM_SP or an MMCM. Each shape is a parameter, so one design gives every combination:
+//
+//   CLOCKING   0: all on the 100 MHz oscillator; 1: a DCM_SP, the system on CLK0 and the
+//              display on CLKDV (25 MHz), a CLKFX (50 MHz) divider; 2: an MMCM, the system
+//              on the oscillator and the display on 25 MHz
+//   FREE32     1: a 32-bit counter on every clock; its bit 26 blinks LED 15
+//   TOGGLES    1: 25 Hz and 10 Hz toggles nobody reads (a header pin); 2: the 10 Hz one
+//              blinks the point of digit 0 and the 25 Hz one LED 14
+//   REFRESH_BITS  the display counter's width: each digit is lit for 2^(REFRESH_BITS-3)
+//              clocks
+//
+// With examples/common's debounce and port interface (nexys4_bot_if) and the bot.
+`timescale 1ns / 1ps
+module nexys4fpga #(
+    parameter SIMULATE = 0,
+    parameter CLOCKING = 0,
+    parameter FREE32 = 0,
+    parameter TOGGLES = 0,
+    parameter REFRESH_BITS = 18
+) (
+    input  wire        clk,
+    input  wire        btnCpuReset,
+    input  wire        btnC, btnU, btnD, btnL, btnR,
+    input  wire [15:0] sw,
+    output wire [15:0] led,
+    output wire [ 6:0] seg,
+    output wire        dp,
+    output wire [ 7:0] an,
+    output wire [ 7:0] JA
+);
+    // Clocks: the system's and the display's.
+    wire sys_clk, disp_clk, fx_clk, locked;
+    generate
+        if (CLOCKING == 1) begin : dcm
+            wire clk0, clkdv, clkfx;
+            DCM_SP #(.CLKDV_DIVIDE(4.0), .CLKFX_DIVIDE(4), .CLKFX_MULTIPLY(2), .CLKIN_PERIOD(10.0),
+                     .CLK_FEEDBACK("1X")) DCM (
+                .CLKIN(clk), .CLKFB(sys_clk), .RST(1'b0), .CLK0(clk0), .CLKDV(clkdv), .CLKFX(clkfx),
+                .LOCKED(locked), .PSEN(1'b0), .PSINCDEC(1'b0), .PSCLK(1'b0), .DSSEN(1'b0)
+            );
+            BUFG B0 (.I(clk0), .O(sys_clk));
+            BUFG B1 (.I(clkdv), .O(disp_clk));
+            BUFG B2 (.I(clkfx), .O(fx_clk));
+        end else if (CLOCKING == 2) begin : mmcm
+            wire fb, c25;
+            MMCME2_BASE #(.CLKIN1_PERIOD(10.0), .CLKFBOUT_MULT_F(10.0), .DIVCLK_DIVIDE(1),
+                          .CLKOUT0_DIVIDE_F(40.0)) MMCM (
+                .CLKIN1(clk), .CLKFBIN(fb), .CLKFBOUT(fb), .CLKOUT0(c25), .LOCKED(locked),
+                .RST(1'b0), .PWRDWN(1'b0)
+            );
+            assign sys_clk = clk;
+            BUFG B1 (.I(c25), .O(disp_clk));
+            assign fx_clk = clk;
+        end else begin : osc
+            assign sys_clk = clk;
+            assign disp_clk = clk;
+            assign fx_clk = clk;
+            assign locked = 1'b1;
+        end
+    endgenerate
+
+    wire        sysreset;
+    wire [ 4:0] db_btns;
+    wire [15:0] db_sw;
+    debounce #(.RESET_POLARITY_LOW(1), .SIMULATE(SIMULATE)) DB (
+        .clk(sys_clk), .pbtn_in({btnC, btnL, btnU, btnR, btnD}), .switch_in(sw),
+        .reset_in(btnCpuReset & locked), .pbtn_db(db_btns), .swtch_db(db_sw), .reset_out(sysreset)
+    );
+
+    // The team's PicoBlaze and its polling firmware.
+    wire [11:0] address;
+    wire [17:0] instruction;
+    wire        bram_enable, rdl;
+    wire [ 7:0] port_id, out_port, in_port;
+    wire        write_strobe, k_write_strobe, read_strobe, interrupt, interrupt_ack;
+    kcpsm6 #(.interrupt_vector(12'h3FF), .scratch_pad_memory_size(64), .hwbuild(8'h00)) APPCPU (
+        .address(address), .instruction(instruction), .bram_enable(bram_enable),
+        .port_id(port_id), .write_strobe(write_strobe), .k_write_strobe(k_write_strobe),
+        .out_port(out_port), .read_strobe(read_strobe), .in_port(in_port),
+        .interrupt(interrupt), .interrupt_ack(interrupt_ack), .sleep(1'b0),
+        .reset(sysreset | rdl), .clk(sys_clk)
+    );
+    teampgm APPPGM (.enable(bram_enable), .address(address), .instruction(instruction), .rdl(rdl), .clk(sys_clk));
+
+    wire [7:0] motctl, locx, locy, botinfo, sensors, lmdist, rmdist;
+    wire       upd_sysregs;
+    wire [4:0] dig7, dig6, dig5, dig4, dig3, dig2, dig1, dig0;
+    wire [7:0] decpts;
+    wire [15:0] leds;
+    bot ROJOBOT (
+        .MotCtl_in(motctl), .LocX_reg(locx), .LocY_reg(locy), .Sensors_reg(sensors),
+        .BotInfo_reg(botinfo), .LMDist_reg(lmdist), .RMDist_reg(rmdist),
+        .vid_row(10'd0), .vid_col(10'd0), .vid_pixel_out(),
+        .clk(sys_clk), .reset(sysreset), .upd_sysregs(upd_sysregs)
+    );
+    nexys4_bot_if BOTIF (
+        .clk(sys_clk), .reset(sysreset),
+        .port_id(port_id), .out_port(out_port), .in_port(in_port),
+        .write_strobe(write_strobe), .k_write_strobe(k_write_strobe), .read_strobe(read_strobe),
+        .interrupt(interrupt), .interrupt_ack(interrupt_ack),
+        .btns(db_btns), .switches(db_sw), .leds(leds),
+        .dig7(dig7), .dig6(dig6), .dig5(dig5), .dig4(dig4), .dig3(dig3), .dig2(dig2), .dig1(dig1), .dig0(dig0),
+        .decpts(decpts),
+        .motctl(motctl), .locx(locx), .locy(locy), .botinfo(botinfo), .sensors(sensors),
+        .lmdist(lmdist), .rmdist(rmdist), .upd_sysregs(upd_sysregs)
+    );
+
+    // Free-running counters and toggles.
+    reg [31:0] free = 32'd0;
+    always @(posedge sys_clk) free <= free + 32'd1;
+    wire tog25, tog10;
+    divider #(.COUNT(2_000_000)) D25 (.clk(sys_clk), .q(tog25));
+    divider #(.COUNT(CLOCKING == 1 ? 2_500_000 : 5_000_000)) D10 (.clk(fx_clk), .q(tog10));
+
+    wire [7:0] points = TOGGLES == 2 ? {decpts[7:1], decpts[0] ^ tog10} : decpts;
+    sevenseg #(.BITS(REFRESH_BITS)) SSB (
+        .clk(disp_clk),
+        .d7(dig7), .d6(dig6), .d5(dig5), .d4(dig4), .d3(dig3), .d2(dig2), .d1(dig1), .d0(dig0),
+        .dp(points), .seg(seg), .dp_out(dp), .an(an)
+    );
+
+    assign led = {FREE32 ? free[26] : leds[15], TOGGLES == 2 ? tog25 : leds[14], leds[13:0]};
+    assign JA = {6'd0, TOGGLES == 1 ? tog25 : 1'b0, TOGGLES == 1 ? tog10 : 1'b0};
+endmodule
+
+// A toggle every COUNT clocks, from a counter that starts over at COUNT - 1.
+module divider #(parameter COUNT = 2) (input wire clk, output reg q = 1'b0);
+    reg [23:0] n = 24'd0;
+    always @(posedge clk)
+        if (n == COUNT - 1) begin
+            n <= 24'd0;
+            q <= ~q;
+        end else begin
+            n <= n + 24'd1;
+        end
+endmodule
+
+// Eight multiplexed common-anode digits, each lit for 2^(BITS-3) clocks; codes 00-0F show
+// 0-F, 10-1F are dark; outputs active low.
+module sevenseg #(parameter BITS = 18) (
+    input  wire       clk,
+    input  wire [4:0] d7, d6, d5, d4, d3, d2, d1, d0,
+    input  wire [7:0] dp,
+    output reg  [6:0] seg = 7'h7F,
+    output reg        dp_out = 1'b1,
+    output reg  [7:0] an = 8'hFF
+);
+    reg [BITS-1:0] refresh = 0;
+    wire [2:0] which = refresh[BITS-1:BITS-3];
+    wire [4:0] code = which == 3'd0 ? d0 : which == 3'd1 ? d1 : which == 3'd2 ? d2 : which == 3'd3 ? d3 :
+                      which == 3'd4 ? d4 : which == 3'd5 ? d5 : which == 3'd6 ? d6 : d7;
+    reg [6:0] lit;
+    always @(*)
+        case (code)
+            5'h00: lit = 7'b0111111; 5'h01: lit = 7'b0000110; 5'h02: lit = 7'b1011011;
+            5'h03: lit = 7'b1001111; 5'h04: lit = 7'b1100110; 5'h05: lit = 7'b1101101;
+            5'h06: lit = 7'b1111101; 5'h07: lit = 7'b0000111; 5'h08: lit = 7'b1111111;
+            5'h09: lit = 7'b1101111; 5'h0A: lit = 7'b1110111; 5'h0B: lit = 7'b1111100;
+            5'h0C: lit = 7'b0111001; 5'h0D: lit = 7'b1011110; 5'h0E: lit = 7'b1111001;
+            5'h0F: lit = 7'b1110001; default: lit = 7'b0000000;
+        endcase
+    always @(posedge clk) begin
+        refresh <= refresh + 1'b1;
+        an <= ~(8'd1 << which);
+        seg <= ~lit;
+        dp_out <= ~dp[which];
+    end
+endmodule

@@ -1,0 +1,124 @@
+//! The fast-forward on the shapes teams' designs have (tests/board_designs/shapes: a polling
+//! team CPU, a display refreshed from a 2^18 or 2^20 counter, a 32-bit free-running counter,
+//! 25 Hz and 10 Hz toggles, clocks from a DCM_SP or an MMCM): each skips nearly all of its
+//! board time, and its records are those of every edge simulated, pin for pin, across
+//! button presses, a switch change and a CPU reset.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn board(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_botsim"))
+        .arg("board")
+        .args(args)
+        .current_dir(root())
+        .env("BOTSIM_CACHE", root().join("target/botsim-board-cache"))
+        .output()
+        .unwrap()
+}
+
+/// The shapes design with `params`, for 0.3 s of board time at hw timing under a stimulus;
+/// its records and summary, fast-forwarding or every edge simulated.
+struct Run {
+    pins: String,
+    trace: String,
+    display: String,
+    summary: serde_json::Value,
+}
+
+fn run(params: &[&str], fast_forward: bool) -> Run {
+    let dir = tempfile::tempdir().unwrap();
+    let file = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
+    // Buttons (debounced in 4 clocks), the switches that drive the bot, and the CPU reset.
+    std::fs::write(
+        dir.path().join("stimulus.txt"),
+        "60ms press btnC 20ms\n130ms switches 0033\n170ms press btnCpuReset 5ms\n230ms press btnU 1ms\n250ms switches 0000\n",
+    )
+    .unwrap();
+    let stimulus = file("stimulus.txt");
+    let (pins, trace, display) = (file("pins.csv"), file("trace.csv"), file("display.txt"));
+    let mut args = vec![
+        "tests/board_designs/shapes",
+        "examples/common/debounce.v",
+        "examples/common/nexys4_bot_if.v",
+        "--param",
+        "SIMULATE=1",
+        "--seconds",
+        "0.3",
+        "--stimulus",
+        &stimulus,
+        "--pins",
+        &pins,
+        "--trace-csv",
+        &trace,
+        "--display",
+        &display,
+        "--json",
+    ];
+    for p in params {
+        args.extend(["--param", p]);
+    }
+    if !fast_forward {
+        args.push("--no-fast-forward");
+    }
+    let o = board(&args);
+    assert!(o.status.success(), "{params:?}: {}", String::from_utf8_lossy(&o.stderr));
+    let read = |p: &str| std::fs::read_to_string(p).unwrap();
+    Run {
+        pins: read(&pins),
+        trace: read(&trace),
+        display: read(&display),
+        summary: serde_json::from_slice(&o.stdout).unwrap(),
+    }
+}
+
+/// The first row where two logs differ, for the message.
+fn first_difference(a: &str, b: &str) -> String {
+    let (a, b): (Vec<&str>, Vec<&str>) = (a.lines().collect(), b.lines().collect());
+    let i = a.iter().zip(&b).position(|(x, y)| x != y).unwrap_or(a.len().min(b.len()));
+    format!("row {i}: every edge {:?}, fast-forward {:?} ({} and {} rows)", a.get(i), b.get(i), a.len(), b.len())
+}
+
+fn skips_and_equals_every_edge(params: &[&str]) {
+    let (every, fast) = (run(params, false), run(params, true));
+    let ff = &fast.summary["fast_forward"];
+    let skipped = ff["skipped_seconds"].as_f64().unwrap() / fast.summary["simulated_seconds"].as_f64().unwrap();
+    assert!(skipped > 0.95, "{params:?}: skipped {:.1} % ({ff})", skipped * 100.0);
+    assert_eq!(every.summary["fast_forward"]["skips"], 0);
+    // The run did what the stimulus asked: samples, the CPU reset blanking the display, the
+    // LEDs showing the buttons.
+    let rows = (every.trace.lines().count(), every.pins.lines().count());
+    assert!(rows.0 > 5 && rows.1 > 50, "{params:?}: {rows:?}");
+    assert!(every.display.contains("leds    0000000000010000"), "{params:?}: {}", every.display);
+    for (what, a, b) in [
+        ("--pins", &every.pins, &fast.pins),
+        ("--trace-csv", &every.trace, &fast.trace),
+        ("--display", &every.display, &fast.display),
+    ] {
+        assert!(a == b, "{params:?} {what}: {}", first_difference(a, b));
+    }
+}
+
+#[test]
+fn a_polling_cpu_beside_a_2_18_refresh_counter() {
+    skips_and_equals_every_edge(&[]);
+}
+
+#[test]
+fn a_32_bit_counter_and_toggles_the_display_and_leds_show() {
+    skips_and_equals_every_edge(&["FREE32=1", "TOGGLES=2"]);
+}
+
+#[test]
+fn a_dcm_with_the_display_on_its_divided_clock() {
+    skips_and_equals_every_edge(&["CLOCKING=1", "TOGGLES=1"]);
+}
+
+#[test]
+fn an_mmcm_at_25_mhz_with_a_2_20_refresh() {
+    skips_and_equals_every_edge(&["CLOCKING=2", "REFRESH_BITS=20", "FREE32=1"]);
+}

@@ -122,3 +122,52 @@ fn a_dcm_with_the_display_on_its_divided_clock() {
 fn an_mmcm_at_25_mhz_with_a_2_20_refresh() {
     skips_and_equals_every_edge(&["CLOCKING=2", "REFRESH_BITS=20", "FREE32=1"]);
 }
+
+/// The shapes design's arguments with `extra`.
+fn shapes(extra: &[&str]) -> Output {
+    let mut args = vec!["tests/board_designs/shapes", "examples/common/debounce.v", "examples/common/nexys4_bot_if.v"];
+    args.extend(["--param", "SIMULATE=1", "--switches", "0300"]);
+    args.extend(extra);
+    board(&args)
+}
+
+fn json(o: &Output) -> serde_json::Value {
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    serde_json::from_slice(&o.stdout).unwrap()
+}
+
+#[test]
+fn the_bench_times_the_run_a_user_makes() {
+    // The same skips and evaluations as the plain run of the same arguments: the bench cannot
+    // measure another run than the one a user gets.
+    let args = ["--param", "FREE32=1", "--seconds", "0.05", "--press", "btnC@20+5", "--json"];
+    let plain = json(&shapes(&args));
+    let mut bench_args = args.to_vec();
+    bench_args.push("--bench");
+    let bench = json(&shapes(&bench_args));
+    assert_eq!(bench["skips"], plain["fast_forward"]["skips"], "{bench}\n{plain}");
+    assert_eq!(bench["evaluations"], plain["evaluations"], "{bench}\n{plain}");
+    assert!(bench["skips"].as_u64().unwrap() > 10, "{bench}");
+    assert!(bench["speedup"].as_f64().unwrap() > 0.0 && bench["rtl_mcycles_per_s"].as_f64().unwrap() > 0.0, "{bench}");
+}
+
+#[test]
+fn a_run_that_cannot_skip_names_what_kept_it_busy() {
+    // FREE32=2: LED 15 lit while the counter's low byte is below switches 15-8 (a PWM): the
+    // counter is compared whole, and never repeats. The run says which variable, where.
+    let s = json(&shapes(&["--param", "FREE32=2", "--seconds", "0.02", "--json"]));
+    let ff = &s["fast_forward"];
+    assert!(ff["skipped_fraction"].as_f64().unwrap() < 0.5, "{ff}");
+    let busy = &ff["kept_busy_by"];
+    let text = std::fs::read_to_string(root().join("tests/board_designs/shapes/nexys4fpga.v")).unwrap();
+    let line = text.lines().position(|l| l.contains("reg [31:0] free")).unwrap() + 1;
+    assert_eq!(
+        (busy["variable"].as_str(), busy["module"].as_str(), busy["line"].as_u64()),
+        (Some("free"), Some("nexys4fpga"), Some(line as u64)),
+        "{ff}"
+    );
+    // And in words, without --json.
+    let o = shapes(&["--param", "FREE32=2", "--seconds", "0.02"]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains(&format!("what kept it from skipping more: `free` (module nexys4fpga, tests/board_designs/shapes/nexys4fpga.v:{line})")), "{out}");
+}

@@ -31,6 +31,7 @@ extern "C" {
 struct BoardMember {
     size_t off, len;
     bool observed;
+    const char* name;
 };
 // A counter the fast-forward moves on by arithmetic (src/board/counters.rs): its bytes, its
 // width in bits, whether it counts down, its largest step, the lowest bit a shifted read sees
@@ -235,7 +236,22 @@ struct FastForward {
     std::vector<Counting> counters;
     bool drifting = false;       // the last period moved a counter: the next must move it as far
     uint64_t settle = 0;         // how long the models stay quiet before a mark
+    // Why marks found no period: for each variable (by offset), how many marks it ended by
+    // still differing, or by a counter leaving its interval before a skip.
+    std::vector<BoardMember> members;
+    std::vector<uint64_t> busy;
 };
+
+// The variable whose byte `off` is, in the (sorted) members, or -1.
+inline long member_at(const FastForward& f, size_t off) {
+    size_t lo = 0, hi = f.members.size();
+    while (lo < hi) {
+        const size_t mid = (lo + hi) / 2;
+        if (f.members[mid].off + f.members[mid].len <= off) lo = mid + 1;
+        else hi = mid;
+    }
+    return lo < f.members.size() && f.members[lo].off <= off ? (long)lo : -1;
+}
 
 struct Board {
     VerilatedContext ctx;
@@ -434,9 +450,11 @@ int board_fast_forward(Board* b, int mode) {
                 if (k.c.off == off) return true;
             return false;
         };
-        std::vector<BoardMember> ms;
+        std::vector<BoardMember>& ms = f.members;
+        ms.clear();
         botsim_members(b->top->rootp, ms);
         std::sort(ms.begin(), ms.end(), [](const BoardMember& x, const BoardMember& y) { return x.off < y.off; });
+        f.busy.assign(ms.size(), 0);
         // Observed variables, neighbours merged across padding (no variable between them); the
         // counters apart.
         bool open = false;  // the last span may grow: no unobserved variable since it began
@@ -452,6 +470,8 @@ int board_fast_forward(Board* b, int mode) {
         }
     } else {
         f.spans.push_back({0, (uint32_t)sizeof(Vboard___024root)});
+        f.members.clear();
+        f.busy.clear();
     }
     // Comparing the whole state (for a waveform that opens later) finds a period only on a
     // one-clock board: a second clock's part (a VGA frame) and the rest repeat together too
@@ -485,6 +505,21 @@ int board_fast_forward(Board* b, int mode) {
 void board_fast_forwarded(Board* b, uint64_t* skips, uint64_t* ps) {
     *skips = b->ff.skips;
     *ps = b->ff.skipped_ps;
+}
+
+// The variable that most often kept a mark from its period (Verilator's name), and how
+// often; 0 when none did.
+uint64_t board_fast_forward_busy(Board* b, const char** name) {
+    const FastForward& f = b->ff;
+    uint64_t most = 0;
+    *name = "";
+    for (size_t i = 0; i < f.busy.size(); i++) {
+        if (f.busy[i] > most) {
+            most = f.busy[i];
+            *name = f.members[i].name;
+        }
+    }
+    return most;
 }
 
 }  // extern "C"
@@ -610,6 +645,16 @@ uint64_t ff_restart(Board* b, uint64_t t);
 // board has settled, waiting a few periods for its own.
 __attribute__((noinline)) uint64_t ff_counter_moved(Board* b, uint64_t t) {
     FastForward& f = b->ff;
+    // Before any skip from its mark: it keeps the board from skipping.
+    if (!f.proven) {
+        const uint8_t* root = (const uint8_t*)b->top->rootp;
+        for (const Counting& k : f.counters) {
+            if (((counter_value(root, k) - k.lo) & k.mask) < k.width) continue;
+            const long i = member_at(f, k.c.off);
+            if (i >= 0) f.busy[i]++;
+            break;
+        }
+    }
     f.marked = false;
     f.drifting = false;
     f.quiet_from = t;
@@ -656,6 +701,12 @@ __attribute__((noinline)) uint64_t ff_restart(Board* b, uint64_t t) {
         return 0;
     }
     if (f.overflow || t - f.mark_t > f.patience) {
+        // What still differed from the mark.
+        if (!f.overflow && f.hint_mask) {
+            const unsigned byte = (unsigned)__builtin_ctzll(f.hint_mask) / 8;
+            const long i = member_at(f, f.hint + byte);
+            if (i >= 0) f.busy[i]++;
+        }
         // Marked too early (the firmware was still at work) or the period is longer.
         f.patience = std::min(2 * f.patience, kMaxPeriodPs);
         ff_mark(b, t);

@@ -119,6 +119,7 @@ struct Api {
     fast_forward: unsafe extern "C" fn(*mut Opaque, c_int) -> c_int,
     rising_edges_only: unsafe extern "C" fn(*mut Opaque, c_int) -> c_int,
     fast_forwarded: unsafe extern "C" fn(*mut Opaque, *mut u64, *mut u64),
+    fast_forward_busy: unsafe extern "C" fn(*mut Opaque, *mut *const c_char) -> u64,
 }
 
 /// Where a design's own printing (`$display`, `$write`, runtime warnings) goes: every line to
@@ -213,6 +214,7 @@ impl BoardModel {
             fast_forward: sym!(b"board_fast_forward"),
             rising_edges_only: sym!(b"board_rising_edges_only"),
             fast_forwarded: sym!(b"board_fast_forwarded"),
+            fast_forward_busy: sym!(b"board_fast_forward_busy"),
             run: sym!(b"board_run"),
             time_ps: sym!(b"board_time_ps"),
             evals: sym!(b"board_evals"),
@@ -316,6 +318,20 @@ impl BoardModel {
         // SAFETY: ptr is live.
         unsafe { (self.api.fast_forwarded)(self.ptr, &mut skips, &mut ps) };
         (skips, ps)
+    }
+
+    /// The variable of Verilator's root (its name there) that most often kept the
+    /// fast-forward from finding a period, and how many times; `None` when none did.
+    pub fn fast_forward_busy(&self) -> Option<(String, u64)> {
+        let mut name: *const c_char = std::ptr::null();
+        // SAFETY: ptr is live; the name is a string literal of the library, read at once.
+        let n = unsafe { (self.api.fast_forward_busy)(self.ptr, &mut name) };
+        if n == 0 || name.is_null() {
+            return None;
+        }
+        // SAFETY: as above.
+        let name = unsafe { std::ffi::CStr::from_ptr(name) }.to_string_lossy().into_owned();
+        Some((name, n))
     }
 
     /// Record every change of the bot's outputs from now on (a lock-step run compares them).

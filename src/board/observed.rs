@@ -361,7 +361,7 @@ pub fn header(members: &Result<Vec<Member>, String>, counters: &[Counter], trigg
             h.push_str("static void botsim_members(const Vboard___024root* r, std::vector<BoardMember>& out) {\n");
             for m in ms {
                 h.push_str(&format!(
-                    "    out.push_back({{(size_t)((const char*)&r->{n} - (const char*)r), sizeof(r->{n}), {o}}});\n",
+                    "    out.push_back({{(size_t)((const char*)&r->{n} - (const char*)r), sizeof(r->{n}), {o}, \"{n}\"}});\n",
                     n = m.name,
                     o = m.observed
                 ));

@@ -8,6 +8,7 @@ pub mod course;
 pub mod display;
 pub mod gtkw;
 pub mod ip;
+pub mod locate;
 pub mod memcore;
 pub mod pins;
 pub mod plan;

@@ -3,30 +3,99 @@
 use std::path::Path;
 use std::time::Instant;
 
-use botsim::board::build::{build, BotKind, CpuModel};
+use botsim::board::build::CpuModel;
 use botsim::board::iss::Host;
 use botsim::board::model::{Event, FastForward, Printing, RawEvent, Stop};
 use botsim::World;
 use botsim_core::board::display::Display;
 use botsim_core::board::plan::Rom;
 
-use super::prepare::Prepared;
-use super::session::load;
-use super::Args;
+use super::prepare::{prepare, Prepared};
+use super::report::Busy;
+use super::session::{load, simulate, Outcome};
+use super::{Args, BotArg, CpuArg};
 
-/// `--bench`: with the ISS (the default), the ISS board against the all-RTL board of the same
-/// design; with `--cpu rtl`, the board harness against a minimal one.
+/// `--bench`: with the ISS (the default), this run against the same run on the all-RTL board;
+/// with `--cpu rtl`, the board harness against a minimal one.
 pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
-    let seconds = a.seconds.unwrap_or(0.05);
     if p.cpu == CpuModel::Iss {
-        let rtl = build(&p.plan, &p.params, CpuModel::Rtl, BotKind::Rtl, false, a.quiet || a.json)
-            .map_err(|e| e.to_string())?;
-        let ff = p.main_bot == BotKind::Model && !a.no_fast_forward;
-        return bench_iss([&rtl.library, &p.built.library], &p.world, &p.plan.roms, seconds, a.json, ff, &|| {
-            p.main_host()
-        });
+        return against_rtl(a, p);
     }
+    let seconds = a.seconds.unwrap_or(0.05);
     bench(&p.built.library, &p.world, &p.plan.roms, seconds, a.json, &|| p.main_host())
+}
+
+/// Rounds of a run against the all-RTL board.
+const RUN_ROUNDS: usize = 3;
+
+/// The run as the arguments make it (its stop, its stimulus, its records, the fast-forward),
+/// timed against the same run on the all-RTL board (`--cpu rtl --bot rtl`, every edge), the
+/// two alternating; the speed-up is the median of the rounds' ratios. What a run costs besides
+/// its simulation (loading the model, putting the records together) is reported apart.
+fn against_rtl(a: &Args, p: &Prepared) -> Result<(), String> {
+    let quiet = |mut x: Args| {
+        (x.quiet, x.json, x.bench) = (true, false, false);
+        x
+    };
+    let mut rtl_args = quiet(a.clone());
+    (rtl_args.cpu, rtl_args.bot) = (Some(CpuArg::Rtl), Some(BotArg::Rtl));
+    let rtl = prepare(&rtl_args)?;
+    let run_args = quiet(a.clone());
+    let (mut fast, mut slow, mut ratios, mut overhead) = (vec![], vec![], vec![], vec![]);
+    let mut last = None;
+    for _ in 0..RUN_ROUNDS {
+        let t = Instant::now();
+        let o = simulate(&run_args, p)?;
+        overhead.push(t.elapsed().as_secs_f64() - o.wall_seconds);
+        let r = simulate(&rtl_args, &rtl)?;
+        let rate = |o: &Outcome| o.sim_ps as f64 / 1e4 / o.wall_seconds.max(1e-9) / 1e6;
+        let (f, s) = (rate(&o), rate(&r));
+        fast.push(f);
+        slow.push(s);
+        ratios.push(f / s);
+        last = Some(o);
+    }
+    let o = last.expect("at least one round");
+    let (f, s, x, ov) = (median(&mut fast), median(&mut slow), median(&mut ratios), median(&mut overhead));
+    let skipped = if o.sim_ps == 0 { 0.0 } else { o.skipped_ps as f64 / o.sim_ps as f64 };
+    let busy = o.busy.as_ref().map(|(n, times)| Busy::of(p, n, *times));
+    if a.json {
+        println!(
+            "{}",
+            serde_json::json!({
+                "mcycles_per_s": f, "real_time": f / 100.0, "rtl_mcycles_per_s": s, "speedup": x,
+                "rounds": RUN_ROUNDS, "simulated_seconds": o.sim_ps as f64 / 1e12,
+                "skips": o.skips, "skipped_fraction": skipped, "evaluations": o.evaluations,
+                "overhead_seconds": ov, "off_because": o.fast_forward_off,
+                "kept_busy_by": busy.as_ref().map(|b| serde_json::json!({
+                    "variable": b.path, "module": b.module, "file": b.file, "line": b.line, "times": b.times,
+                })),
+            })
+        );
+        return Ok(());
+    }
+    println!(
+        "botsim board --bench: this run, {:.3} s of board time, {RUN_ROUNDS} rounds side by side with the same run on the all-RTL board",
+        o.sim_ps as f64 / 1e12
+    );
+    println!(
+        "  this run       {f:9.2} Mcycles/s  {:7.3} x real time   skipped {:.1} % of it in {} skips",
+        f / 100.0,
+        skipped * 100.0,
+        o.skips
+    );
+    println!("  all-RTL board  {s:9.2} Mcycles/s  {:7.3} x real time", s / 100.0);
+    println!("  {x:.2} x the all-RTL board (the median of the rounds' ratios); besides its simulation, a run took {ov:.3} s (loading the model, the records)");
+    if let Some(why) = &o.fast_forward_off {
+        println!("  no fast-forward: {why}");
+    } else if let Some(b) = busy {
+        println!(
+            "  what kept it from skipping more: {}, still different at {} looks for a period",
+            b.describe(),
+            b.times
+        );
+    }
+    Ok(())
 }
 
 /// Rounds of `--bench`.
@@ -65,55 +134,6 @@ fn board_rate(
 fn median(v: &mut [f64]) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
-}
-
-/// `--bench --cpu iss`: the ISS board against the all-RTL board of the same design (and,
-/// with `fast_forward`, the ISS board fast-forwarding), alternating rounds; each speed-up is
-/// the median of the rounds' ratios.
-fn bench_iss(
-    [rtl, iss]: [&Path; 2],
-    world: &World,
-    roms: &[Rom],
-    seconds: f64,
-    json: bool,
-    fast_forward: bool,
-    host: &dyn Fn() -> Result<Option<Box<Host>>, String>,
-) -> Result<(), String> {
-    let cycles = (seconds * 1e8) as u64;
-    let (mut r, mut i, mut f, mut ratios, mut ff_ratios) = (vec![], vec![], vec![], vec![], vec![]);
-    for _ in 0..ROUNDS {
-        let a = board_rate(rtl, world, roms, Some(Host::new(Vec::new(), false)), cycles, false)?;
-        let b = board_rate(iss, world, roms, host()?, cycles, false)?;
-        r.push(a);
-        i.push(b);
-        ratios.push(b / a);
-        if fast_forward {
-            let c = board_rate(iss, world, roms, host()?, cycles, true)?;
-            f.push(c);
-            ff_ratios.push(c / a);
-        }
-    }
-    let (r, i, x) = (median(&mut r), median(&mut i), median(&mut ratios));
-    let (f, fx) = (fast_forward.then(|| median(&mut f)), fast_forward.then(|| median(&mut ff_ratios)));
-    if json {
-        println!(
-            "{}",
-            serde_json::json!({"iss_board_mcycles_per_s": i, "rtl_board_mcycles_per_s": r, "speedup": x,
-                "fast_forward_mcycles_per_s": f, "fast_forward_speedup": fx, "cycles": cycles, "rounds": ROUNDS})
-        );
-    } else {
-        println!(
-            "ISS board {i:.2} Mcycles/s, all-RTL board {r:.2} Mcycles/s (medians): {x:.2} x (median of {ROUNDS} side-by-side rounds of {cycles} cycles of 100 MHz; {:.3} x the board's real time)",
-            i / 100.0
-        );
-        if let (Some(f), Some(fx)) = (f, fx) {
-            println!(
-                "with the fast-forward {f:.2} Mcycles/s of board time: {fx:.2} x the all-RTL board ({:.3} x the board's real time)",
-                f / 100.0
-            );
-        }
-    }
-    Ok(())
 }
 
 /// `--bench`: both harnesses on fresh models of the same library, the reset released from

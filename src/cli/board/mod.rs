@@ -150,10 +150,12 @@ pub struct Args {
     /// always gets both)
     #[arg(long)]
     every_edge: bool,
-    /// Measure instead of run: the board harness against a minimal C++ harness of the same
-    /// built design (100 MHz oscillator only, nothing recorded), or with --cpu iss the ISS
-    /// board against the all-RTL board; in Mcycles/s of the 100 MHz clock, over --seconds of
-    /// simulated time [default: 0.05], seven alternating rounds
+    /// Measure the run instead of saving it: the run as the other options make it (its stop,
+    /// stimulus, records and fast-forward; 1 s of board time by default), three times, each
+    /// beside the same run on the all-RTL board (--cpu rtl --bot rtl); it prints both in
+    /// Mcycles/s of the 100 MHz clock, the ratio, how much was skipped and what kept it from
+    /// skipping more. With --cpu rtl: the board harness against a minimal C++ harness of the
+    /// same built design over --seconds [default: 0.05]
     #[arg(long)]
     bench: bool,
     /// Write a source-level trace of every KCPSM6 (yours and the bot's) into this folder:

@@ -14,7 +14,7 @@ use botsim::kcpsm6::source::SourceMap;
 use botsim::{Firmware, World};
 use botsim_core::board::ip::ClockSpec;
 use botsim_core::board::plan::{Plan, Request};
-use botsim_core::board::resolve::{resolve, Options};
+use botsim_core::board::resolve::{resolve, Design, Options};
 use botsim_core::board::stimulus::{parse_press, parse_time, Stimulus};
 use botsim_core::debug::{BreakSpec, Breaks};
 
@@ -30,9 +30,9 @@ pub struct Prepared {
     pub vcd_to: Option<Mark>,
     pub world: World,
     pub fw: Firmware,
+    /// The design as the repository gave it (where its variables are declared).
+    pub design: Design,
     pub plan: Plan,
-    /// The top's --param values.
-    pub params: Vec<(String, String)>,
     /// Each CPU's program source, by instance path, where it is known.
     pub maps: BTreeMap<String, SourceMap>,
     pub cpu_breaks: BTreeMap<String, Breaks>,
@@ -125,6 +125,9 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
                 "--seconds {s}: more than {LONG_RUN_S} s of board time takes about as long to simulate, or longer; add --long to run it"
             ));
         }
+    }
+    if a.bench && (a.vcd.is_some() || a.cpu_trace.is_some() || !a.breaks.is_empty()) {
+        return Err("--bench times a run as it is made: without --vcd, --cpu-trace or --break".into());
     }
     if let Some(max) = &a.vcd_max {
         parse_size(max).map_err(|e| format!("--vcd-max {max}: {e}"))?;
@@ -304,8 +307,8 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
         vcd_to,
         world,
         fw,
+        design,
         plan,
-        params,
         maps,
         cpu_breaks,
         bot_breaks,

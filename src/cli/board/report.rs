@@ -9,6 +9,43 @@ use super::session::{at_line_end, Outcome};
 use super::Args;
 use crate::cli::run::{csv_row, CSV_HEADER};
 
+/// Below this fraction of its time skipped, a run says what kept it busy.
+const BUSY_SAID: f64 = 0.9;
+
+/// The variable that most often kept the fast-forward from finding a period.
+pub struct Busy {
+    /// Its path below the top, or Verilator's name for one of botsim's own.
+    pub path: String,
+    pub module: Option<String>,
+    pub file: Option<std::path::PathBuf>,
+    pub line: Option<u32>,
+    pub times: u64,
+}
+
+impl Busy {
+    pub fn of(p: &Prepared, verilator_name: &str, times: u64) -> Busy {
+        use botsim_core::board::locate::{declared, design_path};
+        match design_path(verilator_name).and_then(|path| declared(&p.design, &p.plan.top, &path)) {
+            Some(d) => Busy { path: d.path, module: Some(d.module), file: Some(d.file), line: Some(d.line), times },
+            None => Busy {
+                path: design_path(verilator_name).unwrap_or_else(|| verilator_name.to_string()),
+                module: None,
+                file: None,
+                line: None,
+                times,
+            },
+        }
+    }
+
+    /// `SSB.refresh` (module sevenseg, src/ssb.v:14)
+    pub fn describe(&self) -> String {
+        match (&self.module, &self.file, self.line) {
+            (Some(m), Some(f), Some(l)) => format!("`{}` (module {m}, {}:{l})", self.path, f.display()),
+            _ => format!("`{}`", self.path),
+        }
+    }
+}
+
 /// Write the outputs the arguments ask for and say how the run went.
 pub fn report(a: &Args, p: &Prepared, o: Outcome) -> Result<Stopped, String> {
     if let Some(f) = &a.trace_csv {
@@ -31,6 +68,8 @@ pub fn report(a: &Args, p: &Prepared, o: Outcome) -> Result<Stopped, String> {
         let picture = path_picture(&p.world, &o.rec.snapshots, p.fw.threshold, &PathStyle::default());
         write_atomic(f, &picture)?;
     }
+    let skipped_fraction = if o.sim_ps == 0 { 0.0 } else { o.skipped_ps as f64 / o.sim_ps as f64 };
+    let busy = o.busy.as_ref().map(|(name, times)| Busy::of(p, name, *times));
     let last_display = o.rec.display.lines().last().map(|l| l.text.clone()).unwrap_or_default();
     let end = o.rec.snapshots.last().map(|s| (s.regs.loc_x, s.regs.loc_y));
     // Moves the world refused (the destination was an obstruction): the samples with the event.
@@ -64,7 +103,15 @@ pub fn report(a: &Args, p: &Prepared, o: Outcome) -> Result<Stopped, String> {
             "verilator": p.built.verilator,
             "cpu_traces": o.traces,
             "design_lines": o.design_lines,
-            "fast_forward": {"skips": o.skips, "skipped_seconds": o.skipped_ps as f64 / 1e12, "off_because": o.fast_forward_off},
+            "fast_forward": {
+                "skips": o.skips,
+                "skipped_seconds": o.skipped_ps as f64 / 1e12,
+                "skipped_fraction": skipped_fraction,
+                "off_because": o.fast_forward_off,
+                "kept_busy_by": busy.as_ref().map(|b| serde_json::json!({
+                    "variable": b.path, "module": b.module, "file": b.file, "line": b.line, "times": b.times,
+                })),
+            },
             "break": o.stopped.as_ref().map(|s| serde_json::json!({"time_ps": s.time_ps, "what": s.message})),
         });
         println!("{v}");
@@ -78,7 +125,19 @@ pub fn report(a: &Args, p: &Prepared, o: Outcome) -> Result<Stopped, String> {
             o.rec.last_led
         );
         if o.skips > 0 {
-            println!("  fast-forwarded {:.3} s of it in {} skips", o.skipped_ps as f64 / 1e12, o.skips);
+            println!(
+                "  fast-forwarded {:.3} s of it ({:.1} %) in {} skips",
+                o.skipped_ps as f64 / 1e12,
+                skipped_fraction * 100.0,
+                o.skips
+            );
+        }
+        if let (Some(b), true) = (&busy, o.fast_forward_off.is_none() && skipped_fraction < BUSY_SAID) {
+            println!(
+                "  what kept it from skipping more: {}, still different at {} looks for a period",
+                b.describe(),
+                b.times
+            );
         }
         for t in &o.traces {
             println!("  wrote {}", t.display());

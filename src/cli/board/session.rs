@@ -145,6 +145,9 @@ pub struct Outcome {
     pub vcd_x_signals: usize,
     pub traces: Vec<PathBuf>,
     pub design_lines: u64,
+    /// The variable (Verilator's name) that most often kept the fast-forward from a period,
+    /// and how often.
+    pub busy: Option<(String, u64)>,
 }
 
 /// Run the prepared board as the arguments say.
@@ -437,6 +440,7 @@ pub fn simulate(a: &Args, p: &Prepared) -> Result<Outcome, String> {
         vcd_x_signals: model.main().vcd_unshown(),
         traces,
         design_lines,
+        busy: model.main().fast_forward_busy(),
     })
 }
 

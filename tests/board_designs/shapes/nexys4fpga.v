@@ -7,7 +7,8 @@
 //   CLOCKING   0: all on the 100 MHz oscillator; 1: a DCM_SP, the system on CLK0 and the
 //              display on CLKDV (25 MHz), a CLKFX (50 MHz) divider; 2: an MMCM, the system
 //              on the oscillator and the display on 25 MHz
-//   FREE32     1: a 32-bit counter on every clock; its bit 26 blinks LED 15
+//   FREE32     1: a 32-bit counter on every clock; its bit 26 blinks LED 15; 2: its low byte
+//              dims LED 15 (lit while below switches 15-8: a PWM, which no skip can see through)
 //   TOGGLES    1: 25 Hz and 10 Hz toggles nobody reads (a header pin); 2: the 10 Hz one
 //              blinks the point of digit 0 and the 25 Hz one LED 14
 //   REFRESH_BITS  the display counter's width: each digit is lit for 2^(REFRESH_BITS-3)
@@ -123,7 +124,8 @@ module nexys4fpga #(
         .dp(points), .seg(seg), .dp_out(dp), .an(an)
     );
 
-    assign led = {FREE32 ? free[26] : leds[15], TOGGLES == 2 ? tog25 : leds[14], leds[13:0]};
+    wire led15 = FREE32 == 1 ? free[26] : FREE32 == 2 ? free[7:0] < sw[15:8] : leds[15];
+    assign led = {led15, TOGGLES == 2 ? tog25 : leds[14], leds[13:0]};
     assign JA = {6'd0, TOGGLES == 1 ? tog25 : 1'b0, TOGGLES == 1 ? tog10 : 1'b0};
 endmodule
 

@@ -13,7 +13,8 @@
 //! - sets it to a constant (a reset, a wrap at a terminal count),
 //!
 //! and whose every other read is either a shift right by a constant (`x >> 0xfU`: bits at and
-//! above it) or a comparison with a constant (`0x7a11fU == x`). Between two values at which
+//! above it), a mask (`0x80000U & x`: bits from its lowest), or a comparison with a constant
+//! (`0x7a11fU == x`). Between two values at which
 //! such a read could change (the next multiple of 2^shift, a compared constant, the wrap),
 //! nothing else in the design can tell the counter's value: the harness (harness.cpp) then
 //! proves the rest periodic, confirms that each counter moved by the same amount in two
@@ -210,15 +211,24 @@ fn scan(
             // A write: what may it be?
             let end = (b + 1..toks.len()).find(|&j| tok(j) == Tok::P(";")).unwrap_or(toks.len());
             match write_kind(&toks[b + 1..end], name, widths) {
-                Some(Write::Const) | Some(Write::Copy) => {}
-                Some(Write::Step { by, down, at }) => {
-                    if down {
-                        s.down = true;
-                    } else {
-                        s.up = true;
+                Some(writes) => {
+                    for w in writes {
+                        match w {
+                            Write::Const => {}
+                            Write::Copy { at } => {
+                                consumed.insert(b + 1 + at);
+                            }
+                            Write::Step { by, down, at } => {
+                                if down {
+                                    s.down = true;
+                                } else {
+                                    s.up = true;
+                                }
+                                s.step = s.step.max(by);
+                                consumed.insert(b + 1 + at);
+                            }
+                        }
                     }
-                    s.step = s.step.max(by);
-                    consumed.insert(b + 1 + at);
                 }
                 None => {
                     spoiled.insert(name.to_string());
@@ -226,14 +236,6 @@ fn scan(
             }
             if s.up && s.down {
                 spoiled.insert(name.to_string());
-            }
-            // The copy or step read on the right is this write's own.
-            for j in b + 1..end {
-                if let Some((m, _)) = use_at(j) {
-                    if m == name {
-                        consumed.insert(j);
-                    }
-                }
             }
             // Reads of other variables on the right are classified as any read.
             i = b + 1;
@@ -255,6 +257,22 @@ fn scan(
                 continue;
             }
         }
+        // A mask alone reads the bits from its lowest set one: `(0x80000U & x)` bit 19.
+        let mask_before = a >= 3 && tok(a - 1) == Tok::P("&") && tok(a - 3) == Tok::P("(") && tok(b) == Tok::P(")");
+        let mask_after = a >= 1 && tok(a - 1) == Tok::P("(") && tok(b) == Tok::P("&") && tok(b + 2) == Tok::P(")");
+        let mask = if mask_before {
+            number(tok(a - 2))
+        } else if mask_after {
+            number(tok(b + 1))
+        } else {
+            None
+        };
+        if let Some(m) = mask.filter(|m| *m != 0) {
+            let low = m.trailing_zeros();
+            s.shift = Some(s.shift.map_or(low, |x| x.min(low)));
+            i += len;
+            continue;
+        }
         let cmp_after = matches!(tok(b), Tok::P(p) if CMP.contains(&p))
             && number(tok(b + 1)).is_some()
             && tok(b + 2) == Tok::P(")");
@@ -274,38 +292,84 @@ fn scan(
 }
 
 /// What a write to a candidate gives it.
+#[derive(Debug, PartialEq, Eq)]
 enum Write {
     /// A constant.
     Const,
-    /// The variable itself or its delayed copy (`__Vdly__x = vlSelf->x`, `vlSelf->x = __Vdly__x`).
-    Copy,
-    /// Itself plus or minus `by`; `at`: where its own read is in the right-hand side.
+    /// The variable itself or its delayed copy (`__Vdly__x = vlSelf->x`, `vlSelf->x = __Vdly__x`);
+    /// `at`: where that read is in the right-hand side.
+    Copy { at: usize },
+    /// Itself plus or minus `by`; `at`: where its own read is.
     Step { by: u64, down: bool, at: usize },
 }
 
-/// The kind of the right-hand side `rhs` of a write to `name`, or `None` for any other.
-fn write_kind(rhs: &[Tok], name: &str, widths: &BTreeMap<String, u32>) -> Option<Write> {
-    // Outer parentheses and a mask go: `(MASK & (...))`.
-    let mut from = 0;
-    let mut to = rhs.len();
-    let strip = |from: &mut usize, to: &mut usize| {
-        while *to >= *from + 2
-            && rhs[*from] == Tok::P("(")
-            && rhs[*to - 1] == Tok::P(")")
-            && closes(rhs, *from) == Some(*to - 1)
-        {
-            *from += 1;
-            *to -= 1;
+/// What the right-hand side `rhs` of a write to `name` gives it: one [`Write`], or one for
+/// each branch of a choice (`c ? 0U : (0xfffffU & (1U + x))`, Verilator's `if`); `None`
+/// for anything else. The choice's condition is read as any expression is.
+fn write_kind(rhs: &[Tok], name: &str, widths: &BTreeMap<String, u32>) -> Option<Vec<Write>> {
+    let mut out = Vec::new();
+    kinds(rhs, 0, rhs.len(), name, widths, &mut out)?;
+    Some(out)
+}
+
+fn kinds(
+    rhs: &[Tok],
+    from: usize,
+    to: usize,
+    name: &str,
+    widths: &BTreeMap<String, u32>,
+    out: &mut Vec<Write>,
+) -> Option<()> {
+    let (from, to) = strip(rhs, from, to);
+    // A choice at the top level: its branches.
+    let mut depth = 0i32;
+    let (mut question, mut nested) = (None, 0);
+    for (j, t) in rhs[from..to].iter().enumerate() {
+        match t {
+            Tok::P("(" | "[") => depth += 1,
+            Tok::P(")" | "]") => depth -= 1,
+            Tok::P("?") if depth == 0 => {
+                if question.is_none() {
+                    question = Some(from + j);
+                } else {
+                    nested += 1;
+                }
+            }
+            Tok::P(":") if depth == 0 && question.is_some() => {
+                if nested > 0 {
+                    nested -= 1;
+                } else {
+                    let q = question?;
+                    kinds(rhs, q + 1, from + j, name, widths, out)?;
+                    return kinds(rhs, from + j + 1, to, name, widths, out);
+                }
+            }
+            _ => {}
         }
-    };
-    strip(&mut from, &mut to);
+    }
+    out.push(one_kind(rhs, from, to, name, widths)?);
+    Some(())
+}
+
+/// `from..to` without the parentheses that enclose all of it.
+fn strip(rhs: &[Tok], mut from: usize, mut to: usize) -> (usize, usize) {
+    while to >= from + 2 && rhs[from] == Tok::P("(") && rhs[to - 1] == Tok::P(")") && closes(rhs, from) == Some(to - 1)
+    {
+        from += 1;
+        to -= 1;
+    }
+    (from, to)
+}
+
+/// One branch: a constant, a copy, or a step (under a mask as wide as the variable).
+fn one_kind(rhs: &[Tok], from: usize, to: usize, name: &str, widths: &BTreeMap<String, u32>) -> Option<Write> {
+    let (mut from, mut to) = strip(rhs, from, to);
     if to == from + 1 && number(rhs[from]).is_some() {
         return Some(Write::Const);
     }
     let is_self = |a: usize, b: usize| -> bool {
-        let s = &rhs[a..b];
         let m = |t: &Tok| matches!(t, Tok::Id(x) if *x == name);
-        match s {
+        match &rhs[a..b] {
             [Tok::Id("vlSelf"), Tok::P("->"), x] => m(x),
             [Tok::Id(l)] => l.strip_prefix("__Vdly__") == Some(name),
             _ => false,
@@ -328,18 +392,18 @@ fn write_kind(rhs: &[Tok], name: &str, widths: &BTreeMap<String, u32>) -> Option
             }
         }
     };
-    if is_self(from, to) {
-        return Some(Write::Copy);
+    let (a, b) = operand(from, to);
+    if is_self(a, b) {
+        return Some(Write::Copy { at: a });
     }
     if to > from + 2 && number(rhs[from]).is_some() && rhs[from + 1] == Tok::P("&") {
-        // A mask no wider than the variable: the sum wraps as the variable does.
+        // A mask as wide as the variable: the sum wraps as the variable does.
         let mask = number(rhs[from])?;
         let bits = widths[name];
         if bits < 64 && mask != (1u64 << bits) - 1 {
             return None;
         }
-        from += 2;
-        strip(&mut from, &mut to);
+        (from, to) = strip(rhs, from + 2, to);
     }
     // `A + B` or `A - B` at the top level.
     let mut depth = 0i32;
@@ -354,7 +418,7 @@ fn write_kind(rhs: &[Tok], name: &str, widths: &BTreeMap<String, u32>) -> Option
                 }
                 op = Some((from + j, *p));
             }
-            Tok::P(p) if depth == 0 && !matches!(*p, "->") => return None,
+            Tok::P(p) if depth == 0 && *p != "->" => return None,
             _ => {}
         }
     }
@@ -414,6 +478,16 @@ mod tests {
         // A 32-bit counter with no mask, its top half copied out.
         let f = by("__DOT__free");
         assert_eq!((f.bits, f.shift), (32, Some(16)));
+        // Its bits tested with a mask: from the mask's lowest bit (a low one: every value).
+        for (read, low) in [("(0x80000U & vlSelf->top__DOT__refresh)", 19), ("(vlSelf->top__DOT__refresh & 7U)", 0)] {
+            let nba = NBA.replacen("    vlSelf->seg", &format!("    vlSelf->an = {read};\n    vlSelf->seg"), 1);
+            let c = found(&nba);
+            assert_eq!(
+                c.iter().find(|c| c.name.ends_with("refresh")).map(|c| c.shift),
+                Some(Some(low.min(15))),
+                "{read}"
+            );
+        }
         // One bit of it, shifted and masked into place (`led = {free[26], ...}`), either way.
         for read in ["(0x8000U & (vlSelf->top__DOT__free >> 0xbU))", "((vlSelf->top__DOT__free >> 0xbU) & 0x8000U)"] {
             let nba = NBA.replacen("    vlSelf->seg", &format!("    vlSelf->an = {read};\n    vlSelf->seg"), 1);
@@ -434,10 +508,10 @@ mod tests {
         let names = |nba: &str| found(nba).into_iter().map(|c| c.name).collect::<Vec<_>>();
         let all = names(NBA);
         assert!(all.iter().any(|n| n.ends_with("refresh")), "{all:?}");
-        // Read whole (into an output), masked (its low bits), compared with a variable.
+        // Read whole (into an output), added to, compared with a variable.
         for read in [
             "    vlSelf->an = vlSelf->top__DOT__refresh;\n",
-            "    vlSelf->an = (7U & vlSelf->top__DOT__refresh);\n",
+            "    vlSelf->an = (1U + vlSelf->top__DOT__refresh);\n",
             "    vlSelf->an = (vlSelf->top__DOT__refresh == vlSelf->d0);\n",
         ] {
             let nba = NBA.replacen("    vlSelf->seg", &format!("{read}    vlSelf->seg"), 1);
@@ -466,9 +540,9 @@ mod tests {
 
     #[test]
     fn a_read_that_computes_only_what_no_run_observes_is_no_read() {
-        // `an` taking the refresh counter's low bits spoils it, unless no run observes `an`.
+        // `an` taking the refresh counter plus one spoils it, unless no run observes `an`.
         let nba =
-            NBA.replacen("    vlSelf->seg", "    vlSelf->an = (7U & vlSelf->top__DOT__refresh);\n    vlSelf->seg", 1);
+            NBA.replacen("    vlSelf->seg", "    vlSelf->an = (1U + vlSelf->top__DOT__refresh);\n    vlSelf->seg", 1);
         let with = |observed: &dyn Fn(&str) -> bool| {
             find(ROOT, &[&nba], &["Vtop___024root___nba_sequent__TOP__0".to_string()], &[], observed)
                 .iter()
@@ -477,6 +551,24 @@ mod tests {
         assert!(!with(&|_| true));
         // (Nothing else reads it then but its own update.)
         assert!(with(&|n| n != "an"));
+    }
+
+    #[test]
+    fn a_choice_between_a_constant_and_a_step_is_a_counters_write() {
+        // Verilator writes `if (reset) x <= 0; else x <= x + 1;` as a choice.
+        let write = "    vlSelf->top__DOT__refresh = ((IData)(vlSelf->rst) ? 0U : ((0x3ffffU == vlSelf->top__DOT__refresh) ? 0U : (0x3ffffU & ((IData)(1U) + vlSelf->top__DOT__refresh))));\n";
+        let nba = NBA.replacen("    vlSelf->seg", &format!("{write}    vlSelf->seg"), 1);
+        let c = found(&nba);
+        let r = c.iter().find(|c| c.name.ends_with("refresh")).unwrap_or_else(|| panic!("{c:?}"));
+        // The condition's comparison is a read like any other.
+        assert_eq!((r.step, r.consts.clone()), (1, vec![0x3ffff]));
+        // A branch that is neither spoils it.
+        let nba = NBA.replacen(
+            "    vlSelf->seg",
+            &format!("{}    vlSelf->seg", write.replacen("? 0U :", "? vlSelf->d0 :", 1)),
+            1,
+        );
+        assert!(!found(&nba).iter().any(|c| c.name.ends_with("refresh")));
     }
 
     #[test]

@@ -74,6 +74,17 @@ fn button(name: &str) -> Result<Option<u8>, String> {
         .ok_or_else(|| format!("unknown button `{name}` (btnC, btnU, btnD, btnL, btnR, btnCpuReset)"))
 }
 
+/// The bit of a push button in the board's `btn` (`btnC` 0 ... `btnR` 4), by name in any
+/// case; `None` for any other name (the CPU reset button is not one of them).
+pub fn button_bit(name: &str) -> Option<u8> {
+    BUTTONS.iter().position(|b| b.eq_ignore_ascii_case(name)).map(|b| b as u8)
+}
+
+/// The name of the push button with bit `bit` in the board's `btn`.
+pub fn button_name(bit: u8) -> &'static str {
+    BUTTONS.get(bit as usize).copied().unwrap_or("btn?")
+}
+
 /// `NAME@TIME[+DURATION]`, as `--press` takes it.
 pub fn parse_press(s: &str) -> Result<Press, String> {
     let bad = |why: String| format!("--press {s}: {why}");

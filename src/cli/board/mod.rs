@@ -2,6 +2,7 @@
 
 mod bench;
 mod breaks;
+mod live;
 mod prepare;
 mod progress;
 mod report;
@@ -202,6 +203,27 @@ pub struct Args {
     /// shows the first 200)
     #[arg(long, value_name = "FILE")]
     design_log: Option<PathBuf>,
+    /// Run live: a local web server shows the board, the VGA monitor and the world in the
+    /// browser (the address is the first line printed), and takes the switches and buttons
+    /// from it, until the page's Stop or Ctrl-C
+    #[arg(long)]
+    live: bool,
+    /// With --live: the port [default: 8540; 0 takes any free one]
+    #[arg(long, default_value_t = 8540, requires = "live")]
+    port: u16,
+    /// With --live: the address to listen on [default: 127.0.0.1, this machine only]
+    #[arg(long, default_value = "127.0.0.1", requires = "live")]
+    listen: String,
+    /// With --live: write the session's inputs to this stimulus file when it ends
+    /// (`--stimulus FILE` replays them exactly)
+    #[arg(long, value_name = "FILE", requires = "live")]
+    record: Option<PathBuf>,
+    /// With --live: start at this factor of real time [default: 1]
+    #[arg(long, default_value_t = 1.0, requires = "live")]
+    speed: f64,
+    /// With --live: start paused
+    #[arg(long, requires = "live")]
+    paused: bool,
     /// Print the summary as JSON
     #[arg(long)]
     json: bool,
@@ -328,6 +350,9 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     }
     if a.bench {
         return bench::run(&a, &p).map(|_| None);
+    }
+    if a.live {
+        return live::run(&a, &p).map(|_| None);
     }
     let outcome = session::simulate(&a, &p)?;
     report::report(&a, &p, outcome)

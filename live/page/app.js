@@ -1,0 +1,309 @@
+// botsim live: the page. It draws a Nexys4-like board (our own drawing), the VGA monitor and
+// the world, and speaks botsim's protocol (docs/LIVE.md) over one WebSocket to the server
+// that serves it. Everything it shows comes from the server; what the user does becomes a
+// command, and the server's next state shows its effect.
+"use strict";
+
+const SVG = "http://www.w3.org/2000/svg";
+const $ = (id) => document.getElementById(id);
+const board = $("board");
+let ws = null;
+let state = null;           // the last state message
+let world = null;           // {width, height, cells}
+const path = [];            // the bot's samples: [x, y]
+let pendingFrame = null;    // the frame message whose PNG comes next
+let latched = new Set();    // buttons held down by shift-click
+const mouseHeld = new Set(); // buttons held down by the mouse
+
+function el(name, attrs, parent) {
+  const e = document.createElementNS(SVG, name);
+  for (const [k, v] of Object.entries(attrs || {})) e.setAttribute(k, v);
+  (parent || board).appendChild(e);
+  return e;
+}
+
+function send(msg) {
+  if (ws && ws.readyState === WebSocket.OPEN) ws.send(JSON.stringify(msg));
+}
+
+// ---- The board drawing ----------------------------------------------------------------
+const leds = [], knobs = [], digits = [], buttons = {};
+
+function drawBoard() {
+  const defs = el("defs");
+  const glow = el("filter", { id: "glow", x: "-50%", y: "-50%", width: "200%", height: "200%" }, defs);
+  el("feGaussianBlur", { stdDeviation: "2.2", result: "b" }, glow);
+  const merge = el("feMerge", {}, glow);
+  el("feMergeNode", { in: "b" }, merge);
+  el("feMergeNode", { in: "SourceGraphic" }, merge);
+
+  el("rect", { class: "pcb", x: 6, y: 6, width: 648, height: 428, rx: 14 });
+  for (const [x, y] of [[24, 24], [636, 24], [24, 416], [636, 416]]) el("circle", { cx: x, cy: y, r: 7, fill: "#c9b98f" });
+  const t = el("text", { class: "silk big", x: 40, y: 44 });
+  t.textContent = "NEXYS4";
+  const s = el("text", { class: "silk", x: 116, y: 44 });
+  s.textContent = "botsim live board";
+
+  // Eight digits, digit 7 on the left.
+  el("rect", { x: 108, y: 66, width: 404, height: 92, rx: 6, fill: "#0b0b0b" });
+  for (let i = 0; i < 8; i++) digits[7 - i] = drawDigit(124 + i * 48, 78);
+
+  // The CPU reset button and the five push buttons.
+  drawButton("btnCpuReset", 590, 62, "CPU RESET", true);
+  const cx = 560, cy = 218, d = 44;
+  drawButton("btnU", cx, cy - d, "BTNU");
+  drawButton("btnL", cx - d, cy, "BTNL");
+  drawButton("btnC", cx, cy, "BTNC");
+  drawButton("btnR", cx + d, cy, "BTNR");
+  drawButton("btnD", cx, cy + d, "BTND");
+
+  // Sixteen LEDs over sixteen switches, 15 on the left.
+  for (let i = 0; i < 16; i++) {
+    const x = 40 + (15 - i) * 36;
+    leds[i] = el("rect", { class: "led", x: x - 6, y: 318, width: 12, height: 8, rx: 2 });
+    const l = el("text", { class: "silk", x: x, y: 312, "text-anchor": "middle" });
+    l.textContent = "LD" + i;
+    el("rect", { class: "sw-slot", x: x - 7, y: 344, width: 14, height: 44, rx: 3 });
+    const knob = el("rect", { class: "sw-knob", x: x - 6, y: 368, width: 12, height: 18, rx: 2 });
+    knob.addEventListener("click", () => toggleSwitch(i));
+    knobs[i] = knob;
+    const sl = el("text", { class: "silk", x: x, y: 404, "text-anchor": "middle" });
+    sl.textContent = "SW" + i;
+  }
+}
+
+// One digit: segments a-g and the point, each an element whose class says if it is lit.
+function drawDigit(x, y) {
+  const w = 30, h = 64, t = 6;
+  const H = (x0, y0) => `${x0 + t / 2},${y0} ${x0 + w - t / 2},${y0} ${x0 + w},${y0 + t / 2} ${x0 + w - t / 2},${y0 + t} ${x0 + t / 2},${y0 + t} ${x0},${y0 + t / 2}`;
+  const V = (x0, y0) => `${x0 + t / 2},${y0} ${x0 + t},${y0 + t / 2} ${x0 + t},${y0 + h / 2 - t / 2} ${x0 + t / 2},${y0 + h / 2} ${x0},${y0 + h / 2 - t / 2} ${x0},${y0 + t / 2}`;
+  const sk = `skewX(-6) translate(${x + 8},${y})`;
+  const g = el("g", { transform: sk });
+  const segs = [
+    el("polygon", { class: "seg", points: H(0, 0) }, g),                 // a
+    el("polygon", { class: "seg", points: V(w - t, 0) }, g),             // b
+    el("polygon", { class: "seg", points: V(w - t, h / 2) }, g),         // c
+    el("polygon", { class: "seg", points: H(0, h - t) }, g),             // d
+    el("polygon", { class: "seg", points: V(0, h / 2) }, g),             // e
+    el("polygon", { class: "seg", points: V(0, 0) }, g),                 // f
+    el("polygon", { class: "seg", points: H(0, h / 2 - t / 2) }, g),     // g
+  ];
+  segs.push(el("circle", { class: "seg", cx: w + 5, cy: h - 3, r: 3.2 }, g)); // the point
+  return segs;
+}
+
+function drawButton(name, x, y, label, reset) {
+  const b = el("circle", { class: "btn" + (reset ? " reset" : ""), cx: x, cy: y, r: 15 });
+  const l = el("text", { class: "silk", x: x, y: y + 29, "text-anchor": "middle" });
+  l.textContent = label;
+  b.addEventListener("mousedown", (e) => {
+    e.preventDefault();
+    if (e.shiftKey) {
+      // Shift-click holds it down until the next click.
+      if (latched.has(name)) { latched.delete(name); press(name, false); }
+      else { latched.add(name); press(name, true); }
+      return;
+    }
+    if (latched.has(name)) { latched.delete(name); press(name, false); return; }
+    mouseHeld.add(name);
+    press(name, true);
+  });
+  buttons[name] = b;
+}
+
+window.addEventListener("mouseup", () => {
+  for (const name of mouseHeld) press(name, false);
+  mouseHeld.clear();
+});
+
+function press(name, down) {
+  buttons[name].classList.toggle("down", down);
+  send({ type: "button", name: name, down: down });
+}
+
+function toggleSwitch(i) {
+  const on = state ? (state.switches >> i & 1) === 0 : true;
+  send({ type: "switch", index: i, on: on });
+}
+
+const keyButtons = { ArrowUp: "btnU", ArrowDown: "btnD", ArrowLeft: "btnL", ArrowRight: "btnR", Enter: "btnC", r: "btnCpuReset", R: "btnCpuReset" };
+window.addEventListener("keydown", (e) => {
+  if (e.target.tagName === "SELECT") return;
+  const b = keyButtons[e.key];
+  if (b && !e.repeat) { e.preventDefault(); press(b, true); }
+  if (e.key === "p" || e.key === "P") toggleRun();
+  if (e.key === "n" || e.key === "N") send({ type: "step" });
+});
+window.addEventListener("keyup", (e) => {
+  const b = keyButtons[e.key];
+  if (b) { e.preventDefault(); press(b, false); }
+});
+
+// ---- Controls --------------------------------------------------------------------------
+function toggleRun() { send({ type: state && state.running ? "pause" : "run" }); }
+$("run").addEventListener("click", toggleRun);
+$("step").addEventListener("click", () => send({ type: "step" }));
+$("speed").addEventListener("change", (e) => {
+  const v = e.target.value;
+  send({ type: "speed", factor: v === "max" ? null : Number(v) });
+});
+$("save").addEventListener("click", () => send({ type: "save" }));
+$("stop").addEventListener("click", () => send({ type: "stop" }));
+
+// ---- What the server says --------------------------------------------------------------
+function showState(s) {
+  state = s;
+  for (let i = 0; i < 16; i++) {
+    leds[i].classList.toggle("on", (s.leds >> i & 1) === 1);
+    knobs[i].setAttribute("transform", (s.switches >> i & 1) ? "translate(0,-22)" : "");
+  }
+  for (let d = 0; d < 8; d++) {
+    const lit = s.digits[d];
+    digits[d].forEach((seg, k) => seg.classList.toggle("on", (lit >> k & 1) === 1));
+  }
+  for (const [name, b] of Object.entries(buttons)) {
+    if (!mouseHeld.has(name) && !latched.has(name)) b.classList.toggle("down", s.buttons.includes(name));
+  }
+  $("time").textContent = (s.time_ps / 1e12).toFixed(3) + " s";
+  $("rate").textContent = s.running ? s.rate.toFixed(2) + " x real time" : "paused";
+  $("samples").textContent = s.samples + " samples";
+  $("run").textContent = s.running ? "Pause" : "Run";
+  $("fps").textContent = s.frame_rate > 0 ? s.frame_rate.toFixed(1) + " frames/s" : "";
+  const b = s.bot;
+  if (b) {
+    $("r-x").textContent = b.x;
+    $("r-y").textContent = b.y;
+    $("r-heading").textContent = b.heading;
+    $("r-movement").textContent = b.movement;
+    $("r-sensors").textContent = b.sensors.toString(2).padStart(8, "0");
+    $("r-info").textContent = hex(b.info);
+    $("r-motctl").textContent = hex(b.motctl);
+    $("r-lmdist").textContent = b.lmdist;
+    $("r-rmdist").textContent = b.rmdist;
+  }
+  drawWorld();
+}
+
+function hex(v) { return v.toString(16).toUpperCase().padStart(2, "0"); }
+
+const CELL = ["#f4f1ea", "#111111", "#b3412e", "#9aa3ad"]; // floor, line, obstruction, reserved
+const HEADING = { N: -90, NE: -45, E: 0, SE: 45, S: 90, SW: 135, W: 180, NW: -135 };
+let worldImage = null;
+
+function drawWorld() {
+  const c = $("world");
+  const g = c.getContext("2d");
+  if (!world) return;
+  const k = c.width / world.width;
+  if (!worldImage) {
+    worldImage = document.createElement("canvas");
+    worldImage.width = c.width;
+    worldImage.height = c.height;
+    const w = worldImage.getContext("2d");
+    for (let y = 0; y < world.height; y++) {
+      for (let x = 0; x < world.width; x++) {
+        w.fillStyle = CELL[Number(world.cells[y * world.width + x])];
+        w.fillRect(x * k, y * k, k, k);
+      }
+    }
+  }
+  g.drawImage(worldImage, 0, 0);
+  if (path.length > 1) {
+    g.strokeStyle = "rgba(47, 128, 237, 0.85)";
+    g.lineWidth = 2;
+    g.beginPath();
+    path.forEach(([x, y], i) => (i ? g.lineTo : g.moveTo).call(g, (x + 0.5) * k, (y + 0.5) * k));
+    g.stroke();
+  }
+  const b = state && state.bot;
+  if (b) {
+    g.save();
+    g.translate((b.x + 0.5) * k, (b.y + 0.5) * k);
+    g.rotate(((HEADING[b.heading] || 0) * Math.PI) / 180);
+    g.fillStyle = "#2f80ed";
+    g.strokeStyle = "#fff";
+    g.lineWidth = 1.5;
+    g.beginPath();
+    g.moveTo(9, 0);
+    g.lineTo(-7, -7);
+    g.lineTo(-4, 0);
+    g.lineTo(-7, 7);
+    g.closePath();
+    g.fill();
+    g.stroke();
+    g.restore();
+  }
+}
+
+function showError(text) {
+  const e = $("error");
+  e.textContent = text;
+  e.hidden = false;
+  clearTimeout(showError.t);
+  showError.t = setTimeout(() => (e.hidden = true), 4000);
+}
+
+function download(name, text) {
+  const a = document.createElement("a");
+  a.href = URL.createObjectURL(new Blob([text], { type: "text/plain" }));
+  a.download = name;
+  a.click();
+  URL.revokeObjectURL(a.href);
+}
+
+function onMessage(ev) {
+  if (typeof ev.data !== "string") {
+    // The PNG of the frame message before it.
+    if (!pendingFrame) return;
+    const img = $("vga");
+    const old = img.src;
+    img.src = URL.createObjectURL(new Blob([ev.data], { type: "image/png" }));
+    img.dataset.sample = pendingFrame.sample;
+    img.dataset.timePs = pendingFrame.time_ps;
+    if (old) URL.revokeObjectURL(old);
+    $("novga").hidden = true;
+    pendingFrame = null;
+    return;
+  }
+  const m = JSON.parse(ev.data);
+  if (m.gpio) return; // ViDBo's shape, for ViDBo front ends
+  switch (m.type) {
+    case "hello":
+      world = m.world;
+      worldImage = null;
+      path.length = 0;
+      $("design").textContent = m.design ? m.design.top + " — " + m.design.sources : "";
+      break;
+    case "state": showState(m); break;
+    case "log":
+      for (const e of m.entries) if (e.kind === "sample") path.push([e.x, e.y]);
+      drawWorld();
+      break;
+    case "frame": pendingFrame = m; break;
+    case "stimulus": download("live-stimulus.txt", m.text); break;
+    case "error": showError(m.message); break;
+    case "closed":
+      $("status").textContent = "the run ended";
+      $("status").classList.add("offline");
+      break;
+  }
+}
+
+function connect() {
+  ws = new WebSocket(`ws://${location.host}/ws`);
+  ws.binaryType = "arraybuffer";
+  ws.onopen = () => {
+    $("status").textContent = "live";
+    $("status").classList.remove("offline");
+  };
+  ws.onclose = () => {
+    if ($("status").textContent !== "the run ended") {
+      $("status").textContent = "disconnected";
+      $("status").classList.add("offline");
+    }
+  };
+  ws.onmessage = onMessage;
+}
+
+drawBoard();
+connect();

@@ -1,0 +1,413 @@
+//! `botsim board --live`: the board runs until the page or Ctrl-C stops it, paced against
+//! the wall clock, with its inputs from the pages (botsim_live's server) and what it shows
+//! published to them. Inputs take effect at the next cycle boundary of the board's clock and
+//! are kept as a [`Stimulus`], so a session replays exactly with `--stimulus` (`--record`
+//! writes it; the page's Save downloads it).
+//!
+//! VGA: simulating a frame costs about 420,000 pixel clocks, so the board runs with its VGA
+//! part parked (as a run that records no frames does: only what the page shows is simulated,
+//! and the fast-forward skips what repeats) and simulates the pixel path only for the frames
+//! it shows: when a bot sample or an input may have changed what the design draws, at most
+//! [`FRAME_EVERY`] of wall time apart.
+
+use std::time::{Duration, Instant};
+
+use botsim::board::build::{BotKind, CpuModel};
+use botsim::board::model::{BoardModel, Event, FastForward, Printing, RawEvent};
+use botsim::files::write_atomic;
+use botsim::Snapshot;
+use botsim_core::board::display::Display;
+use botsim_core::board::pins::Role;
+use botsim_core::board::stimulus::{Press, Stimulus, POWER_ON_RESET_PS};
+use botsim_core::board::vga::Capture;
+use botsim_live::protocol::{BoardView, BotView, Button, Command};
+use botsim_live::server::Server;
+use serde_json::json;
+
+use super::prepare::Prepared;
+use super::session::load;
+use super::Args;
+
+/// One cycle of the board's clock: inputs change on its boundaries.
+const CYCLE_PS: u64 = 10_000;
+/// The most board time one call into the model covers (then commands are looked at).
+const CHUNK_PS: u64 = 20_000_000_000;
+/// How often the pages get the state, at most (wall time).
+const STATE_EVERY: Duration = Duration::from_millis(40);
+/// The least wall time between two VGA frames.
+pub const FRAME_EVERY: Duration = Duration::from_millis(200);
+/// How much board time a frame may take to come (three frames at 60 Hz).
+const FRAME_BUDGET_PS: u64 = 50_000_000_000;
+
+/// What the live run keeps of the board.
+struct Board {
+    model: BoardModel,
+    buf: Vec<RawEvent>,
+    display: Display,
+    leds: u16,
+    samples: u64,
+    bot: Option<BotView>,
+    vga: Capture,
+    /// Inputs so far, as a stimulus; buttons held now have `to` = u64::MAX.
+    inputs: Stimulus,
+    /// Something the design may draw changed since the last frame.
+    dirty: bool,
+}
+
+/// Round `t` up to a cycle boundary.
+fn aligned(t: u64) -> u64 {
+    t.div_ceil(CYCLE_PS) * CYCLE_PS
+}
+
+pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
+    if p.lockstep {
+        return Err("--live runs one board: --cpu iss (the default) or rtl".into());
+    }
+    if a.stimulus.is_some() || !a.press.is_empty() {
+        return Err("--live takes its inputs from the page (--switches sets where they start)".into());
+    }
+    if let Some(f) = &a.record {
+        botsim::files::check_writable(f)?;
+    }
+    let addr = format!("{}:{}", a.listen, a.port);
+    let addr =
+        addr.parse().map_err(|_| format!("--listen {}: expected an IP address (127.0.0.1, 0.0.0.0)", a.listen))?;
+    let server = Server::start(addr).map_err(|e| format!("--port {}: cannot listen on {addr}: {e}", a.port))?;
+    // The address is the first line: what a user opens, what a script reads.
+    println!("{}", server.url());
+    let cells: String = (0..128u8)
+        .flat_map(|y| (0..128u8).map(move |x| (x, y)))
+        .map(|(x, y)| char::from(b'0' + p.world.get(x, y).bits()))
+        .collect();
+    let sources: Vec<String> = a.sources.iter().map(|s| s.display().to_string()).collect();
+    server.hello(json!({
+        "design": {"top": p.plan.top, "sources": sources.join(" ")},
+        "world": {"width": 128, "height": 128, "cells": cells},
+        "protocol": 1,
+    }));
+    let printing = Printing { log: a.design_log.clone(), lines: if a.quiet { 0 } else { 200 } };
+    let mut model = load(&p.built.library, &p.world, &p.plan.roms, p.main_host()?, &printing)?;
+    let skips = p.cpu == CpuModel::Iss && p.main_bot == BotKind::Model && !a.no_fast_forward;
+    let skip_mode =
+        if skips && model.fast_forward_blocker().is_none() { FastForward::Recorded } else { FastForward::Off };
+    model.fast_forward(skip_mode);
+    let has_vga = p.plan.pins.iter().any(|(_, r)| *r == Role::Vsync);
+    let mut inputs = Stimulus::default();
+    if let Some(h) = &a.switches {
+        inputs.initial_switches = u16::from_str_radix(h.trim_start_matches("0x"), 16)
+            .map_err(|_| format!("--switches {h}: expected up to four hexadecimal digits"))?;
+    }
+    let mut b = Board {
+        model,
+        buf: vec![RawEvent::default(); 4096],
+        display: Display::default(),
+        leds: 0,
+        samples: 0,
+        bot: None,
+        vga: Capture::default(),
+        inputs,
+        dirty: true,
+    };
+    let (r, btn, sw) = b.inputs.inputs_at(0);
+    b.model.set_inputs(r, btn, sw);
+
+    let mut running = !a.paused;
+    let mut speed: Option<f64> = Some(a.speed);
+    let mut step_to: Option<u64> = None;
+    // Pacing: board time against wall time since the anchor.
+    let mut anchor = (Instant::now(), 0u64);
+    let mut last_state = Instant::now() - STATE_EVERY;
+    let mut last_frame: Option<Instant> = None;
+    let mut frames: Vec<Instant> = Vec::new();
+    let mut rate = (Instant::now(), 0u64, 0.0f64);
+    let started = Instant::now();
+    let mut stopped = false;
+    while !stopped && !crate::cli::interrupted() {
+        // The pages' commands, each at the next cycle boundary.
+        let wait = if running { Duration::ZERO } else { Duration::from_millis(20) };
+        let mut next = if wait.is_zero() { server.try_command() } else { server.command_within(wait) };
+        while let Some((client, command)) = next.take() {
+            match command {
+                Command::Run => {
+                    running = true;
+                    step_to = None;
+                    anchor = (Instant::now(), b.model.time_ps());
+                }
+                Command::Pause => running = false,
+                Command::Step => {
+                    running = true;
+                    step_to = Some(b.samples + 1);
+                    anchor = (Instant::now(), b.model.time_ps());
+                }
+                Command::Speed(f) => {
+                    speed = f;
+                    anchor = (Instant::now(), b.model.time_ps());
+                }
+                Command::Save => server
+                    .reply(client, json!({"type": "stimulus", "text": stimulus_text(&b.inputs, b.model.time_ps())})),
+                Command::Stop => stopped = true,
+                Command::Switch { .. } | Command::Switches(_) | Command::Button { .. } => {
+                    let t = b.align()?;
+                    let entry = b.input(t, &command);
+                    server.log(entry);
+                }
+            }
+            next = server.try_command();
+        }
+        if stopped {
+            break;
+        }
+        let now = b.model.time_ps();
+        if running {
+            // How far: to the pace's target (or a chunk at full speed), stopping at the
+            // power-on reset's release and at the end of a step.
+            let target = match speed {
+                Some(f) => anchor.1 + (anchor.0.elapsed().as_secs_f64() * f * 1e12) as u64,
+                None => now + CHUNK_PS,
+            };
+            let mut until = aligned(target.min(now + CHUNK_PS));
+            if now < POWER_ON_RESET_PS {
+                until = until.min(POWER_ON_RESET_PS);
+            }
+            if until > now {
+                let limit = step_to.unwrap_or(u64::MAX);
+                b.run_to(until, limit)?;
+                if b.model.time_ps() >= POWER_ON_RESET_PS && now < POWER_ON_RESET_PS {
+                    let (r, btn, sw) = b.inputs.inputs_at(b.model.time_ps());
+                    b.model.set_inputs(r, btn, sw);
+                }
+                if step_to.is_some_and(|s| b.samples >= s) {
+                    (running, step_to) = (false, None);
+                }
+            } else {
+                std::thread::sleep(Duration::from_millis(2));
+            }
+            // A frame for the page when what it shows may have changed.
+            if has_vga && b.dirty && last_frame.is_none_or(|f| f.elapsed() >= FRAME_EVERY) {
+                let t0 = b.model.time_ps();
+                if let Some(frame) = b.frame(skip_mode)? {
+                    server.frame(frame, json!({"time_ps": b.model.time_ps(), "sample": b.samples, "from_ps": t0}));
+                    let now = Instant::now();
+                    frames.push(now);
+                    frames.retain(|f| now.duration_since(*f) < Duration::from_secs(3));
+                    last_frame = Some(now);
+                }
+                // The pace goes on from here: a frame costs wall time, not the page's time.
+                anchor = (Instant::now(), b.model.time_ps());
+            }
+        }
+        if last_state.elapsed() >= STATE_EVERY {
+            let t = b.model.time_ps();
+            let dt = rate.0.elapsed().as_secs_f64();
+            if dt >= 0.5 {
+                rate = (Instant::now(), t, (t - rate.1) as f64 / 1e12 / dt);
+            }
+            let frame_rate = if frames.len() < 2 {
+                0.0
+            } else {
+                (frames.len() - 1) as f64 / frames[frames.len() - 1].duration_since(frames[0]).as_secs_f64().max(1e-3)
+            };
+            server.state(b.view(running, speed, rate.2, frame_rate));
+            last_state = Instant::now();
+        }
+    }
+    let t = b.model.time_ps();
+    server.state(b.view(false, speed, 0.0, 0.0));
+    server.close();
+    if let Some(f) = &a.record {
+        write_atomic(f, stimulus_text(&b.inputs, t).as_bytes())?;
+    }
+    if !a.quiet {
+        let recorded = a.record.as_ref().map_or(String::new(), |f| format!("; its inputs in {}", f.display()));
+        eprintln!(
+            "botsim board --live: ran {:.3} s of board time in {:.1} s, {} samples{recorded}",
+            t as f64 / 1e12,
+            started.elapsed().as_secs_f64(),
+            b.samples
+        );
+    }
+    // Give the pages a moment to hear that the run ended.
+    std::thread::sleep(Duration::from_millis(100));
+    Ok(())
+}
+
+impl Board {
+    /// Run the board to `until` (or the `limit`-th sample), taking what it shows.
+    fn run_to(&mut self, until: u64, limit: u64) -> Result<(), String> {
+        loop {
+            let (stop, n) = self.model.run(until, limit, &mut self.buf);
+            for i in 0..n {
+                if let Some(e) = Event::of(&self.buf[i]) {
+                    self.take(e);
+                }
+            }
+            match stop {
+                botsim::board::model::Stop::BufferFull => continue,
+                botsim::board::model::Stop::Finished => {
+                    return Err(match self.model.fatal() {
+                        Some(f) => format!("{f} (the design stopped at {:.6} ms)", self.model.time_ps() as f64 / 1e9),
+                        None => format!("the design called $finish at {:.6} ms", self.model.time_ps() as f64 / 1e9),
+                    })
+                }
+                _ => return self.model.host().map_or(Ok(()), |h| h.check()),
+            }
+        }
+    }
+
+    fn take(&mut self, e: Event) {
+        match e {
+            Event::Display { time_ps, an, seg, dp } => self.display.pins(time_ps, an, seg, dp),
+            Event::Leds { leds, .. } => self.leds = leds,
+            Event::Sample { snapshot, motctl, .. } => {
+                self.samples += 1;
+                self.bot = Some(bot_view(&snapshot, motctl.0));
+                self.dirty = true;
+            }
+            Event::Vga { time_ps, pins } => self.vga.pins(time_ps, pins),
+            Event::Bot { .. } => {}
+        }
+    }
+
+    /// Run on to the next cycle boundary (a step may have stopped between two): the time at
+    /// which an input takes effect.
+    fn align(&mut self) -> Result<u64, String> {
+        let t = aligned(self.model.time_ps());
+        if t > self.model.time_ps() {
+            self.run_to(t, u64::MAX)?;
+        }
+        Ok(self.model.time_ps())
+    }
+
+    /// Apply an input from a page at `t`; the log entry that says so.
+    fn input(&mut self, t: u64, command: &Command) -> serde_json::Value {
+        let (_, _, switches) = self.inputs.inputs_at(t);
+        let entry = match *command {
+            Command::Switch { index, on } => {
+                let v = if on { switches | 1 << index } else { switches & !(1 << index) };
+                self.inputs.switches.push((t, v));
+                json!({"kind": "input", "time_ps": t, "switches": v})
+            }
+            Command::Switches(v) => {
+                self.inputs.switches.push((t, v));
+                json!({"kind": "input", "time_ps": t, "switches": v})
+            }
+            Command::Button { button, down } => {
+                let bit = match button {
+                    Button::CpuReset => None,
+                    b => botsim_core::board::stimulus::button_bit(b.name()),
+                };
+                let held = self.inputs.presses.iter_mut().find(|p| p.button == bit && p.to == u64::MAX);
+                match (held, down) {
+                    (None, true) => self.inputs.presses.push(Press { button: bit, from: t, to: u64::MAX }),
+                    (Some(p), false) => {
+                        p.to = t;
+                        // A press and a release in the same cycle: one cycle pressed.
+                        if p.to == p.from {
+                            p.to += CYCLE_PS;
+                        }
+                    }
+                    _ => {}
+                }
+                json!({"kind": "input", "time_ps": t, "button": button.name(), "down": down})
+            }
+            _ => json!({}),
+        };
+        let (r, b, s) = self.inputs.inputs_at(t);
+        self.model.set_inputs(r, b, s);
+        self.dirty = true;
+        entry
+    }
+
+    /// Simulate the VGA part until it completes a frame: the fast-forward off and the pixel
+    /// clock running (from where it was parked), the frame taken, then back as it was.
+    fn frame(&mut self, skip_mode: FastForward) -> Result<Option<Vec<u8>>, String> {
+        self.model.fast_forward(FastForward::Off);
+        self.model.record_vga(true);
+        self.vga = Capture::default();
+        let end = aligned(self.model.time_ps() + FRAME_BUDGET_PS);
+        let mut frame = None;
+        while frame.is_none() && self.model.time_ps() < end {
+            let until = aligned(self.model.time_ps() + 2_000_000_000).min(end);
+            self.run_to(until, u64::MAX)?;
+            frame = self.vga.take().pop();
+        }
+        self.model.record_vga(false);
+        self.model.fast_forward(skip_mode);
+        self.dirty = false;
+        Ok(frame.map(|f| f.png()))
+    }
+
+    fn view(&self, running: bool, speed: Option<f64>, rate: f64, frame_rate: f64) -> BoardView {
+        let t = self.model.time_ps();
+        let (reset, buttons, switches) = self.inputs.inputs_at(t);
+        let mut pressed = 0u8;
+        for b in Button::ALL {
+            let on = match b {
+                Button::CpuReset => reset && t >= POWER_ON_RESET_PS,
+                b => botsim_core::board::stimulus::button_bit(b.name()).is_some_and(|bit| buttons >> bit & 1 == 1),
+            };
+            if on {
+                pressed |= b.bit();
+            }
+        }
+        let line = self.display.lines().last();
+        BoardView {
+            time_ps: t,
+            rate,
+            running,
+            speed,
+            leds: self.leds,
+            switches,
+            buttons: pressed,
+            digits: line.map_or([0; 8], |l| l.lit),
+            text: line.map_or(String::new(), |l| l.text.clone()),
+            samples: self.samples,
+            bot: self.bot.clone(),
+            frame_rate,
+        }
+    }
+}
+
+fn bot_view(s: &Snapshot, motctl: u8) -> BotView {
+    BotView {
+        sample: s.sample,
+        x: s.regs.loc_x,
+        y: s.regs.loc_y,
+        heading: s.orientation().name().to_string(),
+        movement: s.movement().name().to_string(),
+        info: s.regs.bot_info,
+        sensors: s.regs.sensors,
+        lmdist: s.regs.lm_dist,
+        rmdist: s.regs.rm_dist,
+        motctl,
+    }
+}
+
+/// The inputs as a stimulus file (`--stimulus`): times in cycles of the 100 MHz clock, a
+/// button still held pressed to `end_ps`.
+fn stimulus_text(s: &Stimulus, end_ps: u64) -> String {
+    let mut lines: Vec<(u64, String)> = Vec::new();
+    for p in &s.presses {
+        let name = match p.button {
+            None => "btnCpuReset".to_string(),
+            Some(bit) => botsim_core::board::stimulus::button_name(bit).to_string(),
+        };
+        let to = if p.to == u64::MAX { aligned(end_ps.max(p.from + CYCLE_PS)) } else { p.to };
+        lines.push((p.from, format!("{}c press {name} {}c", p.from / CYCLE_PS, (to - p.from) / CYCLE_PS)));
+    }
+    for (t, v) in &s.switches {
+        lines.push((*t, format!("{}c switches {v:04X}", t / CYCLE_PS)));
+    }
+    lines.sort_by_key(|(t, _)| *t);
+    let mut out = String::from(
+        "# botsim board --live: the inputs of a session, times in cycles of the 100 MHz clock (botsim board --stimulus FILE replays it)\n",
+    );
+    if s.initial_switches != 0 {
+        out.push_str(&format!("0c switches {:04X}\n", s.initial_switches));
+    }
+    for (_, l) in lines {
+        out.push_str(&l);
+        out.push('\n');
+    }
+    out
+}

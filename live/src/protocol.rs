@@ -4,10 +4,10 @@
 //! ```
 //! use botsim_live::protocol::{Button, Command};
 //! assert_eq!(Command::parse(r#"{"type":"switch","index":3,"on":true}"#), Ok(vec![Command::Switch { index: 3, on: true }]));
-//! // ViDBo's shape: several pins in one message.
+//! // ViDBo's shape: several pins in one message (taken in the order of their names).
 //! assert_eq!(
 //!     Command::parse(r#"{"gpio":{"SW0":true,"BTNC":false}}"#),
-//!     Ok(vec![Command::Switch { index: 0, on: true }, Command::Button { button: Button::C, down: false }])
+//!     Ok(vec![Command::Button { button: Button::C, down: false }, Command::Switch { index: 0, on: true }])
 //! );
 //! assert!(Command::parse("{\"type\":\"switch\",\"index\":16,\"on\":true}").unwrap_err().contains("0 to 15"));
 //! ```

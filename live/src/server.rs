@@ -15,7 +15,6 @@ use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
 use serde_json::{json, Value};
-use tungstenite::handshake::server::{Request, Response};
 use tungstenite::{Message, WebSocket};
 
 use crate::page;
@@ -183,12 +182,9 @@ fn serve(stream: TcpStream, shared: Arc<Shared>, tx: Sender<(ClientId, Command)>
     if !upgrade {
         return http(stream, &head);
     }
-    let mut path = String::new();
-    let ws = tungstenite::accept_hdr(stream, |req: &Request, resp: Response| {
-        path = req.uri().to_string();
-        Ok(resp)
-    })
-    .map_err(|e| std::io::Error::other(e.to_string()))?;
+    // The path it asked for (ViDBo's front ends are told apart by it); the head was peeked.
+    let path = head.split_whitespace().nth(1).unwrap_or("/").to_string();
+    let ws = tungstenite::accept(stream).map_err(|e| std::io::Error::other(e.to_string()))?;
     let id = shared.clients.fetch_add(1, Ordering::Relaxed) + 1;
     shared.connected.fetch_add(1, Ordering::Relaxed);
     let vidbo = path.to_ascii_lowercase().contains("vidbo");

@@ -4,6 +4,7 @@
 pub mod cpu_coverage;
 pub mod debug;
 pub mod icarus;
+pub mod live;
 pub mod lockstep;
 pub mod repo;
 pub mod strategies;

@@ -7,8 +7,8 @@
 //! VGA: simulating a frame costs about 420,000 pixel clocks, so the board runs with its VGA
 //! part parked (as a run that records no frames does: only what the page shows is simulated,
 //! and the fast-forward skips what repeats) and simulates the pixel path only for the frames
-//! it shows: when a bot sample or an input may have changed what the design draws, at most
-//! [`FRAME_EVERY`] of wall time apart.
+//! it shows: when an input or the bot (its place or heading, at a sample) may have changed
+//! what the design draws, at most [`FRAME_EVERY`] of wall time apart.
 
 use std::time::{Duration, Instant};
 
@@ -50,8 +50,12 @@ struct Board {
     vga: Capture,
     /// Inputs so far, as a stimulus; buttons held now have `to` = u64::MAX.
     inputs: Stimulus,
-    /// Something the design may draw changed since the last frame.
+    /// Something the design may draw changed since the last frame: an input, or the bot
+    /// since `drawn` (its registers at the last frame).
     dirty: bool,
+    drawn: Option<BotView>,
+    /// Samples not yet in the pages' log.
+    fresh: Vec<serde_json::Value>,
 }
 
 /// Round `t` up to a cycle boundary.
@@ -107,12 +111,14 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
         vga: Capture::default(),
         inputs,
         dirty: true,
+        drawn: None,
+        fresh: Vec::new(),
     };
     let (r, btn, sw) = b.inputs.inputs_at(0);
     b.model.set_inputs(r, btn, sw);
 
     let mut running = !a.paused;
-    let mut speed: Option<f64> = Some(a.speed);
+    let mut speed: Option<f64> = a.speed.0;
     let mut step_to: Option<u64> = None;
     // Pacing: board time against wall time since the anchor.
     let mut anchor = (Instant::now(), 0u64);
@@ -147,8 +153,7 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
                     .reply(client, json!({"type": "stimulus", "text": stimulus_text(&b.inputs, b.model.time_ps())})),
                 Command::Stop => stopped = true,
                 Command::Switch { .. } | Command::Switches(_) | Command::Button { .. } => {
-                    let t = b.align()?;
-                    let entry = b.input(t, &command);
+                    let entry = b.input(&command)?;
                     server.log(entry);
                 }
             }
@@ -165,17 +170,10 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
                 Some(f) => anchor.1 + (anchor.0.elapsed().as_secs_f64() * f * 1e12) as u64,
                 None => now + CHUNK_PS,
             };
-            let mut until = aligned(target.min(now + CHUNK_PS));
-            if now < POWER_ON_RESET_PS {
-                until = until.min(POWER_ON_RESET_PS);
-            }
+            let until = aligned(target.min(now + CHUNK_PS));
             if until > now {
                 let limit = step_to.unwrap_or(u64::MAX);
                 b.run_to(until, limit)?;
-                if b.model.time_ps() >= POWER_ON_RESET_PS && now < POWER_ON_RESET_PS {
-                    let (r, btn, sw) = b.inputs.inputs_at(b.model.time_ps());
-                    b.model.set_inputs(r, btn, sw);
-                }
                 if step_to.is_some_and(|s| b.samples >= s) {
                     (running, step_to) = (false, None);
                 }
@@ -183,7 +181,7 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
                 std::thread::sleep(Duration::from_millis(2));
             }
             // A frame for the page when what it shows may have changed.
-            if has_vga && b.dirty && last_frame.is_none_or(|f| f.elapsed() >= FRAME_EVERY) {
+            if has_vga && b.dirty && last_frame.map_or(true, |f| f.elapsed() >= FRAME_EVERY) {
                 let t0 = b.model.time_ps();
                 if let Some(frame) = b.frame(skip_mode)? {
                     server.frame(frame, json!({"time_ps": b.model.time_ps(), "sample": b.samples, "from_ps": t0}));
@@ -195,6 +193,9 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
                 // The pace goes on from here: a frame costs wall time, not the page's time.
                 anchor = (Instant::now(), b.model.time_ps());
             }
+        }
+        for entry in b.fresh.drain(..) {
+            server.log(entry);
         }
         if last_state.elapsed() >= STATE_EVERY {
             let t = b.model.time_ps();
@@ -232,8 +233,16 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
 }
 
 impl Board {
-    /// Run the board to `until` (or the `limit`-th sample), taking what it shows.
+    /// Run the board to `until` (or the `limit`-th sample), taking what it shows; the
+    /// power-on reset is released on the way, as in a run.
     fn run_to(&mut self, until: u64, limit: u64) -> Result<(), String> {
+        if self.model.time_ps() < POWER_ON_RESET_PS && until > POWER_ON_RESET_PS {
+            self.run_to(POWER_ON_RESET_PS, limit)?;
+            if self.model.time_ps() < POWER_ON_RESET_PS {
+                return Ok(()); // the limit came first
+            }
+        }
+        let released = self.model.time_ps() < POWER_ON_RESET_PS && until == POWER_ON_RESET_PS;
         loop {
             let (stop, n) = self.model.run(until, limit, &mut self.buf);
             for i in 0..n {
@@ -249,7 +258,13 @@ impl Board {
                         None => format!("the design called $finish at {:.6} ms", self.model.time_ps() as f64 / 1e9),
                     })
                 }
-                _ => return self.model.host().map_or(Ok(()), |h| h.check()),
+                _ => {
+                    if released && self.model.time_ps() == POWER_ON_RESET_PS {
+                        let (r, b, s) = self.inputs.inputs_at(POWER_ON_RESET_PS);
+                        self.model.set_inputs(r, b, s);
+                    }
+                    return self.model.host().map_or(Ok(()), |h| h.check());
+                }
             }
         }
     }
@@ -258,10 +273,18 @@ impl Board {
         match e {
             Event::Display { time_ps, an, seg, dp } => self.display.pins(time_ps, an, seg, dp),
             Event::Leds { leds, .. } => self.leds = leds,
-            Event::Sample { snapshot, motctl, .. } => {
+            Event::Sample { time_ps, snapshot, motctl } => {
                 self.samples += 1;
-                self.bot = Some(bot_view(&snapshot, motctl.0));
-                self.dirty = true;
+                let view = bot_view(&snapshot, motctl.0);
+                self.fresh.push(json!({
+                    "kind": "sample", "time_ps": time_ps, "sample": view.sample, "cycle": snapshot.cycle, "x": view.x, "y": view.y,
+                    "info": view.info, "sensors": view.sensors, "lmdist": view.lmdist, "rmdist": view.rmdist,
+                    "motctl": view.motctl,
+                }));
+                // What a design draws of the bot: where it is and where it heads.
+                let moved = |b: &BotView| (b.x, b.y, b.info) != (view.x, view.y, view.info);
+                self.dirty |= self.drawn.as_ref().map_or(true, moved);
+                self.bot = Some(view);
             }
             Event::Vga { time_ps, pins } => self.vga.pins(time_ps, pins),
             Event::Bot { .. } => {}
@@ -278,8 +301,17 @@ impl Board {
         Ok(self.model.time_ps())
     }
 
-    /// Apply an input from a page at `t`; the log entry that says so.
-    fn input(&mut self, t: u64, command: &Command) -> serde_json::Value {
+    /// Apply an input from a page at the next cycle boundary (a release one cycle after its
+    /// press, at the least); the log entry that says so.
+    fn input(&mut self, command: &Command) -> Result<serde_json::Value, String> {
+        let mut t = self.align()?;
+        if let Command::Button { button, down: false } = *command {
+            let bit = botsim_core::board::stimulus::button_bit(button.name());
+            if self.inputs.presses.iter().any(|p| p.button == bit && p.to == u64::MAX && p.from == t) {
+                self.run_to(t + CYCLE_PS, u64::MAX)?;
+                t = self.model.time_ps();
+            }
+        }
         let (_, _, switches) = self.inputs.inputs_at(t);
         let entry = match *command {
             Command::Switch { index, on } => {
@@ -299,13 +331,7 @@ impl Board {
                 let held = self.inputs.presses.iter_mut().find(|p| p.button == bit && p.to == u64::MAX);
                 match (held, down) {
                     (None, true) => self.inputs.presses.push(Press { button: bit, from: t, to: u64::MAX }),
-                    (Some(p), false) => {
-                        p.to = t;
-                        // A press and a release in the same cycle: one cycle pressed.
-                        if p.to == p.from {
-                            p.to += CYCLE_PS;
-                        }
-                    }
+                    (Some(p), false) => p.to = t,
                     _ => {}
                 }
                 json!({"kind": "input", "time_ps": t, "button": button.name(), "down": down})
@@ -315,7 +341,7 @@ impl Board {
         let (r, b, s) = self.inputs.inputs_at(t);
         self.model.set_inputs(r, b, s);
         self.dirty = true;
-        entry
+        Ok(entry)
     }
 
     /// Simulate the VGA part until it completes a frame: the fast-forward off and the pixel
@@ -334,6 +360,7 @@ impl Board {
         self.model.record_vga(false);
         self.model.fast_forward(skip_mode);
         self.dirty = false;
+        self.drawn = self.bot.clone();
         Ok(frame.map(|f| f.png()))
     }
 

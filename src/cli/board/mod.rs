@@ -218,9 +218,9 @@ pub struct Args {
     /// (`--stimulus FILE` replays them exactly)
     #[arg(long, value_name = "FILE", requires = "live")]
     record: Option<PathBuf>,
-    /// With --live: start at this factor of real time [default: 1]
-    #[arg(long, default_value_t = 1.0, requires = "live")]
-    speed: f64,
+    /// With --live: start at this factor of real time, or `max` (as fast as it can)
+    #[arg(long, default_value = "1", value_parser = parse_speed, requires = "live")]
+    speed: Speed,
     /// With --live: start paused
     #[arg(long, requires = "live")]
     paused: bool,
@@ -230,6 +230,20 @@ pub struct Args {
     /// Print nothing but errors
     #[arg(short, long)]
     quiet: bool,
+}
+
+/// `--speed`: a factor of real time, or `None` for as fast as it can.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Speed(pub Option<f64>);
+
+fn parse_speed(s: &str) -> Result<Speed, String> {
+    if s.eq_ignore_ascii_case("max") {
+        return Ok(Speed(None));
+    }
+    match s.parse::<f64>() {
+        Ok(f) if f.is_finite() && f > 0.0 => Ok(Speed(Some(f))),
+        _ => Err("expected a factor of real time (0.5, 1, 10) or max".into()),
+    }
 }
 
 /// `--cpu`.

@@ -1,0 +1,208 @@
+//! `botsim board --live` over its WebSocket, as pages use it (docs/LIVE.md): the whole board
+//! on connect, inputs that reach the design at the time the server states, two pages that
+//! see the same, bad messages answered and ignored, a page that vanishes, ViDBo's shapes,
+//! and a session replayed exactly from its recorded inputs.
+
+mod common;
+
+use std::time::Duration;
+
+use common::live::{Live, BUDGET};
+use serde_json::{json, Value};
+
+/// The shapes design (a team CPU polling: the buttons on LED[4:0], the switches on the
+/// motors), its debounce in simulation mode.
+const SHAPES: [&str; 5] = [
+    "tests/board_designs/shapes",
+    "examples/common/debounce.v",
+    "examples/common/nexys4_bot_if.v",
+    "--param",
+    "SIMULATE=1",
+];
+
+fn shapes(extra: &[&str]) -> Vec<String> {
+    SHAPES.iter().chain(extra).map(|s| s.to_string()).collect()
+}
+
+fn start(args: &[String]) -> Live {
+    let a: Vec<&str> = args.iter().map(String::as_str).collect();
+    Live::start(&a)
+}
+
+#[test]
+fn a_page_gets_the_board_and_its_inputs_reach_the_design_at_the_stated_time() {
+    let live = start(&shapes(&["--speed", "max"]));
+    let mut a = live.client("/");
+    // The whole board first: the design, the world, then its state.
+    let hello = a.next(BUDGET).unwrap();
+    assert_eq!(hello["type"], "hello", "{hello}");
+    assert_eq!(hello["design"]["top"], "nexys4fpga");
+    assert_eq!(hello["world"]["cells"].as_str().map(str::len), Some(128 * 128));
+    let s = a.state("a state", |s| s["samples"].as_u64() > Some(3));
+    assert_eq!((s["switches"].as_u64(), s["leds"].as_u64().map(|l| l & 0x1F)), (Some(0), Some(0)), "{s}");
+    // A second page, on another path, sees the same board.
+    let mut b = live.client("/any/path");
+    assert_eq!(b.next(BUDGET).unwrap()["type"], "hello");
+
+    // Switches 7-0 drive the bot: 30 (right forward) instead of 33 (both forward) with them off.
+    a.send(json!({"type": "switches", "value": "0030"}));
+    let applied = b.log_entry("the input, in the other page's log", |e| e["kind"] == "input" && e["switches"] == 0x30);
+    let t = applied["time_ps"].as_u64().unwrap();
+    assert_eq!(t % 10_000, 0, "an input takes effect at a cycle boundary: {applied}");
+    // Every sample before it shows the motors the switches at 0 gave, and from the first
+    // one after it (the firmware polls them within a few cycles) the new ones.
+    let mut seen_after = 0;
+    b.until("three samples after the switches", |v| {
+        for e in v["entries"].as_array().into_iter().flatten().filter(|e| e["kind"] == "sample") {
+            let (at, motctl) = (e["time_ps"].as_u64().unwrap(), e["motctl"].as_u64().unwrap());
+            if at < t {
+                assert_eq!(motctl, 0x33, "{e}");
+            } else {
+                assert_eq!(motctl, 0x30, "a sample after the switches changed at {t} ps: {e}");
+                seen_after += 1;
+            }
+        }
+        seen_after >= 3
+    });
+    a.state("the switches in the state", |s| s["switches"] == 0x30);
+
+    // A button is pressed while held: btnC lights LED 4 (the firmware copies the buttons).
+    a.send(json!({"type": "button", "name": "btnC", "down": true}));
+    let s = b.state("btnC's LED lit", |s| s["leds"].as_u64().unwrap() & 0x10 != 0);
+    assert!(s["buttons"].as_array().unwrap().contains(&json!("btnC")), "{s}");
+    a.send(json!({"type": "button", "name": "btnC", "down": false}));
+    b.state("btnC's LED dark again", |s| s["leds"].as_u64().unwrap() & 0x10 == 0 && s["buttons"] == json!([]));
+}
+
+#[test]
+fn a_bad_message_is_answered_and_changes_nothing_and_a_vanished_page_neither() {
+    let live = start(&shapes(&["--speed", "max", "--switches", "0005"]));
+    let mut a = live.client("/");
+    a.next(BUDGET).unwrap();
+    for bad in [
+        "{nonsense",
+        r#"{"type":"button","name":"btnZ","down":true}"#,
+        r#"{"type":"switch","index":99,"on":true}"#,
+        "[]",
+    ] {
+        a.send_text(bad);
+        let e = a.until("an error", |v| v["type"] == "error");
+        assert!(!e["message"].as_str().unwrap_or("").is_empty(), "{e}");
+    }
+    a.ws.send(tungstenite::Message::binary(vec![1, 2, 3])).unwrap();
+    a.until("an error for a binary message", |v| v["type"] == "error");
+    // Nothing changed: the switches are where they started, no input was logged.
+    let s = a.state("a state after the bad messages", |_| true);
+    assert_eq!(s["switches"], 5, "{s}");
+
+    // A page that goes without a word (its socket shut): the board runs on for the others.
+    let mut gone = live.client("/");
+    gone.next(BUDGET).unwrap();
+    if let tungstenite::stream::MaybeTlsStream::Plain(s) = gone.ws.get_mut() {
+        s.shutdown(std::net::Shutdown::Both).unwrap();
+    }
+    drop(gone);
+    let t0 = a.state("a state", |_| true)["time_ps"].as_u64().unwrap();
+    a.state("the board running on", |s| s["time_ps"].as_u64().unwrap() > t0 + 50_000_000_000);
+}
+
+#[test]
+fn vidbo_shapes_come_and_go() {
+    let live = start(&shapes(&["--speed", "max"]));
+    let mut v = live.client("/vidbo");
+    v.next(BUDGET).unwrap();
+    // Out: LEDs and the display's digits as ViDBo's front end shows them.
+    let g = v.until("a gpio message", |m| m.get("gpio").is_some());
+    assert!(g["gpio"]["LD0"].is_u64() && g["gpio"]["SevSegDispl7"].is_string(), "{g}");
+    // In: a button by ViDBo's name.
+    v.send(json!({"gpio": {"BTNC": true}}));
+    v.until("LD4 lit", |m| m["gpio"]["LD4"] == 1);
+    v.send(json!({"gpio": {"BTNC": false, "SW1": true}}));
+    v.until("LD4 dark, switch 1 on", |m| {
+        m["type"] == "state" && m["leds"].as_u64().unwrap() & 0x10 == 0 && m["switches"] == 2
+    });
+}
+
+#[test]
+fn a_live_session_replays_exactly_from_its_recorded_inputs() {
+    let dir = tempfile::tempdir().unwrap();
+    let record = dir.path().join("session.txt");
+    let mut live = start(&shapes(&["--speed", "max", "--record", record.to_str().unwrap()]));
+    let mut a = live.client("/");
+    a.next(BUDGET).unwrap();
+    // A session: switches, a button held for a while, a CPU reset, more switches.
+    let mut samples: Vec<Value> = Vec::new();
+    let mut keep = |v: &Value| {
+        for e in v["entries"].as_array().into_iter().flatten() {
+            if e["kind"] == "sample" {
+                samples.push(e.clone());
+            }
+        }
+    };
+    let wait_samples = |a: &mut common::live::Client, n: usize, keep: &mut dyn FnMut(&Value)| {
+        let mut got = 0;
+        a.until("samples", |v| {
+            keep(v);
+            got += v["entries"].as_array().map_or(0, |e| e.iter().filter(|e| e["kind"] == "sample").count());
+            got >= n
+        });
+    };
+    wait_samples(&mut a, 3, &mut keep);
+    a.send(json!({"type": "switches", "value": "0003"}));
+    wait_samples(&mut a, 4, &mut keep);
+    a.send(json!({"type": "button", "name": "btnU", "down": true}));
+    wait_samples(&mut a, 2, &mut keep);
+    a.send(json!({"type": "button", "name": "btnU", "down": false}));
+    // The CPU reset, held a while: the bot restarts when it is released, so the cycle of
+    // every sample after it tells the release's time to the cycle.
+    a.send(json!({"type": "button", "name": "btnCpuReset", "down": true}));
+    let t =
+        a.log_entry("the reset pressed", |e| e["kind"] == "input" && e["down"] == true)["time_ps"].as_u64().unwrap();
+    a.state("some time with the reset held", |s| s["time_ps"].as_u64().unwrap() > t + 30_000_000_000);
+    a.send(json!({"type": "button", "name": "btnCpuReset", "down": false}));
+    wait_samples(&mut a, 3, &mut keep);
+    a.send(json!({"type": "switch", "index": 4, "on": true}));
+    wait_samples(&mut a, 5, &mut keep);
+    a.send(json!({"type": "stop"}));
+    // The rest of the log up to the end.
+    while let Some(v) = a.next(Duration::from_millis(500)) {
+        keep(&v);
+        if v["type"] == "closed" {
+            break;
+        }
+    }
+    assert!(live.wait().success());
+    let text = std::fs::read_to_string(&record).unwrap();
+    assert!(
+        text.contains("press btnU") && text.contains("press btnCpuReset") && text.contains("switches 0013"),
+        "{text}"
+    );
+
+    // Replayed without --live: the same samples, register for register.
+    let last = samples.last().unwrap()["sample"].as_u64().unwrap();
+    let trace = dir.path().join("trace.json");
+    let mut args = shapes(&[]);
+    args.extend(["--stimulus", record.to_str().unwrap(), "--samples", &last.to_string()].map(String::from));
+    args.extend(["--trace-json", trace.to_str().unwrap(), "-q"].map(String::from));
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_botsim"))
+        .arg("board")
+        .args(&args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("BOTSIM_CACHE", std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/botsim-board-cache"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let replay: Vec<Value> =
+        std::fs::read_to_string(&trace).unwrap().lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    assert!(samples.len() > 15, "{}", samples.len());
+    for s in &samples {
+        let n = s["sample"].as_u64().unwrap() as usize;
+        let r = &replay[n];
+        let regs = |v: &Value, keys: [&str; 8]| keys.map(|k| v[k].as_u64());
+        assert_eq!(
+            regs(s, ["cycle", "x", "y", "info", "sensors", "lmdist", "rmdist", "motctl"]),
+            regs(r, ["cycle", "loc_x", "loc_y", "bot_info", "sensors", "lm_dist", "rm_dist", "next_motctl"]),
+            "sample {n}: live {s}, replayed {r}"
+        );
+    }
+}

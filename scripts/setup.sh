@@ -2,7 +2,8 @@
 # Installs what botsim needs on a fresh Debian machine (bookworm): Verilator 5.006 to build the
 # RTL model, libclang for bindgen, GHDL for board designs with VHDL modules, Icarus Verilog +
 # Yosys for the CI gate, python3 for its coverage report, GTKWave and a virtual X server
-# (Xvfb) for the test that opens a board waveform's save file in GTKWave.
+# (Xvfb) for the test that opens a board waveform's save file in GTKWave, Chromium for the
+# test that plays the live board's page in a real (headless) browser.
 # Safe to run twice: it only installs what is missing.
 set -euo pipefail
 
@@ -19,6 +20,7 @@ command -v bc        >/dev/null 2>&1 || need+=(bc)
 command -v python3   >/dev/null 2>&1 || need+=(python3)
 command -v gtkwave   >/dev/null 2>&1 || need+=(gtkwave)
 command -v xvfb-run  >/dev/null 2>&1 || need+=(xvfb xauth)
+[ -x /usr/bin/chromium ]             || need+=(chromium)
 
 if [ ${#need[@]} -gt 0 ]; then
   echo "setup: installing ${need[*]}"

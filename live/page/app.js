@@ -60,11 +60,11 @@ function drawBoard() {
   // Sixteen LEDs over sixteen switches, 15 on the left.
   for (let i = 0; i < 16; i++) {
     const x = 40 + (15 - i) * 36;
-    leds[i] = el("rect", { class: "led", x: x - 6, y: 318, width: 12, height: 8, rx: 2 });
+    leds[i] = el("rect", { class: "led", id: "ld" + i, x: x - 6, y: 318, width: 12, height: 8, rx: 2 });
     const l = el("text", { class: "silk", x: x, y: 312, "text-anchor": "middle" });
     l.textContent = "LD" + i;
     el("rect", { class: "sw-slot", x: x - 7, y: 344, width: 14, height: 44, rx: 3 });
-    const knob = el("rect", { class: "sw-knob", x: x - 6, y: 368, width: 12, height: 18, rx: 2 });
+    const knob = el("rect", { class: "sw-knob", id: "sw" + i, x: x - 6, y: 368, width: 12, height: 18, rx: 2 });
     knob.addEventListener("click", () => toggleSwitch(i));
     knobs[i] = knob;
     const sl = el("text", { class: "silk", x: x, y: 404, "text-anchor": "middle" });
@@ -93,7 +93,7 @@ function drawDigit(x, y) {
 }
 
 function drawButton(name, x, y, label, reset) {
-  const b = el("circle", { class: "btn" + (reset ? " reset" : ""), cx: x, cy: y, r: 15 });
+  const b = el("circle", { class: "btn" + (reset ? " reset" : ""), id: "btn-" + name, cx: x, cy: y, r: 15 });
   const l = el("text", { class: "silk", x: x, y: y + 29, "text-anchor": "middle" });
   l.textContent = label;
   b.addEventListener("mousedown", (e) => {
@@ -151,6 +151,20 @@ $("save").addEventListener("click", () => send({ type: "save" }));
 $("stop").addEventListener("click", () => send({ type: "stop" }));
 
 // ---- What the server says --------------------------------------------------------------
+// The speed the run has (set by --speed, or by any page), unless this page's list is open.
+function showSpeed(factor) {
+  const sel = $("speed");
+  if (document.activeElement === sel) return;
+  const v = factor === null || factor === undefined ? "max" : String(factor);
+  if (![...sel.options].some((o) => o.value === v)) {
+    const o = document.createElement("option");
+    o.value = v;
+    o.textContent = v + " x";
+    sel.add(o, sel.options[sel.options.length - 1]);
+  }
+  sel.value = v;
+}
+
 function showState(s) {
   state = s;
   for (let i = 0; i < 16; i++) {
@@ -168,6 +182,7 @@ function showState(s) {
   $("rate").textContent = s.running ? s.rate.toFixed(2) + " x real time" : "paused";
   $("samples").textContent = s.samples + " samples";
   $("run").textContent = s.running ? "Pause" : "Run";
+  showSpeed(s.speed);
   $("fps").textContent = s.frame_rate > 0 ? s.frame_rate.toFixed(1) + " frames/s" : "";
   const b = s.bot;
   if (b) {
@@ -259,6 +274,7 @@ function onMessage(ev) {
     const old = img.src;
     img.src = URL.createObjectURL(new Blob([ev.data], { type: "image/png" }));
     img.dataset.sample = pendingFrame.sample;
+    img.dataset.sampleFrom = pendingFrame.sample_from;
     img.dataset.timePs = pendingFrame.time_ps;
     if (old) URL.revokeObjectURL(old);
     $("novga").hidden = true;

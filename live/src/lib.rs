@@ -8,9 +8,9 @@
 //! ```no_run
 //! use botsim_live::server::Server;
 //! use botsim_live::protocol::{BoardView, Command};
-//! let server = Server::start("127.0.0.1:0".parse().unwrap()).unwrap();
+//! let hello = serde_json::json!({"design": "demo"});
+//! let server = Server::start("127.0.0.1:0".parse().unwrap(), hello).unwrap();
 //! println!("{}", server.url());
-//! server.hello(serde_json::json!({"design": "demo"}));
 //! loop {
 //!     while let Some((_client, command)) = server.try_command() {
 //!         if command == Command::Stop { return; }

@@ -66,12 +66,14 @@ const HEAD_MAX: usize = 16 * 1024;
 const HEAD_WAIT: Duration = Duration::from_secs(5);
 
 impl Server {
-    /// Listen on `addr` (port 0: any free port).
-    pub fn start(addr: SocketAddr) -> std::io::Result<Server> {
+    /// Listen on `addr` (port 0: any free port). `hello` (the design, the world) is what
+    /// every client gets first, as a `hello` message: given here, so that no client can
+    /// connect before it exists.
+    pub fn start(addr: SocketAddr, hello: Value) -> std::io::Result<Server> {
         let listener = TcpListener::bind(addr)?;
         let addr = listener.local_addr()?;
         let shared = Arc::new(Shared {
-            published: Mutex::new(Published::default()),
+            published: Mutex::new(Published { hello, ..Published::default() }),
             clients: AtomicU64::new(0),
             connected: AtomicU64::new(0),
         });
@@ -110,11 +112,6 @@ impl Server {
         let mut p = self.shared.published.lock().unwrap_or_else(|e| e.into_inner());
         f(&mut p);
         p.seq += 1;
-    }
-
-    /// What every client gets first (the design, the world), as a `hello` message.
-    pub fn hello(&self, hello: Value) {
-        self.publish(|p| p.hello = hello);
     }
 
     /// The board now.

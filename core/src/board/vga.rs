@@ -132,7 +132,19 @@ fn decode(start: u64, changes: &[(u64, u16)], before: u16) -> Option<Frame> {
         prev = v;
     }
     let mode = [MODE_640, MODE_1024].into_iter().find(|m| m.frame_lines() as usize == hs_falls.len())?;
-    let line_ps = (hs_falls[hs_falls.len() - 1] - hs_falls[0]) as f64 / (hs_falls.len() - 1) as f64;
+    // The lines of the picture, from the first visible row's sync to the sync after the last
+    // one's (the front porch follows), must be evenly timed: a frame whose pixel clock was
+    // parked for a while (a live board parks it between the frames it shows) is whole when
+    // the pause fell in the vertical sync or back porch, and is no frame otherwise.
+    let first = (mode.v_sync + mode.v_back) as usize - 1;
+    let rows = &hs_falls[first..=first + mode.height as usize];
+    let mut lines: Vec<u64> = rows.windows(2).map(|w| w[1] - w[0]).collect();
+    lines.sort_unstable();
+    let typical = lines[lines.len() / 2];
+    if lines[0] < typical - typical / 100 || lines[lines.len() - 1] > typical + typical / 100 {
+        return None;
+    }
+    let line_ps = (rows[rows.len() - 1] - rows[0]) as f64 / mode.height as f64;
     let pixel_ps = line_ps / mode.line_pixels() as f64;
     let mut pixels = Vec::with_capacity((mode.width * mode.height) as usize);
     for r in 0..mode.height {
@@ -216,6 +228,32 @@ mod tests {
         let f = cap.take().remove(0);
         assert_eq!((f.width, f.height), (1024, 768));
         assert!(f.pixels.iter().enumerate().all(|(k, &p)| p == pattern(k as u32 / 1024, k as u32 % 1024)));
+    }
+
+    /// A pixel clock parked for a while and taken back (a live board between two frames it
+    /// shows): the frame is whole when the pause fell in the vertical sync or back porch, and
+    /// no frame when it fell in the picture.
+    #[test]
+    fn a_pause_before_the_picture_keeps_the_frame_and_one_inside_it_loses_it() {
+        let pattern = |r: u32, c: u32| ((r * 5 + c) % 4096) as u16;
+        let pixel = 40_000;
+        let line = MODE_640.line_pixels() as u64 * pixel;
+        let source = frames(&MODE_640, pixel, pattern, 1);
+        // The first frame's vertical sync falls at the start of line 490 (480 + 10 front).
+        let vs = (MODE_640.height + MODE_640.v_front) as u64 * line;
+        let paused = |at: u64| -> Capture {
+            let gap = 123_456_789_000;
+            capture(&source.iter().map(|&(t, v)| (if t >= at { t + gap } else { t }, v)).collect::<Vec<_>>())
+        };
+        // Ten lines after the vertical sync: in the back porch.
+        let mut cap = paused(vs + 10 * line + 300 * pixel);
+        let f = cap.take();
+        assert_eq!(f.len(), 1);
+        assert!(f[0].pixels.iter().enumerate().all(|(k, &p)| p == pattern(k as u32 / 640, k as u32 % 640)));
+        // In row 100 of the picture.
+        let mut cap = paused(vs + (35 + 100) as u64 * line + 300 * pixel);
+        assert!(cap.take().is_empty());
+        assert_eq!(cap.unknown, 1);
     }
 
     #[test]

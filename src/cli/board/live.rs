@@ -8,7 +8,10 @@
 //! part parked (as a run that records no frames does: only what the page shows is simulated,
 //! and the fast-forward skips what repeats) and simulates the pixel path only for the frames
 //! it shows: when an input or the bot (its place or heading, at a sample) may have changed
-//! what the design draws, at most [`FRAME_EVERY`] of wall time apart.
+//! what the design draws (and every [`REFRESH_EVERY`] for what it draws by itself), at most
+//! [`FRAME_EVERY`] of wall time apart, and only while the board keeps its pace (a frame costs
+//! about one frame period of all-RTL simulation, 0.1 s on the VGA example). The pixel path
+//! is parked between frames in its vertical back porch, so each frame goes on from there.
 
 use std::time::{Duration, Instant};
 
@@ -35,9 +38,20 @@ const CHUNK_PS: u64 = 20_000_000_000;
 /// How often the pages get the state, at most (wall time).
 const STATE_EVERY: Duration = Duration::from_millis(40);
 /// The least wall time between two VGA frames.
-pub const FRAME_EVERY: Duration = Duration::from_millis(200);
+pub const FRAME_EVERY: Duration = Duration::from_millis(120);
+/// The longest wall time between two frames when nothing the board knows of changed (what
+/// a design draws from its own counters: a blinking cursor, an animation).
+const REFRESH_EVERY: Duration = Duration::from_secs(1);
+/// How far behind its pace the board may fall and still catch up (beyond: the pace goes on
+/// from where it is), and how close to it counts as on pace (a frame may be simulated).
+const CATCH_UP: Duration = Duration::from_millis(500);
+const ON_PACE: Duration = Duration::from_millis(30);
 /// How much board time a frame may take to come (three frames at 60 Hz).
 const FRAME_BUDGET_PS: u64 = 50_000_000_000;
+/// How far a frame's simulation runs at a time: a frame ends at most this long before the
+/// pixel path is parked again, well within the 35 lines of vertical sync and back porch
+/// (0.72 ms at 1024 x 768, 1.1 ms at 640 x 480).
+const FRAME_STEP_PS: u64 = 200_000_000;
 
 /// What the live run keeps of the board.
 struct Board {
@@ -76,19 +90,19 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
     let addr = format!("{}:{}", a.listen, a.port);
     let addr =
         addr.parse().map_err(|_| format!("--listen {}: expected an IP address (127.0.0.1, 0.0.0.0)", a.listen))?;
-    let server = Server::start(addr).map_err(|e| format!("--port {}: cannot listen on {addr}: {e}", a.port))?;
-    // The address is the first line: what a user opens, what a script reads.
-    println!("{}", server.url());
     let cells: String = (0..128u8)
         .flat_map(|y| (0..128u8).map(move |x| (x, y)))
         .map(|(x, y)| char::from(b'0' + p.world.get(x, y).bits()))
         .collect();
     let sources: Vec<String> = a.sources.iter().map(|s| s.display().to_string()).collect();
-    server.hello(json!({
+    let hello = json!({
         "design": {"top": p.plan.top, "sources": sources.join(" ")},
         "world": {"width": 128, "height": 128, "cells": cells},
         "protocol": 1,
-    }));
+    });
+    let server = Server::start(addr, hello).map_err(|e| format!("--port {}: cannot listen on {addr}: {e}", a.port))?;
+    // The address is the first line: what a user opens, what a script reads.
+    println!("{}", server.url());
     let printing = Printing { log: a.design_log.clone(), lines: if a.quiet { 0 } else { 200 } };
     let mut model = load(&p.built.library, &p.world, &p.plan.roms, p.main_host()?, &printing)?;
     let skips = p.cpu == CpuModel::Iss && p.main_bot == BotKind::Model && !a.no_fast_forward;
@@ -125,6 +139,7 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
     let mut last_state = Instant::now() - STATE_EVERY;
     let mut last_frame: Option<Instant> = None;
     let mut frames: Vec<Instant> = Vec::new();
+    let mut frames_shown = 0u64;
     let mut rate = (Instant::now(), 0u64, 0.0f64);
     let started = Instant::now();
     let mut stopped = false;
@@ -167,9 +182,19 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
             // How far: to the pace's target (or a chunk at full speed), stopping at the
             // power-on reset's release and at the end of a step.
             let target = match speed {
-                Some(f) => anchor.1 + (anchor.0.elapsed().as_secs_f64() * f * 1e12) as u64,
+                Some(f) => {
+                    let due = anchor.1 + (anchor.0.elapsed().as_secs_f64() * f * 1e12) as u64;
+                    // Behind by more than it may catch up: the pace goes on from here.
+                    let most = (f * CATCH_UP.as_secs_f64() * 1e12) as u64;
+                    if due > now + most {
+                        anchor = (Instant::now() - CATCH_UP, now);
+                    }
+                    due.min(now + most)
+                }
                 None => now + CHUNK_PS,
             };
+            // On pace: at the time the speed asks for, within a little.
+            let on_pace = speed.map_or(true, |f| target <= now + (f * ON_PACE.as_secs_f64() * 1e12) as u64);
             let until = aligned(target.min(now + CHUNK_PS));
             if until > now {
                 let limit = step_to.unwrap_or(u64::MAX);
@@ -181,17 +206,25 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
                 std::thread::sleep(Duration::from_millis(2));
             }
             // A frame for the page when what it shows may have changed.
-            if has_vga && b.dirty && last_frame.map_or(true, |f| f.elapsed() >= FRAME_EVERY) {
-                let t0 = b.model.time_ps();
+            // (Frames wait while the board catches up with its pace: the pace first.)
+            let due =
+                last_frame.map_or(true, |f| f.elapsed() >= FRAME_EVERY && (b.dirty || f.elapsed() >= REFRESH_EVERY));
+            if has_vga && on_pace && due {
+                let (t0, s0) = (b.model.time_ps(), b.bot.as_ref().map(|v| v.sample));
                 if let Some(frame) = b.frame(skip_mode)? {
-                    server.frame(frame, json!({"time_ps": b.model.time_ps(), "sample": b.samples, "from_ps": t0}));
+                    // The bot's last sample when the frame began and when it ended: equal,
+                    // the frame shows the bot as that sample left it.
+                    let s1 = b.bot.as_ref().map(|v| v.sample);
+                    server.frame(
+                        frame,
+                        json!({"from_ps": t0, "time_ps": b.model.time_ps(), "sample_from": s0, "sample": s1}),
+                    );
                     let now = Instant::now();
                     frames.push(now);
+                    frames_shown += 1;
                     frames.retain(|f| now.duration_since(*f) < Duration::from_secs(3));
                     last_frame = Some(now);
                 }
-                // The pace goes on from here: a frame costs wall time, not the page's time.
-                anchor = (Instant::now(), b.model.time_ps());
             }
         }
         for entry in b.fresh.drain(..) {
@@ -220,10 +253,16 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
     }
     if !a.quiet {
         let recorded = a.record.as_ref().map_or(String::new(), |f| format!("; its inputs in {}", f.display()));
+        let wall = started.elapsed().as_secs_f64();
+        let shown = if has_vga {
+            format!(", {frames_shown} VGA frames ({:.1}/s)", frames_shown as f64 / wall)
+        } else {
+            String::new()
+        };
         eprintln!(
-            "botsim board --live: ran {:.3} s of board time in {:.1} s, {} samples{recorded}",
+            "botsim board --live: ran {:.3} s of board time in {wall:.1} s ({:.2} x real time), {} samples{shown}{recorded}",
             t as f64 / 1e12,
-            started.elapsed().as_secs_f64(),
+            t as f64 / 1e12 / wall,
             b.samples
         );
     }
@@ -345,15 +384,20 @@ impl Board {
     }
 
     /// Simulate the VGA part until it completes a frame: the fast-forward off and the pixel
-    /// clock running (from where it was parked), the frame taken, then back as it was.
+    /// path running from where it was parked, the frame taken, then back as it was. A frame
+    /// runs from one vertical sync to the next; the pixel path is parked again within
+    /// [`FRAME_STEP_PS`] of the sync that ended it (in the sync and back porch, before the
+    /// next frame's picture), so the next frame goes on from there: about one frame period of
+    /// simulation per frame shown, where starting afresh costs up to two. (When the pixel
+    /// path runs on while parked, on the board's own clock, the capture loses that frame and
+    /// takes the next.)
     fn frame(&mut self, skip_mode: FastForward) -> Result<Option<Vec<u8>>, String> {
         self.model.fast_forward(FastForward::Off);
         self.model.record_vga(true);
-        self.vga = Capture::default();
         let end = aligned(self.model.time_ps() + FRAME_BUDGET_PS);
         let mut frame = None;
         while frame.is_none() && self.model.time_ps() < end {
-            let until = aligned(self.model.time_ps() + 2_000_000_000).min(end);
+            let until = aligned(self.model.time_ps() + FRAME_STEP_PS).min(end);
             self.run_to(until, u64::MAX)?;
             frame = self.vga.take().pop();
         }

@@ -1,0 +1,192 @@
+//! The live board's page in a real browser: Debian's headless Chromium (`/usr/bin/chromium`,
+//! installed by scripts/setup.sh; never a downloaded one) loads the page of a live run of the
+//! VGA example (its team firmware: LocX and LocY in hex on digits 7-4, the sensors on LED[7:0],
+//! the motor byte on switches 7-0), clicks a switch and holds the CPU reset button, and the page
+//! shows what the design does: the digits and LEDs as the registers say, the motors the
+//! switch asked for, the bot moving on the world and back at its start after the reset, and a
+//! VGA frame equal pixel for pixel to botsim's own frame of the bot at that frame's sample (the
+//! frame `--frames` writes for that state: tests/board.rs proves the two equal). A screenshot
+//! of the page is kept in target/live-page.png.
+
+mod common;
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use base64::Engine;
+use common::live::{Live, BUDGET};
+use headless_chrome::protocol::cdp::{Input, Page};
+use headless_chrome::{Browser, LaunchOptions, Tab};
+use serde_json::Value;
+
+fn chromium() -> Option<PathBuf> {
+    let p = PathBuf::from("/usr/bin/chromium");
+    if p.exists() {
+        return Some(p);
+    }
+    assert!(std::env::var_os("BOTSIM_REQUIRE_TOOLS").is_none(), "chromium is missing: run scripts/setup.sh");
+    eprintln!("note: /usr/bin/chromium not found (scripts/setup.sh installs it); skipping");
+    None
+}
+
+/// What the page shows, read in one go.
+const PAGE: &str = r#"(() => {
+  const on = (id) => document.getElementById(id).classList.contains("on");
+  const text = (id) => document.getElementById(id).textContent;
+  const img = document.getElementById("vga");
+  return JSON.stringify({
+    status: text("status"),
+    lit: digits.map((segs) => segs.reduce((a, s, k) => a | (s.classList.contains("on") ? 1 << k : 0), 0)),
+    leds: Array.from({ length: 16 }, (_, i) => (on("ld" + i) ? 1 << i : 0)).reduce((a, b) => a | b, 0),
+    x: text("r-x"), y: text("r-y"), heading: text("r-heading"), sensors: text("r-sensors"), motctl: text("r-motctl"),
+    samples: state ? state.samples : 0, switches: state ? state.switches : 0, buttons: state ? state.buttons : [],
+    running: state ? state.running : false, path: path.length, speed: document.getElementById("speed").value,
+    placeholder: getComputedStyle(document.getElementById("novga")).display !== "none",
+    frame: img.getAttribute("src") ? { sample: img.dataset.sample, from: img.dataset.sampleFrom } : null,
+  });
+})()"#;
+
+fn page(tab: &Tab) -> Value {
+    let v = tab.evaluate(PAGE, false).unwrap().value.unwrap();
+    serde_json::from_str(v.as_str().unwrap()).unwrap()
+}
+
+/// Wait until the page shows what `want` looks for; the page then.
+fn until(tab: &Tab, what: &str, mut want: impl FnMut(&Value) -> bool) -> Value {
+    let start = Instant::now();
+    loop {
+        let p = page(tab);
+        if want(&p) {
+            return p;
+        }
+        assert!(start.elapsed() < BUDGET, "the page never showed {what}: {p}");
+        std::thread::sleep(Duration::from_millis(100));
+    }
+}
+
+fn mouse(tab: &Tab, kind: Input::DispatchMouseEventTypeOption, x: f64, y: f64) {
+    tab.call_method(Input::DispatchMouseEvent {
+        Type: kind,
+        x,
+        y,
+        modifiers: None,
+        timestamp: None,
+        button: Some(Input::MouseButton::Left),
+        buttons: None,
+        click_count: Some(1),
+        force: None,
+        tangential_pressure: None,
+        tilt_x: None,
+        tilt_y: None,
+        twist: None,
+        delta_x: None,
+        delta_y: None,
+        pointer_Type: None,
+    })
+    .unwrap();
+}
+
+/// The hex digits the team firmware shows for a byte, as the glyphs read (b and d lower case).
+fn hex_glyphs(v: u64) -> String {
+    format!("{v:02X}").replace('B', "b").replace('D', "d")
+}
+
+#[test]
+fn the_page_in_headless_chromium_plays_the_vga_example() {
+    let Some(chromium) = chromium() else { return };
+    let live = Live::start(&["examples/common", "examples/nexys4_vga", "--param", "SIMULATE=1", "--speed", "max"]);
+    let options = LaunchOptions::default_builder()
+        .path(Some(chromium))
+        .headless(true)
+        .sandbox(false)
+        .window_size(Some((1480, 1040)))
+        .idle_browser_timeout(BUDGET)
+        .build()
+        .unwrap();
+    let browser = Browser::new(options).unwrap();
+    let tab = browser.new_tab().unwrap();
+    tab.navigate_to(&live.url).unwrap().wait_until_navigated().unwrap();
+    let p = until(&tab, "the connection", |p| p["status"] == "live" && p["samples"].as_u64() > Some(2));
+    assert_eq!(p["speed"], "max", "the speed list shows the run's --speed");
+
+    // The digits as drawn, segment by segment: LocX and LocY in hex, as the registers say.
+    let glyphs = |p: &Value| -> String {
+        (4..8).rev().map(|d| botsim::board::display::glyph(p["lit"][d].as_u64().unwrap() as u8)).collect()
+    };
+    let reg = |p: &Value, k: &str| p[k].as_str().unwrap().parse::<u64>().unwrap_or(999);
+    until(&tab, "LocX and LocY on the digits", |p| {
+        p["x"] != "" && glyphs(p) == format!("{}{}", hex_glyphs(reg(p, "x")), hex_glyphs(reg(p, "y")))
+    });
+    // The LEDs show the sensors.
+    until(&tab, "the sensors on LED[7:0]", |p| {
+        p["sensors"] != "" && format!("{:08b}", p["leds"].as_u64().unwrap() & 0xFF) == p["sensors"].as_str().unwrap()
+    });
+    // The bot drives forward with the switches off: it moves on the world.
+    let moved = until(&tab, "the bot moving", |p| p["path"].as_u64() > Some(3) && p["x"] != "64");
+
+    // A click on switch 1: the motor byte 02 (the right wheel in reverse: a slow right turn,
+    // botsim.md §4) and the bot turning.
+    tab.find_element("#sw1").unwrap().click().unwrap();
+    until(&tab, "switch 1 on, its motors", |p| p["switches"] == 2 && p["motctl"] == "02");
+    until(&tab, "the bot turning", |p| p["heading"] != moved["heading"]);
+
+    // The CPU reset button held down with the mouse, then let go: the bot back at its start.
+    let reset = tab.find_element("#btn-btnCpuReset").unwrap().get_midpoint().unwrap();
+    mouse(&tab, Input::DispatchMouseEventTypeOption::MousePressed, reset.x, reset.y);
+    until(&tab, "the reset held", |p| p["buttons"].as_array().is_some_and(|b| b.contains(&Value::from("btnCpuReset"))));
+    mouse(&tab, Input::DispatchMouseEventTypeOption::MouseReleased, reset.x, reset.y);
+    until(&tab, "the reset let go and the bot at its start", |p| {
+        p["buttons"] == serde_json::json!([]) && p["x"] == "64" && p["y"] == "64"
+    });
+
+    // A frame on the monitor that shows one sample's bot, the run paused so it stays.
+    until(&tab, "a frame of one sample", |p| {
+        p["frame"]["sample"].is_string() && p["frame"]["sample"] == p["frame"]["from"]
+    });
+    tab.find_element("#run").unwrap().click().unwrap();
+    let p = until(&tab, "the run paused", |p| p["running"] == false && p["frame"]["sample"] == p["frame"]["from"]);
+    assert_eq!(p["placeholder"], false, "a frame hides the placeholder");
+    let sample: u64 = p["frame"]["sample"].as_str().unwrap().parse().unwrap();
+    let png = tab
+        .evaluate(
+            r#"fetch(document.getElementById("vga").src).then((r) => r.arrayBuffer()).then((b) => {
+                 const u = new Uint8Array(b); let s = "";
+                 for (let i = 0; i < u.length; i++) s += String.fromCharCode(u[i]);
+                 return btoa(s);
+               })"#,
+            true,
+        )
+        .unwrap()
+        .value
+        .unwrap();
+    let png = base64::engine::general_purpose::STANDARD.decode(png.as_str().unwrap()).unwrap();
+    // The bot's registers at that sample, from the log every page gets.
+    let mut client = live.client("/");
+    let entry = client.log_entry("the frame's sample in the log", |e| e["kind"] == "sample" && e["sample"] == sample);
+    let byte = |k: &str| entry[k].as_u64().unwrap() as u8;
+    let snapshot = botsim::Snapshot {
+        sample,
+        cycle: 0,
+        regs: botsim::Registers {
+            loc_x: byte("x"),
+            loc_y: byte("y"),
+            bot_info: byte("info"),
+            sensors: byte("sensors"),
+            lm_dist: byte("lmdist"),
+            rm_dist: byte("rmdist"),
+        },
+    };
+    let want = common::rgb(&botsim::render::display::frame(&botsim::World::builtin(), Some(&snapshot)));
+    let got = common::rgb(&png);
+    assert_eq!((got.0, got.1), (640, 480));
+    assert!(got == want, "the page's frame of sample {sample} is not botsim's frame of that sample ({entry})");
+
+    // A look at it (kept as an artefact of the test run).
+    tab.find_element("#run").unwrap().click().unwrap();
+    until(&tab, "the run again", |p| p["running"] == true);
+    std::thread::sleep(Duration::from_millis(800));
+    let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
+    let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-page.png");
+    std::fs::write(&out, &shot).unwrap();
+    assert!(common::rgb(&shot).0 >= 1400);
+}

@@ -190,3 +190,54 @@ fn the_page_in_headless_chromium_plays_the_vga_example() {
     std::fs::write(&out, &shot).unwrap();
     assert!(common::rgb(&shot).0 >= 1400);
 }
+
+/// `botsim run --live` in the page: the motor panel instead of the board, its wheel buttons
+/// setting MotCtl_in, the bot driving on the world (its path drawn). A screenshot in target/live-bot-page.png.
+#[test]
+fn the_page_drives_the_bot_alone() {
+    let Some(chromium) = chromium() else { return };
+    let live = Live::start_command("run", &["--timing", "fast", "--speed", "0.02"]);
+    let options = LaunchOptions::default_builder()
+        .path(Some(chromium))
+        .headless(true)
+        .sandbox(false)
+        .window_size(Some((1480, 1040)))
+        .idle_browser_timeout(BUDGET)
+        .build()
+        .unwrap();
+    let browser = Browser::new(options).unwrap();
+    let tab = browser.new_tab().unwrap();
+    tab.navigate_to(&live.url).unwrap().wait_until_navigated().unwrap();
+    let shown = r#"JSON.stringify({
+        board: getComputedStyle(document.getElementById("board")).display !== "none",
+        drive: !document.getElementById("drive").hidden,
+        motors: state ? state.motors : null, x: document.getElementById("r-x").textContent,
+        y: document.getElementById("r-y").textContent, moved: path.filter(([x, y]) => x !== 64 || y !== 64).length,
+        on: Array.from(document.querySelectorAll(".wheel button.on")).map((b) => b.id),
+    })"#;
+    let look = |tab: &Tab| -> Value {
+        serde_json::from_str(tab.evaluate(shown, false).unwrap().value.unwrap().as_str().unwrap()).unwrap()
+    };
+    let wait = |what: &str, want: &dyn Fn(&Value) -> bool| {
+        let start = Instant::now();
+        loop {
+            let v = look(&tab);
+            if want(&v) {
+                return v;
+            }
+            assert!(start.elapsed() < BUDGET, "the page never showed {what}: {v}");
+            std::thread::sleep(Duration::from_millis(100));
+        }
+    };
+    let v = wait("the motor panel", &|v| v["drive"] == true && v["motors"] == 0 && v["x"] == "64");
+    assert_eq!(v["board"], false, "no board for the bot alone");
+    assert_eq!(v["on"], serde_json::json!(["lm-off", "rm-off"]));
+    tab.find_element("#lm-fwd").unwrap().click().unwrap();
+    wait("the left wheel forward", &|v| v["motors"] == 0x30);
+    tab.find_element("#rm-fwd").unwrap().click().unwrap();
+    wait("both wheels forward", &|v| v["motors"] == 0x33 && v["on"] == serde_json::json!(["lm-fwd", "rm-fwd"]));
+    // (The left wheel alone turned it for a while: it drives off wherever it then heads.)
+    wait("the bot driving", &|v| v["moved"].as_u64() > Some(30) && (v["x"] != "64" || v["y"] != "64"));
+    let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
+    std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-bot-page.png"), &shot).unwrap();
+}

@@ -206,3 +206,102 @@ fn a_live_session_replays_exactly_from_its_recorded_inputs() {
         );
     }
 }
+
+/// `botsim run --live`: the bot alone, its motors from the page from the next iteration on,
+/// the session's motor script replayed by `botsim run --motors` on the RTL: the same samples,
+/// cycle for cycle. Switches are refused (the bot alone has none), and so are motors when a
+/// driver drives.
+#[test]
+fn the_bot_alone_is_driven_from_the_page_and_replays_exactly() {
+    let dir = tempfile::tempdir().unwrap();
+    let record = dir.path().join("motors.txt");
+    let mut live =
+        Live::start_command("run", &["--timing", "fast", "--speed", "max", "--record", record.to_str().unwrap()]);
+    let mut a = live.client("/");
+    let hello = a.next(BUDGET).unwrap();
+    assert_eq!((hello["type"].as_str(), hello["mode"].as_str()), (Some("hello"), Some("bot")), "{hello}");
+    let mut samples: Vec<Value> = Vec::new();
+    let mut inputs: Vec<Value> = Vec::new();
+    let seen =
+        |a: &mut common::live::Client, what: &str, n: usize, samples: &mut Vec<Value>, inputs: &mut Vec<Value>| {
+            let want = samples.len() + n;
+            a.until(what, |v| {
+                for e in v["entries"].as_array().into_iter().flatten() {
+                    match e["kind"].as_str() {
+                        Some("sample") => samples.push(e.clone()),
+                        Some("input") => inputs.push(e.clone()),
+                        _ => {}
+                    }
+                }
+                samples.len() >= want
+            });
+        };
+    seen(&mut a, "samples while stopped", 5, &mut samples, &mut inputs);
+    a.send(json!({"type": "switch", "index": 0, "on": true}));
+    let e = a.until("the switch refused", |v| v["type"] == "error");
+    assert!(e["message"].as_str().unwrap().contains("motors"), "{e}");
+    for m in ["33", "32", "03", "22"] {
+        a.send(json!({"type": "motors", "value": m}));
+        seen(&mut a, "samples after a motor change", 40, &mut samples, &mut inputs);
+    }
+    a.send(json!({"type": "stop"}));
+    while let Some(v) = a.next(Duration::from_millis(500)) {
+        for e in v["entries"].as_array().into_iter().flatten() {
+            match e["kind"].as_str() {
+                Some("sample") => samples.push(e.clone()),
+                Some("input") => inputs.push(e.clone()),
+                _ => {}
+            }
+        }
+        if v["type"] == "closed" {
+            break;
+        }
+    }
+    assert!(live.wait().success());
+    // Each change from the iteration after the last sample then: every sample of an iteration
+    // from there on (until the next change) was made with it.
+    assert_eq!(inputs.len(), 4, "{inputs:?}");
+    for (k, i) in inputs.iter().enumerate() {
+        let from = i["iteration"].as_u64().unwrap();
+        let to = inputs.get(k + 1).map_or(u64::MAX, |n| n["iteration"].as_u64().unwrap());
+        for s in samples.iter().filter(|s| (from..to).contains(&s["sample"].as_u64().unwrap())) {
+            assert_eq!(s["motctl"], i["motors"], "{s} after {i}");
+        }
+    }
+    let moved = samples.iter().filter(|s| s["x"] != 64 || s["y"] != 64).count();
+    assert!(moved > 20, "the bot moved in {moved} samples");
+
+    // The recorded script, replayed on the RTL.
+    let last = samples.last().unwrap()["sample"].as_u64().unwrap();
+    let trace = dir.path().join("trace.json");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_botsim"))
+        .args(["run", "--timing", "fast", "--motors", record.to_str().unwrap(), "--samples", &last.to_string()])
+        .args(["--trace-json", trace.to_str().unwrap(), "-q"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let replay: Vec<Value> =
+        std::fs::read_to_string(&trace).unwrap().lines().map(|l| serde_json::from_str(l).unwrap()).collect();
+    assert_eq!(replay.len() as u64, last + 1);
+    for s in &samples {
+        let n = s["sample"].as_u64().unwrap() as usize;
+        let r = &replay[n];
+        let regs = |v: &Value, keys: [&str; 7]| keys.map(|k| v[k].as_u64());
+        assert_eq!(
+            regs(s, ["cycle", "x", "y", "info", "sensors", "lmdist", "rmdist"]),
+            regs(r, ["cycle", "loc_x", "loc_y", "bot_info", "sensors", "lm_dist", "rm_dist"]),
+            "sample {n}: live {s}, replayed {r}"
+        );
+        if n > 0 {
+            assert_eq!(s["motctl"], replay[n - 1]["next_motctl"], "the motors of iteration {n}");
+        }
+    }
+
+    // With a driver, the page's motors are refused.
+    let live = Live::start_command("run", &["--timing", "fast", "--driver", "line-follow", "--paused"]);
+    let mut b = live.client("/");
+    assert_eq!(b.next(BUDGET).unwrap()["driver"], "the line follower");
+    b.send(json!({"type": "motors", "value": 51}));
+    let e = b.until("the motors refused", |v| v["type"] == "error");
+    assert!(e["message"].as_str().unwrap().contains("line follower drives"), "{e}");
+}

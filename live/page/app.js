@@ -13,6 +13,7 @@ let world = null;           // {width, height, cells}
 const path = [];            // the bot's samples: [x, y]
 let pendingFrame = null;    // the frame message whose PNG comes next
 let latched = new Set();    // buttons held down by shift-click
+let mode = "board";         // "board" (botsim board --live) or "bot" (botsim run --live)
 const mouseHeld = new Set(); // buttons held down by the mouse
 
 function el(name, attrs, parent) {
@@ -126,15 +127,44 @@ function toggleSwitch(i) {
   send({ type: "switch", index: i, on: on });
 }
 
+// ---- The bot alone: its motors (MotCtl_in: bit 5 left on, 4 left forward, 1 right on,
+// 0 right forward; botsim.md 3.1) ---------------------------------------------------------
+const WHEEL = { l: { fwd: 0x30, rev: 0x20, off: 0x00, mask: 0xF0 }, r: { fwd: 0x03, rev: 0x02, off: 0x00, mask: 0x0F } };
+function motors() { return state && state.motors != null ? state.motors : 0; }
+function setMotors(v) { send({ type: "motors", value: v }); }
+for (const b of document.querySelectorAll(".wheel button")) {
+  b.addEventListener("click", () => {
+    const w = WHEEL[b.dataset.wheel];
+    setMotors((motors() & ~w.mask & 0xFF) | w[b.dataset.dir]);
+  });
+}
+function wheelOf(v, w) {
+  const on = (v >> (w === "l" ? 5 : 1)) & 1, fwd = (v >> (w === "l" ? 4 : 0)) & 1;
+  return on ? (fwd ? "fwd" : "rev") : "off";
+}
+const keyDrive = { ArrowUp: 0x33, ArrowDown: 0x22, ArrowLeft: 0x23, ArrowRight: 0x32 };
+let driveKey = null;
+
 const keyButtons = { ArrowUp: "btnU", ArrowDown: "btnD", ArrowLeft: "btnL", ArrowRight: "btnR", Enter: "btnC", r: "btnCpuReset", R: "btnCpuReset" };
 window.addEventListener("keydown", (e) => {
   if (e.target.tagName === "SELECT") return;
-  const b = keyButtons[e.key];
-  if (b && !e.repeat) { e.preventDefault(); press(b, true); }
+  if (mode === "bot") {
+    if (e.key in keyDrive) {
+      e.preventDefault();
+      if (!e.repeat) { driveKey = e.key; setMotors(keyDrive[e.key]); }
+    }
+  } else {
+    const b = keyButtons[e.key];
+    if (b && !e.repeat) { e.preventDefault(); press(b, true); }
+  }
   if (e.key === "p" || e.key === "P") toggleRun();
   if (e.key === "n" || e.key === "N") send({ type: "step" });
 });
 window.addEventListener("keyup", (e) => {
+  if (mode === "bot") {
+    if (e.key === driveKey) { e.preventDefault(); driveKey = null; setMotors(0); }
+    return;
+  }
   const b = keyButtons[e.key];
   if (b) { e.preventDefault(); press(b, false); }
 });
@@ -182,6 +212,13 @@ function showState(s) {
   $("rate").textContent = s.running ? s.rate.toFixed(2) + " x real time" : "paused";
   $("samples").textContent = s.samples + " samples";
   $("run").textContent = s.running ? "Pause" : "Run";
+  if (s.motors != null) {
+    $("motctl-now").textContent = "MotCtl " + hex(s.motors);
+    for (const w of ["l", "r"]) {
+      const on = wheelOf(s.motors, w);
+      for (const d of ["fwd", "off", "rev"]) $(w + "m-" + d).classList.toggle("on", d === on);
+    }
+  }
   showSpeed(s.speed);
   $("fps").textContent = s.frame_rate > 0 ? s.frame_rate.toFixed(1) + " frames/s" : "";
   const b = s.bot;
@@ -289,6 +326,21 @@ function onMessage(ev) {
       worldImage = null;
       path.length = 0;
       $("design").textContent = m.design ? m.design.top + " — " + m.design.sources : "";
+      mode = m.mode || "board";
+      document.body.classList.toggle("bot", mode === "bot");
+      $("board").style.display = mode === "bot" ? "none" : "";
+      $("board-hint").hidden = mode === "bot";
+      $("drive").hidden = mode !== "bot";
+      $("monitor").hidden = mode === "bot";
+      if (mode === "bot") {
+        $("save").textContent = "Save motors";
+        $("save").title = "Download the motors so far as a --motors script";
+      }
+      if (m.driver) {
+        $("driver-note").textContent = m.driver + " drives the bot.";
+        $("driver-note").hidden = false;
+        for (const b of document.querySelectorAll(".wheel button")) b.disabled = true;
+      }
       break;
     case "state": showState(m); break;
     case "log":
@@ -297,6 +349,7 @@ function onMessage(ev) {
       break;
     case "frame": pendingFrame = m; break;
     case "stimulus": download("live-stimulus.txt", m.text); break;
+    case "motors": download("live-motors.txt", m.text); break;
     case "error": showError(m.message); break;
     case "closed":
       $("status").textContent = "the run ended";

@@ -82,6 +82,8 @@ pub enum Command {
         button: Button,
         down: bool,
     },
+    /// The bot alone (`botsim run --live`): MotCtl_in from the next sample on.
+    Motors(u8),
     /// Run (as fast as the speed allows).
     Run,
     Pause,
@@ -133,6 +135,14 @@ impl Command {
                     format!("`button`: no button `{name}` (btnC, btnU, btnD, btnL, btnR, btnCpuReset)")
                 })?;
                 Command::Button { button, down: flag("down")? }
+            }
+            "motors" => {
+                let value = match obj.get("value") {
+                    Some(Value::Number(n)) => n.as_u64().filter(|v| *v <= 0xFF),
+                    Some(Value::String(s)) => u8::from_str_radix(s.trim_start_matches("0x"), 16).ok().map(u64::from),
+                    _ => None,
+                };
+                Command::Motors(value.ok_or("`motors`: `value` must be 0 to 255 or two hex digits")? as u8)
             }
             "run" => Command::Run,
             "pause" => Command::Pause,
@@ -208,6 +218,8 @@ pub struct BoardView {
     pub bot: Option<BotView>,
     /// VGA frames per second of wall time, the last few seconds.
     pub frame_rate: f64,
+    /// The bot alone: the MotCtl_in the page set (or the driver gave) for the next sample.
+    pub motors: Option<u8>,
 }
 
 impl BoardView {
@@ -230,6 +242,7 @@ impl BoardView {
                 "info": b.info, "sensors": b.sensors, "lmdist": b.lmdist, "rmdist": b.rmdist, "motctl": b.motctl,
             })),
             "frame_rate": self.frame_rate,
+            "motors": self.motors,
         })
     }
 
@@ -269,6 +282,8 @@ mod tests {
             vec![Command::Button { button: Button::CpuReset, down: true }]
         );
         assert_eq!(ok(r#"{"type":"speed","factor":null}"#), vec![Command::Speed(None)]);
+        assert_eq!(ok(r#"{"type":"motors","value":"33"}"#), vec![Command::Motors(0x33)]);
+        assert_eq!(ok(r#"{"type":"motors","value":50}"#), vec![Command::Motors(50)]);
         assert_eq!(ok(r#"{"type":"speed","factor":4}"#), vec![Command::Speed(Some(4.0))]);
         for (kind, c) in [
             ("run", Command::Run),
@@ -286,6 +301,7 @@ mod tests {
             (r#"{"type":"button","name":"btnX","down":true}"#, "no button `btnX`"),
             (r#"{"type":"button","name":"btnC"}"#, "`down` must be true or false"),
             (r#"{"type":"speed","factor":-1}"#, "positive number"),
+            (r#"{"type":"motors","value":256}"#, "0 to 255"),
             (r#"{"type":"switches","value":"fffff"}"#, "four hex digits"),
             (r#"{"gpio":{"LD3":true}}"#, "no input pin `LD3`"),
             (r#"{"gpio":{"SW1":"yes"}}"#, "`SW1` must be true or false"),

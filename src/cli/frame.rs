@@ -20,5 +20,8 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> Result<(), String> {
+    if args.run.is_live() {
+        return Err("--live is botsim run's (botsim run --live): a frame is a picture of a run's end".into());
+    }
     super::run::run_with_frame(args.run, Some(args.output))
 }

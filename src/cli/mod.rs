@@ -8,6 +8,7 @@ mod board;
 mod disasm;
 mod firmware;
 mod frame;
+mod live;
 mod map;
 mod run;
 mod suite;

@@ -29,8 +29,13 @@ impl Live {
     /// Start it with `args` (sources and options; `--live --port 0` are added) and read the
     /// address it prints first.
     pub fn start(args: &[&str]) -> Live {
+        Live::start_command("board", args)
+    }
+
+    /// The same for another subcommand (`run`: the bot alone).
+    pub fn start_command(command: &str, args: &[&str]) -> Live {
         let mut child = Command::new(env!("CARGO_BIN_EXE_botsim"))
-            .arg("board")
+            .arg(command)
             .args(args)
             .args(["--live", "--port", "0", "-q"])
             .current_dir(root())

@@ -18,18 +18,17 @@ use std::time::{Duration, Instant};
 use botsim::board::build::{BotKind, CpuModel};
 use botsim::board::model::{BoardModel, Event, FastForward, Printing, RawEvent};
 use botsim::files::write_atomic;
-use botsim::Snapshot;
 use botsim_core::board::display::Display;
 use botsim_core::board::pins::Role;
 use botsim_core::board::stimulus::{Press, Stimulus, POWER_ON_RESET_PS};
 use botsim_core::board::vga::Capture;
 use botsim_live::protocol::{BoardView, BotView, Button, Command};
-use botsim_live::server::Server;
 use serde_json::json;
 
 use super::prepare::Prepared;
 use super::session::load;
 use super::Args;
+use crate::cli::live::{bot_view, sample_entry, world_json, Pace, Rate};
 
 /// One cycle of the board's clock: inputs change on its boundaries.
 const CYCLE_PS: u64 = 10_000;
@@ -42,10 +41,6 @@ pub const FRAME_EVERY: Duration = Duration::from_millis(120);
 /// The longest wall time between two frames when nothing the board knows of changed (what
 /// a design draws from its own counters: a blinking cursor, an animation).
 const REFRESH_EVERY: Duration = Duration::from_secs(1);
-/// How far behind its pace the board may fall and still catch up (beyond: the pace goes on
-/// from where it is), and how close to it counts as on pace (a frame may be simulated).
-const CATCH_UP: Duration = Duration::from_millis(500);
-const ON_PACE: Duration = Duration::from_millis(30);
 /// How much board time a frame may take to come (three frames at 60 Hz).
 const FRAME_BUDGET_PS: u64 = 50_000_000_000;
 /// How far a frame's simulation runs at a time: a frame ends at most this long before the
@@ -84,25 +79,14 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
     if a.stimulus.is_some() || !a.press.is_empty() {
         return Err("--live takes its inputs from the page (--switches sets where they start)".into());
     }
-    if let Some(f) = &a.record {
-        botsim::files::check_writable(f)?;
-    }
-    let addr = format!("{}:{}", a.listen, a.port);
-    let addr =
-        addr.parse().map_err(|_| format!("--listen {}: expected an IP address (127.0.0.1, 0.0.0.0)", a.listen))?;
-    let cells: String = (0..128u8)
-        .flat_map(|y| (0..128u8).map(move |x| (x, y)))
-        .map(|(x, y)| char::from(b'0' + p.world.get(x, y).bits()))
-        .collect();
     let sources: Vec<String> = a.sources.iter().map(|s| s.display().to_string()).collect();
     let hello = json!({
         "design": {"top": p.plan.top, "sources": sources.join(" ")},
-        "world": {"width": 128, "height": 128, "cells": cells},
+        "world": world_json(&p.world),
+        "mode": "board",
         "protocol": 1,
     });
-    let server = Server::start(addr, hello).map_err(|e| format!("--port {}: cannot listen on {addr}: {e}", a.port))?;
-    // The address is the first line: what a user opens, what a script reads.
-    println!("{}", server.url());
+    let server = a.live.serve(hello)?;
     let printing = Printing { log: a.design_log.clone(), lines: if a.quiet { 0 } else { 200 } };
     let mut model = load(&p.built.library, &p.world, &p.plan.roms, p.main_host()?, &printing)?;
     let skips = p.cpu == CpuModel::Iss && p.main_bot == BotKind::Model && !a.no_fast_forward;
@@ -131,16 +115,14 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
     let (r, btn, sw) = b.inputs.inputs_at(0);
     b.model.set_inputs(r, btn, sw);
 
-    let mut running = !a.paused;
-    let mut speed: Option<f64> = a.speed.0;
+    let mut running = !a.live.paused;
+    let mut pace = Pace::new(a.live.speed.0, 0);
     let mut step_to: Option<u64> = None;
-    // Pacing: board time against wall time since the anchor.
-    let mut anchor = (Instant::now(), 0u64);
     let mut last_state = Instant::now() - STATE_EVERY;
     let mut last_frame: Option<Instant> = None;
     let mut frames: Vec<Instant> = Vec::new();
     let mut frames_shown = 0u64;
-    let mut rate = (Instant::now(), 0u64, 0.0f64);
+    let mut rate = Rate::new(0);
     let started = Instant::now();
     let mut stopped = false;
     while !stopped && !crate::cli::interrupted() {
@@ -152,21 +134,22 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
                 Command::Run => {
                     running = true;
                     step_to = None;
-                    anchor = (Instant::now(), b.model.time_ps());
+                    pace.restart(b.model.time_ps());
                 }
                 Command::Pause => running = false,
                 Command::Step => {
                     running = true;
                     step_to = Some(b.samples + 1);
-                    anchor = (Instant::now(), b.model.time_ps());
+                    pace.restart(b.model.time_ps());
                 }
-                Command::Speed(f) => {
-                    speed = f;
-                    anchor = (Instant::now(), b.model.time_ps());
-                }
+                Command::Speed(f) => pace.set_speed(f, b.model.time_ps()),
                 Command::Save => server
                     .reply(client, json!({"type": "stimulus", "text": stimulus_text(&b.inputs, b.model.time_ps())})),
                 Command::Stop => stopped = true,
+                Command::Motors(_) => server.reply(
+                    client,
+                    json!({"type": "error", "message": "the board's motors are its design's: use the switches and buttons"}),
+                ),
                 Command::Switch { .. } | Command::Switches(_) | Command::Button { .. } => {
                     let entry = b.input(&command)?;
                     server.log(entry);
@@ -181,21 +164,8 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
         if running {
             // How far: to the pace's target (or a chunk at full speed), stopping at the
             // power-on reset's release and at the end of a step.
-            let target = match speed {
-                Some(f) => {
-                    let due = anchor.1 + (anchor.0.elapsed().as_secs_f64() * f * 1e12) as u64;
-                    // Behind by more than it may catch up: the pace goes on from here.
-                    let most = (f * CATCH_UP.as_secs_f64() * 1e12) as u64;
-                    if due > now + most {
-                        anchor = (Instant::now() - CATCH_UP, now);
-                    }
-                    due.min(now + most)
-                }
-                None => now + CHUNK_PS,
-            };
-            // On pace: at the time the speed asks for, within a little.
-            let on_pace = speed.map_or(true, |f| target <= now + (f * ON_PACE.as_secs_f64() * 1e12) as u64);
-            let until = aligned(target.min(now + CHUNK_PS));
+            let (target, on_pace) = pace.target(now, CHUNK_PS);
+            let until = aligned(target);
             if until > now {
                 let limit = step_to.unwrap_or(u64::MAX);
                 b.run_to(until, limit)?;
@@ -232,27 +202,23 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
         }
         if last_state.elapsed() >= STATE_EVERY {
             let t = b.model.time_ps();
-            let dt = rate.0.elapsed().as_secs_f64();
-            if dt >= 0.5 {
-                rate = (Instant::now(), t, (t - rate.1) as f64 / 1e12 / dt);
-            }
             let frame_rate = if frames.len() < 2 {
                 0.0
             } else {
                 (frames.len() - 1) as f64 / frames[frames.len() - 1].duration_since(frames[0]).as_secs_f64().max(1e-3)
             };
-            server.state(b.view(running, speed, rate.2, frame_rate));
+            server.state(b.view(running, pace.speed(), rate.at(t), frame_rate));
             last_state = Instant::now();
         }
     }
     let t = b.model.time_ps();
-    server.state(b.view(false, speed, 0.0, 0.0));
+    server.state(b.view(false, pace.speed(), 0.0, 0.0));
     server.close();
-    if let Some(f) = &a.record {
+    if let Some(f) = &a.live.record {
         write_atomic(f, stimulus_text(&b.inputs, t).as_bytes())?;
     }
     if !a.quiet {
-        let recorded = a.record.as_ref().map_or(String::new(), |f| format!("; its inputs in {}", f.display()));
+        let recorded = a.live.record.as_ref().map_or(String::new(), |f| format!("; its inputs in {}", f.display()));
         let wall = started.elapsed().as_secs_f64();
         let shown = if has_vga {
             format!(", {frames_shown} VGA frames ({:.1}/s)", frames_shown as f64 / wall)
@@ -315,11 +281,7 @@ impl Board {
             Event::Sample { time_ps, snapshot, motctl } => {
                 self.samples += 1;
                 let view = bot_view(&snapshot, motctl.0);
-                self.fresh.push(json!({
-                    "kind": "sample", "time_ps": time_ps, "sample": view.sample, "cycle": snapshot.cycle, "x": view.x, "y": view.y,
-                    "info": view.info, "sensors": view.sensors, "lmdist": view.lmdist, "rmdist": view.rmdist,
-                    "motctl": view.motctl,
-                }));
+                self.fresh.push(sample_entry(time_ps, &snapshot, &view));
                 // What a design draws of the bot: where it is and where it heads.
                 let moved = |b: &BotView| (b.x, b.y, b.info) != (view.x, view.y, view.info);
                 self.dirty |= self.drawn.as_ref().map_or(true, moved);
@@ -435,22 +397,8 @@ impl Board {
             samples: self.samples,
             bot: self.bot.clone(),
             frame_rate,
+            motors: None,
         }
-    }
-}
-
-fn bot_view(s: &Snapshot, motctl: u8) -> BotView {
-    BotView {
-        sample: s.sample,
-        x: s.regs.loc_x,
-        y: s.regs.loc_y,
-        heading: s.orientation().name().to_string(),
-        movement: s.movement().name().to_string(),
-        info: s.regs.bot_info,
-        sensors: s.regs.sensors,
-        lmdist: s.regs.lm_dist,
-        rmdist: s.regs.rm_dist,
-        motctl,
     }
 }
 

@@ -203,47 +203,14 @@ pub struct Args {
     /// shows the first 200)
     #[arg(long, value_name = "FILE")]
     design_log: Option<PathBuf>,
-    /// Run live: a local web server shows the board, the VGA monitor and the world in the
-    /// browser (the address is the first line printed), and takes the switches and buttons
-    /// from it, until the page's Stop or Ctrl-C
-    #[arg(long)]
-    live: bool,
-    /// With --live: the port [default: 8540; 0 takes any free one]
-    #[arg(long, default_value_t = 8540, requires = "live")]
-    port: u16,
-    /// With --live: the address to listen on [default: 127.0.0.1, this machine only]
-    #[arg(long, default_value = "127.0.0.1", requires = "live")]
-    listen: String,
-    /// With --live: write the session's inputs to this stimulus file when it ends
-    /// (`--stimulus FILE` replays them exactly)
-    #[arg(long, value_name = "FILE", requires = "live")]
-    record: Option<PathBuf>,
-    /// With --live: start at this factor of real time, or `max` (as fast as it can)
-    #[arg(long, default_value = "1", value_parser = parse_speed, requires = "live")]
-    speed: Speed,
-    /// With --live: start paused
-    #[arg(long, requires = "live")]
-    paused: bool,
+    #[command(flatten)]
+    live: crate::cli::live::LiveArgs,
     /// Print the summary as JSON
     #[arg(long)]
     json: bool,
     /// Print nothing but errors
     #[arg(short, long)]
     quiet: bool,
-}
-
-/// `--speed`: a factor of real time, or `None` for as fast as it can.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Speed(pub Option<f64>);
-
-fn parse_speed(s: &str) -> Result<Speed, String> {
-    if s.eq_ignore_ascii_case("max") {
-        return Ok(Speed(None));
-    }
-    match s.parse::<f64>() {
-        Ok(f) if f.is_finite() && f > 0.0 => Ok(Speed(Some(f))),
-        _ => Err("expected a factor of real time (0.5, 1, 10) or max".into()),
-    }
 }
 
 /// `--cpu`.
@@ -365,7 +332,7 @@ fn run_once(a: Args) -> Result<Stopped, String> {
     if a.bench {
         return bench::run(&a, &p).map(|_| None);
     }
-    if a.live {
+    if a.live.live {
         return live::run(&a, &p).map(|_| None);
     }
     let outcome = session::simulate(&a, &p)?;

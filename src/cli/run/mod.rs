@@ -1,6 +1,7 @@
 //! `botsim run`: run BotSim 2.0 with a motor script or a closed-loop driver. In layers: the
 //! arguments (here), the resolved [`plan`], the [`sample_loop`], the [`outputs`].
 
+mod live;
 mod outputs;
 pub(crate) use outputs::{csv_row, json_row, CSV_HEADER};
 mod plan;
@@ -43,6 +44,7 @@ use watch::Watched;
   botsim run --backend iss --motors drive.txt --samples 1000 --trace-csv trace.csv
   botsim run --timing fast --samples 3 --cpu-trace t.txt
   botsim run --timing fast --driver line-follow --break bot=blocked --vcd stop.vcd
+  botsim run --live   (drive the bot from the page: open the address it prints)
 
 Motor script lines: '<MOTCTL> <COUNT>', e.g. '33 15' or 'forward 15'; '#' starts a comment.
 Trace windows: a number of samples (e.g. 10), or of cycles with a 'c' suffix (e.g. 2500000c).")]
@@ -128,9 +130,21 @@ pub struct Args {
     /// waveform grows past it stops, removes it and says so
     #[arg(long, value_name = "SIZE", requires = "vcd")]
     vcd_max: Option<String>,
+    #[command(flatten)]
+    live: crate::cli::live::LiveArgs,
+}
+
+impl Args {
+    /// Whether `--live` was given.
+    pub(crate) fn is_live(&self) -> bool {
+        self.live.live
+    }
 }
 
 pub fn run(args: Args) -> Result<(), String> {
+    if args.live.live {
+        return live::run(&args);
+    }
     run_with_frame(args, None)
 }
 

@@ -50,6 +50,17 @@ fn botsim_args(command: &str) -> Option<Vec<String>> {
 fn run(command: &str, dir: &Path) {
     let Some(args) = botsim_args(command) else { return };
     let cwd = if args.get(1).map(String::as_str) == Some(".") { dir.join("my_clone") } else { dir.to_path_buf() };
+    if args.iter().any(|a| a == "--live") {
+        // A live run: on any free port, a page that gets the hello and stops it.
+        let rest: Vec<&str> = args[1..].iter().map(String::as_str).filter(|a| *a != "--live").collect();
+        let mut live = common::live::Live::start_in(&cwd, &args[0], &rest);
+        let mut page = live.client("/");
+        let hello = page.next(common::live::BUDGET).unwrap_or_default();
+        assert_eq!(hello["type"], "hello", "{command}: {hello}");
+        page.send(serde_json::json!({"type": "stop"}));
+        assert!(live.wait().success(), "{command}");
+        return;
+    }
     let o = Command::new(env!("CARGO_BIN_EXE_botsim"))
         .args(&args)
         .current_dir(&cwd)

@@ -4,7 +4,8 @@
 //! hands the commands to the simulation through a channel, and it sends what the simulation
 //! last published. The simulation never waits for a client: it only replaces the newest
 //! state and frame, and appends to the log; a slow client skips intermediate states and
-//! frames (each state is whole), and gets every log entry.
+//! frames (each state is whole), and gets every log entry (of the last [`LOG_KEEP`]: a page
+//! that connects late gets those).
 
 use std::collections::HashMap;
 use std::io::{Read, Write};
@@ -35,7 +36,9 @@ struct Published {
     /// The newest VGA frame (PNG) and what it is.
     frame: Option<(u64, Arc<Vec<u8>>, Value)>,
     /// Entries every client gets all of, in order (the bot's samples, the inputs applied).
-    log: Vec<Value>,
+    /// (Kept as JSON text, the last [`LOG_KEEP`] of them; `log_dropped` before those.)
+    log: Vec<String>,
+    log_dropped: usize,
     /// Replies for one client (an error, a saved stimulus).
     replies: HashMap<ClientId, Vec<Value>>,
     /// The run is over: clients say so and close.
@@ -59,6 +62,10 @@ pub struct Server {
 /// How often a client thread looks for something new when nothing wakes it, and how long a
 /// read waits for a client's message before it looks.
 const POLL: Duration = Duration::from_millis(20);
+/// The most log entries the server keeps (a page connecting late gets these; the oldest
+/// go first): about 30 MB, an hour and a half of a board at real time, or minutes of the
+/// bot alone at `--timing fast`.
+pub const LOG_KEEP: usize = 200_000;
 /// The most log entries one message carries.
 const LOG_BATCH: usize = 512;
 /// The longest an HTTP request head may be, and how long it may take to arrive.
@@ -132,7 +139,14 @@ impl Server {
 
     /// An entry every client gets (in order, all of them).
     pub fn log(&self, entry: Value) {
-        self.publish(|p| p.log.push(entry));
+        self.publish(|p| {
+            p.log.push(entry.to_string());
+            if p.log.len() > LOG_KEEP {
+                let drop = LOG_KEEP / 4;
+                p.log.drain(..drop);
+                p.log_dropped += drop;
+            }
+        });
     }
 
     /// A message for one client.
@@ -305,11 +319,13 @@ fn client(
             let mut p = shared.published.lock().unwrap_or_else(|e| e.into_inner());
             sent.seq = p.seq;
             let mut out: Vec<String> = Vec::new();
-            if sent.log < p.log.len() {
-                for chunk in p.log[sent.log..].chunks(LOG_BATCH) {
-                    out.push(json!({"type": "log", "entries": chunk}).to_string());
+            // (`sent.log` counts every entry ever logged, the dropped ones too.)
+            let from = sent.log.max(p.log_dropped) - p.log_dropped;
+            if from < p.log.len() {
+                for chunk in p.log[from..].chunks(LOG_BATCH) {
+                    out.push(format!("{{\"type\":\"log\",\"entries\":[{}]}}", chunk.join(",")));
                 }
-                sent.log = p.log.len();
+                sent.log = p.log_dropped + p.log.len();
             }
             if sent.state_seq != p.state_seq {
                 sent.state_seq = p.state_seq;
@@ -347,5 +363,36 @@ fn client(
             let _ = ws.flush();
             return Ok(());
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A page that connects after more than [`LOG_KEEP`] entries gets the newest ones, in
+    /// order, each once; the hello comes first.
+    #[test]
+    fn a_late_page_gets_the_newest_log_entries_in_order() {
+        let server = Server::start("127.0.0.1:0".parse().unwrap(), json!({"design": "test"})).unwrap();
+        let total = LOG_KEEP + LOG_KEEP / 2 + 7;
+        for i in 0..total {
+            server.log(json!({"kind": "sample", "sample": i}));
+        }
+        let url = server.url().replacen("http://", "ws://", 1);
+        let (mut ws, _) = tungstenite::connect(url).unwrap();
+        let first: Value = serde_json::from_str(ws.read().unwrap().to_text().unwrap()).unwrap();
+        assert_eq!((first["type"].as_str(), first["design"].as_str()), (Some("hello"), Some("test")));
+        let mut got: Vec<u64> = Vec::new();
+        let start = Instant::now();
+        while got.last() != Some(&(total as u64 - 1)) {
+            assert!(start.elapsed() < Duration::from_secs(60), "only {} entries came", got.len());
+            let m: Value = serde_json::from_str(ws.read().unwrap().to_text().unwrap()).unwrap();
+            if m["type"] == "log" {
+                got.extend(m["entries"].as_array().unwrap().iter().map(|e| e["sample"].as_u64().unwrap()));
+            }
+        }
+        assert!(got.len() <= LOG_KEEP && got.len() >= LOG_KEEP * 3 / 4, "{}", got.len());
+        assert!(got.windows(2).all(|w| w[1] == w[0] + 1), "in order, each once");
     }
 }

@@ -34,11 +34,16 @@ impl Live {
 
     /// The same for another subcommand (`run`: the bot alone).
     pub fn start_command(command: &str, args: &[&str]) -> Live {
+        Live::start_in(&root(), command, args)
+    }
+
+    /// The same in the folder `dir`.
+    pub fn start_in(dir: &std::path::Path, command: &str, args: &[&str]) -> Live {
         let mut child = Command::new(env!("CARGO_BIN_EXE_botsim"))
             .arg(command)
             .args(args)
             .args(["--live", "--port", "0", "-q"])
-            .current_dir(root())
+            .current_dir(dir)
             .env("BOTSIM_CACHE", root().join("target/botsim-board-cache"))
             .stdout(Stdio::piped())
             .stderr(Stdio::inherit())

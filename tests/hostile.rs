@@ -273,3 +273,24 @@ fn ctrl_c_stops_a_build_whole_and_two_runs_share_one_build() {
         stderr(&b)
     );
 }
+
+/// Two processes driving one variable: Vivado reports it, and so does botsim, with the
+/// line, and simulates the drivers as written (the run goes on).
+#[test]
+fn a_variable_with_two_drivers_is_reported_with_its_line_and_the_run_goes_on() {
+    let d = design(
+        "module top(input clk, input [15:0] sw, output [15:0] led);\n  reg shown = 1'b0;\n\
+         \x20 always @(posedge clk) shown <= sw[0];\n  always @(negedge clk) shown <= sw[1];\n\
+         \x20 assign led = {15'd0, shown};\nendmodule\n",
+        &[],
+    );
+    let (o, took) = board_within(d.path(), &cache(), &["top.v", "--seconds", "0.002"], BOUND);
+    let said = stderr(&o);
+    assert!(o.status.success(), "{said}");
+    let note = said.lines().find(|l| l.contains("more than one driver")).unwrap_or_else(|| panic!("{said}"));
+    assert!(
+        note.starts_with("note: top.v:2:") || note.starts_with("note: top.v:3:") || note.starts_with("note: top.v:4:"),
+        "{note}"
+    );
+    assert!(took < BOUND, "{took:?}");
+}

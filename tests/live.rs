@@ -240,9 +240,15 @@ fn the_bot_alone_is_driven_from_the_page_and_replays_exactly() {
     a.send(json!({"type": "switch", "index": 0, "on": true}));
     let e = a.until("the switch refused", |v| v["type"] == "error");
     assert!(e["message"].as_str().unwrap().contains("motors"), "{e}");
-    for m in ["33", "32", "03", "22"] {
+    for (k, m) in ["33", "32", "03", "22"].into_iter().enumerate() {
         a.send(json!({"type": "motors", "value": m}));
-        seen(&mut a, "samples after a motor change", 40, &mut samples, &mut inputs);
+        // Forty samples from the iteration the change applies to (the page may be far
+        // behind the run: its log is read up to there).
+        while inputs.len() <= k
+            || samples.last().unwrap()["sample"].as_u64() < inputs[k]["iteration"].as_u64().map(|i| i + 40)
+        {
+            seen(&mut a, "samples after a motor change", 1, &mut samples, &mut inputs);
+        }
     }
     a.send(json!({"type": "stop"}));
     while let Some(v) = a.next(Duration::from_millis(500)) {
@@ -304,4 +310,43 @@ fn the_bot_alone_is_driven_from_the_page_and_replays_exactly() {
     b.send(json!({"type": "motors", "value": 51}));
     let e = b.until("the motors refused", |v| v["type"] == "error");
     assert!(e["message"].as_str().unwrap().contains("line follower drives"), "{e}");
+}
+
+/// A page that vanishes in the middle of a VGA frame (its socket shut after the frame's
+/// message, its PNG on the way) changes nothing: the board and its frames go on for the
+/// other page, and a slow page is never waited for.
+#[test]
+fn a_page_that_vanishes_mid_frame_changes_nothing() {
+    let live = Live::start(&["examples/common", "examples/nexys4_vga", "--param", "SIMULATE=1", "--speed", "max"]);
+    let mut gone = live.client("/");
+    // Read raw messages up to a frame's text message: its binary PNG comes next.
+    let start = std::time::Instant::now();
+    loop {
+        assert!(start.elapsed() < BUDGET, "no frame came");
+        match gone.ws.read() {
+            Ok(tungstenite::Message::Text(t)) if t.contains("\"type\":\"frame\"") => break,
+            Ok(_) => {}
+            Err(tungstenite::Error::Io(e))
+                if matches!(e.kind(), std::io::ErrorKind::WouldBlock | std::io::ErrorKind::TimedOut) => {}
+            Err(e) => panic!("{e}"),
+        }
+    }
+    if let tungstenite::stream::MaybeTlsStream::Plain(s) = gone.ws.get_mut() {
+        s.shutdown(std::net::Shutdown::Both).unwrap();
+    }
+    drop(gone);
+    // Another page that never reads (a slow one) stays connected meanwhile.
+    let _slow = live.client("/");
+    let mut a = live.client("/");
+    a.next(BUDGET).unwrap();
+    let t0 = a.state("a state", |_| true)["time_ps"].as_u64().unwrap();
+    let before = a.frames.len();
+    a.state("the board running on", |s| s["time_ps"].as_u64().unwrap() > t0 + 200_000_000_000);
+    let start = std::time::Instant::now();
+    while a.frames.len() == before {
+        assert!(start.elapsed() < BUDGET, "no frame after the page vanished");
+        a.next(Duration::from_millis(200));
+    }
+    let (meta, png) = a.frames.last().unwrap();
+    assert_eq!(common::rgb(png).0, 640, "{meta}");
 }

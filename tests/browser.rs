@@ -29,6 +29,22 @@ fn chromium() -> Option<PathBuf> {
     None
 }
 
+/// Headless Chromium with the page at `url` loaded (the browser ends when dropped).
+fn open(chromium: PathBuf, url: &str) -> (Browser, std::sync::Arc<Tab>) {
+    let options = LaunchOptions::default_builder()
+        .path(Some(chromium))
+        .headless(true)
+        .sandbox(false)
+        .window_size(Some((1480, 1040)))
+        .idle_browser_timeout(BUDGET)
+        .build()
+        .unwrap();
+    let browser = Browser::new(options).unwrap();
+    let tab = browser.new_tab().unwrap();
+    tab.navigate_to(url).unwrap().wait_until_navigated().unwrap();
+    (browser, tab)
+}
+
 /// What the page shows, read in one go.
 const PAGE: &str = r#"(() => {
   const on = (id) => document.getElementById(id).classList.contains("on");
@@ -95,17 +111,7 @@ fn hex_glyphs(v: u64) -> String {
 fn the_page_in_headless_chromium_plays_the_vga_example() {
     let Some(chromium) = chromium() else { return };
     let live = Live::start(&["examples/common", "examples/nexys4_vga", "--param", "SIMULATE=1", "--speed", "max"]);
-    let options = LaunchOptions::default_builder()
-        .path(Some(chromium))
-        .headless(true)
-        .sandbox(false)
-        .window_size(Some((1480, 1040)))
-        .idle_browser_timeout(BUDGET)
-        .build()
-        .unwrap();
-    let browser = Browser::new(options).unwrap();
-    let tab = browser.new_tab().unwrap();
-    tab.navigate_to(&live.url).unwrap().wait_until_navigated().unwrap();
+    let (_browser, tab) = open(chromium, &live.url);
     let p = until(&tab, "the connection", |p| p["status"] == "live" && p["samples"].as_u64() > Some(2));
     assert_eq!(p["speed"], "max", "the speed list shows the run's --speed");
 
@@ -197,17 +203,7 @@ fn the_page_in_headless_chromium_plays_the_vga_example() {
 fn the_page_drives_the_bot_alone() {
     let Some(chromium) = chromium() else { return };
     let live = Live::start_command("run", &["--timing", "fast", "--speed", "0.02"]);
-    let options = LaunchOptions::default_builder()
-        .path(Some(chromium))
-        .headless(true)
-        .sandbox(false)
-        .window_size(Some((1480, 1040)))
-        .idle_browser_timeout(BUDGET)
-        .build()
-        .unwrap();
-    let browser = Browser::new(options).unwrap();
-    let tab = browser.new_tab().unwrap();
-    tab.navigate_to(&live.url).unwrap().wait_until_navigated().unwrap();
+    let (_browser, tab) = open(chromium, &live.url);
     let shown = r#"JSON.stringify({
         board: getComputedStyle(document.getElementById("board")).display !== "none",
         drive: !document.getElementById("drive").hidden,

@@ -227,6 +227,7 @@ pub fn build(
     include_str!("observed.rs").hash(&mut h);
     include_str!("counters.rs").hash(&mut h);
     include_str!("cpp.rs").hash(&mut h);
+    include_str!("dialect.rs").hash(&mut h);
     ABI.hash(&mut h);
     PRINT.hash(&mut h);
     DISASM.hash(&mut h);
@@ -359,6 +360,14 @@ pub fn build(
     // What the harness may assume of the design (BoardModel::load reads the verdicts; the
     // harness compiles in which variables a run observes), then the C++.
     let mut checked = super::checks::Checked::of(&tmp.join("obj"));
+    // For whoever teaches the analyses another Verilator's output: a copy of it.
+    if let Some(keep) = std::env::var_os("BOTSIM_KEEP_GENERATED") {
+        let keep = PathBuf::from(keep);
+        let _ = std::fs::create_dir_all(&keep);
+        for e in std::fs::read_dir(tmp.join("obj")).into_iter().flatten().flatten() {
+            let _ = std::fs::copy(e.path(), keep.join(e.file_name()));
+        }
+    }
     if let Some(at) = &delays {
         // Timed events wait in Verilator's own queue, outside the state the fast-forward
         // compares; every edge is evaluated.

@@ -124,11 +124,7 @@ impl Checked {
                     falling_edges,
                     observed: members.as_ref().err().cloned(),
                 };
-                let triggers_fn =
-                    ["Vboard___024root___eval_triggers__act", "Vboard___024root___eval_triggers_vec__act"]
-                        .into_iter()
-                        .find(|f| g.eval.iter().any(|c| function(c, f).is_some()))
-                        .map(str::to_string);
+                let triggers_fn = g.triggers_fn.clone();
                 Checked { verdicts, members, unshown, counters, triggers_fn }
             }
             None => {
@@ -187,6 +183,8 @@ struct Generated {
     trace: Vec<String>,
     /// The symbol table's source (the public variables).
     syms: String,
+    /// The function that computes the active triggers alone, by its real name.
+    triggers_fn: Option<String>,
 }
 
 impl Generated {
@@ -195,26 +193,30 @@ impl Generated {
             std::fs::read_dir(obj).ok()?.flatten().map(|e| e.file_name().to_string_lossy().into_owned()).collect();
         names.sort();
         let read = |n: &str| std::fs::read_to_string(obj.join(n)).unwrap_or_default();
-        let eval = names
-            .iter()
-            .filter(|n| n.starts_with("Vboard___024root__DepSet_") && !n.ends_with("__Slow.cpp"))
-            .map(|n| read(n))
-            .collect();
-        let slow = names
-            .iter()
-            .filter(|n| n.starts_with("Vboard___024root__DepSet_") && n.ends_with("__Slow.cpp"))
-            .map(|n| read(n))
-            .collect();
-        let trace = names.iter().filter(|n| n.starts_with("Vboard__Trace__")).map(|n| read(n)).collect();
-        Some(Generated {
-            root: read("Vboard___024root.h"),
-            dpi: read("Vboard__Dpi.h"),
-            syms: read("Vboard__Syms.cpp"),
-            eval,
-            slow,
-            trace,
-            names,
-        })
+        // The root's code: `Vboard___024root__DepSet_<hash>__0.cpp` (5.006), or
+        // `Vboard___024root__0.cpp` (later), each with its `__Slow` part.
+        let root_code = |n: &&String| {
+            n.strip_prefix("Vboard___024root__")
+                .is_some_and(|r| r.starts_with("DepSet_") || r.starts_with(|c: char| c.is_ascii_digit()))
+                && n.ends_with(".cpp")
+        };
+        let eval: Vec<String> =
+            names.iter().filter(root_code).filter(|n| !n.ends_with("__Slow.cpp")).map(|n| read(n)).collect();
+        let slow: Vec<String> =
+            names.iter().filter(root_code).filter(|n| n.ends_with("__Slow.cpp")).map(|n| read(n)).collect();
+        let trace: Vec<String> = names.iter().filter(|n| n.starts_with("Vboard__Trace__")).map(|n| read(n)).collect();
+        let triggers_fn = ["Vboard___024root___eval_triggers__act", "Vboard___024root___eval_triggers_vec__act"]
+            .into_iter()
+            .find(|f| eval.iter().any(|c| function(c, f).is_some()))
+            .map(str::to_string);
+        // In the dialect the analyses read (a later Verilator's output rewritten).
+        let (eval_n, slow_n) = (eval.len(), slow.len());
+        let all: Vec<String> = eval.into_iter().chain(slow).chain(trace).collect();
+        let (root, mut all) = super::dialect::to_5006(&read("Vboard___024root.h"), &all);
+        let trace = all.split_off(eval_n + slow_n);
+        let slow = all.split_off(eval_n);
+        let syms = ["Vboard__Syms.cpp", "Vboard__Syms__Slow.cpp"].map(read).concat();
+        Some(Generated { root, dpi: read("Vboard__Dpi.h"), syms, eval: all, slow, trace, names, triggers_fn })
     }
 }
 
@@ -257,8 +259,12 @@ fn edge_blocker(root: &str, code: &[&str]) -> Option<String> {
         };
         let rest = &triggers[start + at.len()..];
         let var = rest.split(')').next().unwrap_or("");
-        let rising = format!("{var})&(~(IData)(vlSelf->__Vtrigrprev__TOP__{var})));");
-        if var.is_empty() || !rest.starts_with(&rising) {
+        // (The previous level's name: `__Vtrigrprev__TOP__clk` in 5.006, later
+        // `__Vtrigprevexpr___TOP__clk__0`.)
+        let rising = |prev: String| rest.starts_with(&format!("{var})&(~(IData)(vlSelf->{prev})));"));
+        if var.is_empty()
+            || !(rising(format!("__Vtrigrprev__TOP__{var}")) || rising(format!("__Vtrigprevexpr___TOP__{var}__0")))
+        {
             return Some(format!("the design's trigger {i} is not a rising clock edge"));
         }
     }
@@ -289,7 +295,8 @@ fn logic_change_trigger(triggers: &str, i: usize, code: &[&str]) -> bool {
     let valid = !var.is_empty() && var.chars().all(|c| c.is_alphanumeric() || c == '_');
     let assigned = format!("vlSelf->{var}=");
     valid
-        && rest.starts_with(&format!("{var}!=vlSelf->__Vtrigrprev__TOP__{var});"))
+        && (rest.starts_with(&format!("{var}!=vlSelf->__Vtrigrprev__TOP__{var});"))
+            || rest.starts_with(&format!("{var}!=vlSelf->__Vtrigprevexpr___TOP__{var}__0);")))
         && code.iter().any(|c| {
             let c = squeeze(c);
             c.match_indices(&assigned).any(|(k, m)| !c[k + m.len()..].starts_with('='))
@@ -310,7 +317,7 @@ fn reads_clk(body: &str) -> bool {
 }
 
 /// Headers every build has: the model, its symbol table, its DPI imports, the root.
-const KNOWN_HEADERS: &[&str] = &["Vboard__Syms.h", "Vboard__Dpi.h", "Vboard___024root.h"];
+const KNOWN_HEADERS: &[&str] = &["Vboard__Syms.h", "Vboard__Dpi.h", "Vboard___024root.h", "Vboard__pch.h"];
 
 /// Plain member types of the root: Verilator's integer and wide types, unpacked arrays of
 /// them, trigger vectors, the ports, and the symbol table's pointer.
@@ -326,6 +333,9 @@ const PLAIN: &[&str] = &[
     "VL_IN",
     "VL_OUT",
     "Vboard__Syms* const vlSymsp;",
+    // Later Verilators: the same pointer, and the instance's name (a constant).
+    "Vboard__Syms* vlSymsp;",
+    "const char* vlNamep;",
 ];
 
 /// The root's header: a member that is not plain data, or `None`.

@@ -203,6 +203,7 @@ impl Analysis {
                 // edge is found, not logic.
                 k.starts_with("m:")
                     && !k.starts_with("m:__Vtrigrprev__")
+                    && !k.starts_with("m:__Vtrigprevexpr")
                     && feeds[i]
                     && !clocks.contains(&i)
                     && self.g.preds[i].iter().any(|p| clocks.contains(p))

@@ -350,3 +350,51 @@ fn a_page_that_vanishes_mid_frame_changes_nothing() {
     let (meta, png) = a.frames.last().unwrap();
     assert_eq!(common::rgb(png).0, 640, "{meta}");
 }
+
+/// A 1024 x 768 design (tests/board_designs/vga1024: a 65.04 MHz pixel clock from an MMCM,
+/// colour bands and a box where the bot is) live: its frames come at that size, each pixel as
+/// the design draws it for the bot of the frame's sample, and a later frame shows the bot
+/// moved.
+#[test]
+fn a_1024_by_768_design_shows_its_frames_live() {
+    let live =
+        Live::start(&["examples/common", "tests/board_designs/vga1024", "--param", "SIMULATE=1", "--speed", "max"]);
+    let mut a = live.client("/");
+    a.next(BUDGET).unwrap();
+    let mut samples: Vec<Value> = Vec::new();
+    let mut checked: Vec<(u64, u64)> = Vec::new();
+    let start = std::time::Instant::now();
+    while checked.len() < 2 {
+        assert!(start.elapsed() < BUDGET, "frames checked: {checked:?}");
+        if let Some(v) = a.next(Duration::from_millis(200)) {
+            samples.extend(v["entries"].as_array().into_iter().flatten().filter(|e| e["kind"] == "sample").cloned());
+        }
+        let Some((meta, png)) = a.frames.pop() else { continue };
+        // A frame of one sample's bot, once that sample is in the log.
+        let sample = meta["sample"].as_u64();
+        if sample.is_none() || meta["sample_from"].as_u64() != sample {
+            continue;
+        }
+        let Some(e) = samples.iter().find(|e| e["sample"].as_u64() == sample) else {
+            a.frames.push((meta, png));
+            continue;
+        };
+        let (x, y) = (e["x"].as_u64().unwrap(), e["y"].as_u64().unwrap());
+        if checked.last().is_some_and(|c| *c == (x, y)) {
+            continue;
+        }
+        let (w, h, rgb) = common::rgb(&png);
+        assert_eq!((w, h), (1024, 768), "{meta}");
+        for (k, px) in rgb.chunks(3).enumerate() {
+            let (col, row) = (k as u64 % 1024, k as u64 / 1024);
+            let in_box = (x * 8..x * 8 + 8).contains(&col) && (y * 6..y * 6 + 6).contains(&row);
+            let c = if in_box { 0xFFF } else { (col >> 6 & 15) << 8 | (row >> 6 & 15) << 4 | 3 };
+            let want = [(c >> 8 & 15) as u8 * 17, (c >> 4 & 15) as u8 * 17, (c & 15) as u8 * 17];
+            assert_eq!(
+                px, want,
+                "pixel ({col}, {row}) of the frame of sample {sample:?}, the bot at ({x}, {y}): {meta}"
+            );
+        }
+        checked.push((x, y));
+    }
+}

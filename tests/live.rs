@@ -37,6 +37,7 @@ fn a_page_gets_the_board_and_its_inputs_reach_the_design_at_the_stated_time() {
     let hello = a.next(BUDGET).unwrap();
     assert_eq!(hello["type"], "hello", "{hello}");
     assert_eq!(hello["design"]["top"], "nexys4fpga");
+    assert_eq!(hello["vga"], false, "the shapes design has no VGA pins");
     assert_eq!(hello["world"]["cells"].as_str().map(str::len), Some(128 * 128));
     let s = a.state("a state", |s| s["samples"].as_u64() > Some(3));
     assert_eq!((s["switches"].as_u64(), s["leds"].as_u64().map(|l| l & 0x1F)), (Some(0), Some(0)), "{s}");
@@ -360,7 +361,7 @@ fn a_1024_by_768_design_shows_its_frames_live() {
     let live =
         Live::start(&["examples/common", "tests/board_designs/vga1024", "--param", "SIMULATE=1", "--speed", "max"]);
     let mut a = live.client("/");
-    a.next(BUDGET).unwrap();
+    assert_eq!(a.next(BUDGET).unwrap()["vga"], true);
     let mut samples: Vec<Value> = Vec::new();
     let mut checked: Vec<(u64, u64)> = Vec::new();
     let start = std::time::Instant::now();

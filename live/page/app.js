@@ -332,6 +332,7 @@ function onMessage(ev) {
       $("board-hint").hidden = mode === "bot";
       $("drive").hidden = mode !== "bot";
       $("monitor").hidden = mode === "bot";
+      if (m.vga === false) $("novga").textContent = "this design has no VGA pins";
       if (mode === "bot") {
         $("save").textContent = "Save motors";
         $("save").title = "Download the motors so far as a --motors script";

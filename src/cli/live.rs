@@ -66,6 +66,12 @@ impl LiveArgs {
         let server =
             Server::start(addr, hello).map_err(|e| format!("--port {}: cannot listen on {addr}: {e}", self.port))?;
         println!("{}", server.url());
+        if !server.addr().ip().is_loopback() {
+            eprintln!(
+                "note: --listen {}: the board is served to every machine that reaches this one, without a password",
+                self.listen
+            );
+        }
         Ok(server)
     }
 }

@@ -80,7 +80,9 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
         return Err("--live takes its inputs from the page (--switches sets where they start)".into());
     }
     let sources: Vec<String> = a.sources.iter().map(|s| s.display().to_string()).collect();
+    let has_vga = p.plan.pins.iter().any(|(_, r)| *r == Role::Vsync);
     let hello = json!({
+        "vga": has_vga,
         "design": {"top": p.plan.top, "sources": sources.join(" ")},
         "world": world_json(&p.world),
         "mode": "board",
@@ -93,7 +95,6 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
     let skip_mode =
         if skips && model.fast_forward_blocker().is_none() { FastForward::Recorded } else { FastForward::Off };
     model.fast_forward(skip_mode);
-    let has_vga = p.plan.pins.iter().any(|(_, r)| *r == Role::Vsync);
     let mut inputs = Stimulus::default();
     if let Some(h) = &a.switches {
         inputs.initial_switches = u16::from_str_radix(h.trim_start_matches("0x"), 16)

@@ -18,7 +18,7 @@
 
 pub use botsim_core::{driver, files, firmware, golden, kcpsm6, ports, regs, render, script, world};
 pub use botsim_core::{
-    Cell, Compat, Firmware, MotCtl, Movement, Orientation, Registers, Sensors, Snapshot, Timing, World,
+    Cell, Compat, Firmware, MotCtl, Movement, Orientation, Registers, Sensors, Snapshot, Timing, World, PS_PER_CYCLE,
 };
 
 pub mod board;

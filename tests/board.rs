@@ -5,23 +5,15 @@
 //! designs for the errors. Each design is verilated and
 //! compiled once per cache folder (target/botsim-board-cache).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output};
 
 mod common;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
+use common::root;
 
 fn board(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_botsim"))
-        .arg("board")
-        .args(args)
-        .current_dir(root())
-        .env("BOTSIM_CACHE", root().join("target/botsim-board-cache"))
-        .output()
-        .unwrap()
+    common::board_in(&root(), args)
 }
 
 /// `botsim board` on an example design (examples/common with the top in `top_dir`), its

@@ -4,14 +4,12 @@
 //! with a VGA display and its IP as configurations: tests/board_designs/repos/vivado_ip) and
 //! the examples; the README's own picture is what its first command draws.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 mod common;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
+use common::root;
 
 /// The commands of the `sh` blocks of a Markdown file, continuation lines joined.
 fn commands(markdown: &str) -> Vec<String> {
@@ -64,7 +62,7 @@ fn run(command: &str, dir: &Path) {
     let o = Command::new(env!("CARGO_BIN_EXE_botsim"))
         .args(&args)
         .current_dir(&cwd)
-        .env("BOTSIM_CACHE", root().join("target/botsim-board-cache"))
+        .env("BOTSIM_CACHE", common::board_cache())
         .output()
         .unwrap();
     assert!(o.status.success(), "{command}\n{}", String::from_utf8_lossy(&o.stderr));

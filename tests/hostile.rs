@@ -3,17 +3,13 @@
 //! one), or runs as Vivado would have it built. The designs are written here, each a few lines
 //! around a `bot`; each is built once per cache (target/botsim-board-cache).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
+mod common;
 
-fn cache() -> PathBuf {
-    root().join("target/botsim-board-cache")
-}
+use common::board_cache as cache;
 
 /// `botsim board ARGS` in `dir` with the cache `cache`, stopped if it has not ended within
 /// `budget` (a hang is a failure, not a stuck test); with the time it took.

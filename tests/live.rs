@@ -185,13 +185,7 @@ fn a_live_session_replays_exactly_from_its_recorded_inputs() {
     let mut args = shapes(&[]);
     args.extend(["--stimulus", record.to_str().unwrap(), "--samples", &last.to_string()].map(String::from));
     args.extend(["--trace-json", trace.to_str().unwrap(), "-q"].map(String::from));
-    let o = std::process::Command::new(env!("CARGO_BIN_EXE_botsim"))
-        .arg("board")
-        .args(&args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("BOTSIM_CACHE", std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target/botsim-board-cache"))
-        .output()
-        .unwrap();
+    let o = common::board_in(&common::root(), &args.iter().map(String::as_str).collect::<Vec<_>>());
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let replay: Vec<Value> =
         std::fs::read_to_string(&trace).unwrap().lines().map(|l| serde_json::from_str(l).unwrap()).collect();

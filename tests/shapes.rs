@@ -4,21 +4,14 @@
 //! board time, and its records are those of every edge simulated, pin for pin, across
 //! button presses, a switch change and a CPU reset.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
+mod common;
+
+use common::root;
 
 fn board(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_botsim"))
-        .arg("board")
-        .args(args)
-        .current_dir(root())
-        .env("BOTSIM_CACHE", root().join("target/botsim-board-cache"))
-        .output()
-        .unwrap()
+    common::board_in(&root(), args)
 }
 
 /// The shapes design with `params`, for 0.3 s of board time at hw timing under a stimulus;

@@ -4,9 +4,9 @@
 use std::path::PathBuf;
 use std::process::Command;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
+mod common;
+
+use common::root;
 
 /// A suite of the example design with the line follower (passes) and with the demo firmware
 /// (does not follow the line: fails), on the built-in course.
@@ -42,7 +42,7 @@ fn suite(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_botsim"))
         .arg("suite")
         .args(args)
-        .env("BOTSIM_CACHE", root().join("target/botsim-board-cache"))
+        .env("BOTSIM_CACHE", common::board_cache())
         .output()
         .unwrap()
 }

@@ -40,6 +40,11 @@ pub mod sim;
 pub mod world;
 
 pub use firmware::{Compat, Firmware, Timing};
+
+/// One cycle of the 100 MHz clock, in picoseconds: the board's oscillator, and the clock the
+/// bot's program is calibrated for (botsim.md §11). Cycle counts (`5000000c`, a trace's
+/// `cycle`) are in it.
+pub const PS_PER_CYCLE: u64 = 10_000;
 pub use kcpsm6;
 pub use regs::{MotCtl, Movement, Orientation, Registers, Sensors, Snapshot};
 pub use sim::{Backend, CpuAt, Error};

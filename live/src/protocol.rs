@@ -122,11 +122,7 @@ impl Command {
                 Command::Switch { index, on: flag("on")? }
             }
             "switches" => {
-                let value = match obj.get("value") {
-                    Some(Value::Number(n)) => n.as_u64().filter(|v| *v <= 0xFFFF),
-                    Some(Value::String(s)) => u16::from_str_radix(s.trim_start_matches("0x"), 16).ok().map(u64::from),
-                    _ => None,
-                };
+                let value = word(obj.get("value"), 0xFFFF);
                 Command::Switches(value.ok_or("`switches`: `value` must be 0 to 65535 or up to four hex digits")? as u16)
             }
             "button" => {
@@ -137,11 +133,7 @@ impl Command {
                 Command::Button { button, down: flag("down")? }
             }
             "motors" => {
-                let value = match obj.get("value") {
-                    Some(Value::Number(n)) => n.as_u64().filter(|v| *v <= 0xFF),
-                    Some(Value::String(s)) => u8::from_str_radix(s.trim_start_matches("0x"), 16).ok().map(u64::from),
-                    _ => None,
-                };
+                let value = word(obj.get("value"), 0xFF);
                 Command::Motors(value.ok_or("`motors`: `value` must be 0 to 255 or two hex digits")? as u8)
             }
             "run" => Command::Run,
@@ -162,6 +154,16 @@ impl Command {
         };
         Ok(vec![one])
     }
+}
+
+/// A value up to `max`: a number, or hex digits (`"0x"` allowed).
+fn word(v: Option<&Value>, max: u64) -> Option<u64> {
+    match v? {
+        Value::Number(n) => n.as_u64(),
+        Value::String(s) => u64::from_str_radix(s.trim_start_matches("0x"), 16).ok(),
+        _ => None,
+    }
+    .filter(|v| *v <= max)
 }
 
 /// One pin of a ViDBo `gpio` message: `SW0`..`SW15`, `BTNC`.., `CPU_RESET`.

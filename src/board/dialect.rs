@@ -35,8 +35,10 @@ const VECTORS: [&str; 4] = ["stl", "ico", "act", "nba"];
 
 /// The root's header and the code files, in 5.006's dialect (unchanged when they are in it).
 pub fn to_5006(root: &str, code: &[String]) -> (String, Vec<String>) {
-    let newer = code.iter().any(|c| c.contains("vlSelfRef"))
-        || root.contains("__VactTriggered;") && root.contains("VlUnpacked<QData/*63:0*/");
+    // A later version: `vlSelfRef`, or the triggers declared as words.
+    let word_triggers =
+        root.lines().any(|l| l.contains("VlUnpacked<QData/*63:0*/") && l.contains("> __VactTriggered;"));
+    let newer = word_triggers || code.iter().any(|c| c.contains("vlSelfRef"));
     if !newer {
         return (root.to_string(), code.to_vec());
     }

@@ -3,7 +3,6 @@
 //! is `x` instead of Verilator's 0. A trace of ports per cycle, as [`super::lockstep::Core`]
 //! gives them; a bit that is `x` makes its field [`X`].
 
-use std::path::PathBuf;
 use std::process::Command;
 
 use botsim::sim::rtl::Ports;
@@ -12,9 +11,7 @@ use kcpsm6::iss::Pins;
 /// What a field reads when any of its bits is unknown.
 pub const X: u16 = 0xFFFF;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
+use super::root;
 
 /// The ports of cycles 0..pins.len() of `program` under Icarus, or `None` when Icarus is not
 /// installed (an error when BOTSIM_REQUIRE_TOOLS is set, as in CI).

@@ -3,7 +3,7 @@
 
 use std::io::{BufRead, BufReader};
 use std::net::TcpStream;
-use std::path::PathBuf;
+
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
@@ -14,9 +14,7 @@ use tungstenite::{Message, WebSocket};
 /// How long any wait of these tests may take.
 pub const BUDGET: Duration = Duration::from_secs(60);
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
+use super::{board_cache, root};
 
 /// A running `botsim board --live`.
 pub struct Live {
@@ -44,7 +42,7 @@ impl Live {
             .args(args)
             .args(["--live", "--port", "0", "-q"])
             .current_dir(dir)
-            .env("BOTSIM_CACHE", root().join("target/botsim-board-cache"))
+            .env("BOTSIM_CACHE", board_cache())
             .stdout(Stdio::piped())
             .stderr(Stdio::inherit())
             .spawn()

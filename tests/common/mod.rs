@@ -12,9 +12,29 @@ pub mod strategies;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-/// Run the `botsim` binary in `dir`.
+/// The repository's folder.
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The board builds every test shares: one build per design key for the whole test run.
+pub fn board_cache() -> PathBuf {
+    root().join("target/botsim-board-cache")
+}
+
+/// Run the `botsim` binary in `dir` (a board built in [`board_cache`]).
 pub fn botsim(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_botsim")).args(args).current_dir(dir).output().unwrap()
+    Command::new(env!("CARGO_BIN_EXE_botsim"))
+        .args(args)
+        .current_dir(dir)
+        .env("BOTSIM_CACHE", board_cache())
+        .output()
+        .unwrap()
+}
+
+/// `botsim board ARGS` in `dir`.
+pub fn board_in(dir: &Path, args: &[&str]) -> Output {
+    botsim(&[&["board"], args].concat(), dir)
 }
 
 /// A command's standard error as text.

@@ -497,8 +497,9 @@ enum Choice {
     User(Def),
     /// Botsim's own module or a primitive model.
     Own,
-    /// Verilog botsim generated (a core, a stand-in, a stub), with its report line.
-    Generated(Source, Replacement),
+    /// Verilog botsim generated (a core, a stand-in, a stub), with its report line (none for
+    /// a program ROM assembled from its `.psm`: the plan reports ROMs).
+    Generated(Source, Option<Replacement>),
 }
 
 /// A module nobody defines, where it is instantiated.
@@ -657,10 +658,7 @@ impl<'a> Walk<'a> {
                             inst.name,
                             psm.display()
                         ));
-                        return Some(Choice::Generated(
-                            Source::generated(psm.with_extension("v"), text),
-                            Replacement { module: String::new(), from: String::new(), with: String::new() },
-                        ));
+                        return Some(Choice::Generated(Source::generated(psm.with_extension("v"), text), None));
                     }
                     Err(e) => {
                         self.missing(
@@ -686,11 +684,11 @@ impl<'a> Walk<'a> {
                 let path = PathBuf::from(format!("botsim/course/{}.v", name));
                 return Some(Choice::Generated(
                     Source::generated(path, text),
-                    Replacement {
+                    Some(Replacement {
                         module: name.to_string(),
                         from: String::new(),
                         with: format!("botsim's clean-room course `{name}` (the repository has none)"),
-                    },
+                    }),
                 ));
             }
             self.missing(
@@ -720,11 +718,11 @@ impl<'a> Walk<'a> {
                     let path = PathBuf::from(format!("{}.v", vhd.display()));
                     return Some(Choice::Generated(
                         Source::generated(path, verilog),
-                        Replacement {
+                        Some(Replacement {
                             module: name.to_string(),
                             from: vhd.display().to_string(),
                             with: "GHDL's synthesis of the VHDL entity to Verilog".into(),
-                        },
+                        }),
                     ));
                 }
                 Err(e) => {
@@ -792,7 +790,11 @@ impl<'a> Walk<'a> {
         let path = PathBuf::from(format!("botsim/cores/{}.v", core.name));
         Choice::Generated(
             Source::generated(path, core.verilog()),
-            Replacement { module: core.name.clone(), from, with: format!("{}, from {}", core.summary(), core.origin) },
+            Some(Replacement {
+                module: core.name.clone(),
+                from,
+                with: format!("{}, from {}", core.summary(), core.origin),
+            }),
         )
     }
 
@@ -819,7 +821,7 @@ impl<'a> Walk<'a> {
                 let with = format!("a Clocking Wizard from its configuration ({})", c.summary());
                 Choice::Generated(
                     Source::generated(path, c.verilog()),
-                    Replacement { module: name.to_string(), from: ip.path.display().to_string(), with },
+                    Some(Replacement { module: name.to_string(), from: ip.path.display().to_string(), with }),
                 )
             })
         } else {
@@ -914,10 +916,7 @@ impl<'a> Walk<'a> {
                 Some(Choice::User(d)) => by_file.entry(d.src).or_default().push(d.module),
                 Some(Choice::Generated(src, rep)) => {
                     sources.push(src.clone());
-                    // (A program ROM made from its .psm is reported by the plan, as ROMs are.)
-                    if !rep.module.is_empty() {
-                        generated.push(rep.clone());
-                    }
+                    generated.extend(rep.clone());
                 }
                 _ => {}
             }

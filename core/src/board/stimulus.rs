@@ -45,7 +45,7 @@ pub fn parse_time(s: &str) -> Result<u64, String> {
     } else if let Some(n) = s.strip_suffix('s') {
         (n, 1e12)
     } else if let Some(n) = s.strip_suffix('c') {
-        (n, 1e4)
+        (n, crate::PS_PER_CYCLE as f64)
     } else {
         (s, 1e9)
     };
@@ -145,6 +145,41 @@ impl Stimulus {
         Ok(s)
     }
 
+    /// The stimulus as a file that [`Stimulus::parse`] reads back as it is: `# header` first,
+    /// times in cycles of the 100 MHz clock (in ns off a cycle boundary); a press still held
+    /// (`to` = `u64::MAX`) lasts to `held_until_ps`, one cycle at the least.
+    ///
+    /// ```
+    /// use botsim_core::board::stimulus::{Press, Stimulus};
+    /// let s = Stimulus { presses: vec![Press { button: Some(0), from: 20_000, to: u64::MAX }], ..Default::default() };
+    /// assert_eq!(s.text(50_000, "a session"), "# a session\n2c press btnC 3c\n");
+    /// ```
+    pub fn text(&self, held_until_ps: u64, header: &str) -> String {
+        let time = |ps: u64| match ps % crate::PS_PER_CYCLE {
+            0 => format!("{}c", ps / crate::PS_PER_CYCLE),
+            _ => format!("{}.{:03}ns", ps / 1000, ps % 1000),
+        };
+        let mut lines: Vec<(u64, String)> = Vec::new();
+        if self.initial_switches != 0 {
+            lines.push((0, format!("0c switches {:04X}", self.initial_switches)));
+        }
+        for p in &self.presses {
+            let name = p.button.map_or("btnCpuReset", button_name);
+            let to = if p.to == u64::MAX { held_until_ps.max(p.from + crate::PS_PER_CYCLE) } else { p.to };
+            lines.push((p.from, format!("{} press {name} {}", time(p.from), time(to - p.from))));
+        }
+        for &(t, v) in &self.switches {
+            lines.push((t, format!("{} switches {v:04X}", time(t))));
+        }
+        lines.sort_by_key(|(t, _)| *t);
+        let mut out = format!("# {header}\n");
+        for (_, l) in lines {
+            out.push_str(&l);
+            out.push('\n');
+        }
+        out
+    }
+
     /// Every time at which an input changes (after 0), with the power-on reset's release.
     pub fn change_times(&self) -> Vec<u64> {
         let mut t: Vec<u64> = std::iter::once(POWER_ON_RESET_PS)
@@ -175,6 +210,30 @@ impl Stimulus {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// What `text` writes, `parse` reads back as it was (a held press ended where asked).
+    #[test]
+    fn a_stimulus_written_reads_back_the_same() {
+        let s = Stimulus {
+            presses: vec![
+                Press { button: None, from: 30_000_000, to: 90_000_000 },
+                Press { button: Some(2), from: 1_234_567, to: 2_000_000 },
+                Press { button: Some(0), from: 5_000_000_000, to: u64::MAX },
+            ],
+            switches: vec![(10_000, 0x0030), (7_000_000_010, 0xFF01)],
+            initial_switches: 0x8001,
+        };
+        let back = Stimulus::parse(Path::new("s.txt"), &s.text(6_000_000_000, "round trip")).unwrap();
+        let mut want = s.clone();
+        want.presses[2].to = 6_000_000_000;
+        want.switches.insert(0, (0, 0x8001));
+        want.initial_switches = 0;
+        assert_eq!(back.inputs_at(0), want.inputs_at(0));
+        let (mut a, mut b) = (back.presses.clone(), want.presses.clone());
+        a.sort_by_key(|p| p.from);
+        b.sort_by_key(|p| p.from);
+        assert_eq!((a, &back.switches), (b, &want.switches));
+    }
 
     #[test]
     fn times_presses_and_file_errors_with_their_column() {

@@ -6,7 +6,7 @@ use std::time::Instant;
 use botsim::board::build::CpuModel;
 use botsim::board::iss::Host;
 use botsim::board::model::{Event, FastForward, Printing, RawEvent, Stop};
-use botsim::World;
+use botsim::{World, PS_PER_CYCLE};
 use botsim_core::board::display::Display;
 use botsim_core::board::plan::Rom;
 
@@ -118,7 +118,7 @@ fn board_rate(
     let mut display = Display::default();
     let t = Instant::now();
     loop {
-        let (stop, n) = m.run(cycles * 10_000, u64::MAX, &mut buf);
+        let (stop, n) = m.run(cycles * PS_PER_CYCLE, u64::MAX, &mut buf);
         for e in buf[..n].iter().filter_map(Event::of) {
             if let Event::Display { time_ps, an, seg, dp } = e {
                 display.pins(time_ps, an, seg, dp);

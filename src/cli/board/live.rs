@@ -18,6 +18,7 @@ use std::time::{Duration, Instant};
 use botsim::board::build::{BotKind, CpuModel};
 use botsim::board::model::{BoardModel, Event, FastForward, Printing, RawEvent};
 use botsim::files::write_atomic;
+use botsim::PS_PER_CYCLE;
 use botsim_core::board::display::Display;
 use botsim_core::board::pins::Role;
 use botsim_core::board::stimulus::{Press, Stimulus, POWER_ON_RESET_PS};
@@ -30,12 +31,12 @@ use super::session::load;
 use super::Args;
 use crate::cli::live::{bot_view, sample_entry, world_json, Pace, Rate};
 
-/// One cycle of the board's clock: inputs change on its boundaries.
-const CYCLE_PS: u64 = 10_000;
 /// The most board time one call into the model covers (then commands are looked at).
 const CHUNK_PS: u64 = 20_000_000_000;
 /// How often the pages get the state, at most (wall time).
 const STATE_EVERY: Duration = Duration::from_millis(40);
+/// The first line of a session's stimulus file.
+const HEADER: &str = "botsim board --live: the inputs of a session (botsim board --stimulus FILE replays it)";
 /// The least wall time between two VGA frames.
 pub const FRAME_EVERY: Duration = Duration::from_millis(120);
 /// The longest wall time between two frames when nothing the board knows of changed (what
@@ -69,7 +70,7 @@ struct Board {
 
 /// Round `t` up to a cycle boundary.
 fn aligned(t: u64) -> u64 {
-    t.div_ceil(CYCLE_PS) * CYCLE_PS
+    t.div_ceil(PS_PER_CYCLE) * PS_PER_CYCLE
 }
 
 pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
@@ -145,7 +146,7 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
                 }
                 Command::Speed(f) => pace.set_speed(f, b.model.time_ps()),
                 Command::Save => server
-                    .reply(client, json!({"type": "stimulus", "text": stimulus_text(&b.inputs, b.model.time_ps())})),
+                    .reply(client, json!({"type": "stimulus", "text": b.inputs.text(b.model.time_ps(), HEADER)})),
                 Command::Stop => stopped = true,
                 Command::Motors(_) => server.reply(
                     client,
@@ -216,7 +217,7 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
     server.state(b.view(false, pace.speed(), 0.0, 0.0));
     server.close();
     if let Some(f) = &a.live.record {
-        write_atomic(f, stimulus_text(&b.inputs, t).as_bytes())?;
+        write_atomic(f, b.inputs.text(t, HEADER).as_bytes())?;
     }
     if !a.quiet {
         let recorded = a.live.record.as_ref().map_or(String::new(), |f| format!("; its inputs in {}", f.display()));
@@ -310,7 +311,7 @@ impl Board {
         if let Command::Button { button, down: false } = *command {
             let bit = botsim_core::board::stimulus::button_bit(button.name());
             if self.inputs.presses.iter().any(|p| p.button == bit && p.to == u64::MAX && p.from == t) {
-                self.run_to(t + CYCLE_PS, u64::MAX)?;
+                self.run_to(t + PS_PER_CYCLE, u64::MAX)?;
                 t = self.model.time_ps();
             }
         }
@@ -401,33 +402,4 @@ impl Board {
             motors: None,
         }
     }
-}
-
-/// The inputs as a stimulus file (`--stimulus`): times in cycles of the 100 MHz clock, a
-/// button still held pressed to `end_ps`.
-fn stimulus_text(s: &Stimulus, end_ps: u64) -> String {
-    let mut lines: Vec<(u64, String)> = Vec::new();
-    for p in &s.presses {
-        let name = match p.button {
-            None => "btnCpuReset".to_string(),
-            Some(bit) => botsim_core::board::stimulus::button_name(bit).to_string(),
-        };
-        let to = if p.to == u64::MAX { aligned(end_ps.max(p.from + CYCLE_PS)) } else { p.to };
-        lines.push((p.from, format!("{}c press {name} {}c", p.from / CYCLE_PS, (to - p.from) / CYCLE_PS)));
-    }
-    for (t, v) in &s.switches {
-        lines.push((*t, format!("{}c switches {v:04X}", t / CYCLE_PS)));
-    }
-    lines.sort_by_key(|(t, _)| *t);
-    let mut out = String::from(
-        "# botsim board --live: the inputs of a session, times in cycles of the 100 MHz clock (botsim board --stimulus FILE replays it)\n",
-    );
-    if s.initial_switches != 0 {
-        out.push_str(&format!("0c switches {:04X}\n", s.initial_switches));
-    }
-    for (_, l) in lines {
-        out.push_str(&l);
-        out.push('\n');
-    }
-    out
 }

@@ -11,6 +11,7 @@ mod session;
 use std::path::PathBuf;
 
 use botsim_core::board::stimulus::parse_time;
+use botsim_core::PS_PER_CYCLE;
 use breaks::{BreakStop, Stopped};
 
 use crate::cli::args::FirmwareArgs;
@@ -278,10 +279,10 @@ fn run_with_breaks(a: Args) -> Result<(), String> {
     let mut again = a;
     again.breaks.clear();
     again.stopped_at = Some(found);
-    let end_cycle = (stop + after) / 10_000 + 1;
+    let end_cycle = (stop + after) / PS_PER_CYCLE + 1;
     again.seconds = Some(end_cycle as f64 * 1e-8);
     again.samples = None;
-    let from = format!("{}c", (stop.saturating_sub(window)) / 10_000);
+    let from = format!("{}c", (stop.saturating_sub(window)) / PS_PER_CYCLE);
     if again.trace_from.is_none() && again.vcd.is_some() {
         again.trace_from = Some(from.clone());
     }

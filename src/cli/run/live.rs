@@ -10,7 +10,7 @@
 
 use std::time::{Duration, Instant};
 
-use botsim::{Backend, IssBot, MotCtl, Snapshot};
+use botsim::{Backend, IssBot, MotCtl, PS_PER_CYCLE};
 use botsim_live::protocol::{BoardView, BotView, Command};
 use serde_json::json;
 
@@ -19,8 +19,6 @@ use super::Args;
 use crate::cli::args::BackendKind;
 use crate::cli::live::{bot_view, sample_entry, world_json, Pace, Rate};
 
-/// One cycle of the bot's clock: the 100 MHz its program is calibrated for (botsim.md §11).
-const CYCLE_PS: u64 = 10_000;
 /// The most samples a second the pages get (each is a log entry): `--timing fast` at real
 /// time would be 50,000; it runs slower than real time instead.
 const MAX_SAMPLES_PER_S: f64 = 2_000.0;
@@ -77,9 +75,8 @@ pub fn run(args: &Args) -> Result<(), String> {
     }))?;
 
     botsim::interrupt::catch();
-    // MotCtl_in of each iteration from 1 on (index 0: iteration 1, from reset).
-    let mut motors: Vec<MotCtl> = vec![plan.initial];
-    let mut last: Option<(Snapshot, BotView)> = None;
+    let mut motors = Motors(vec![plan.initial]);
+    let mut last: Option<BotView> = None;
     let mut samples = 0u64;
     let mut running = !live.paused;
     let mut step = false;
@@ -89,18 +86,17 @@ pub fn run(args: &Args) -> Result<(), String> {
     let mut share = (Instant::now(), 0u64);
     let mut last_state = Instant::now() - STATE_EVERY;
     let started = Instant::now();
-    let time = |cycle: u64| cycle * CYCLE_PS;
-    let state =
-        |running: bool, speed, rate, last: &Option<(Snapshot, BotView)>, samples, next: MotCtl, now| BoardView {
-            time_ps: now,
-            rate,
-            running,
-            speed,
-            samples,
-            bot: last.as_ref().map(|(_, v)| v.clone()),
-            motors: Some(next.0),
-            ..BoardView::default()
-        };
+    let time = |cycle: u64| cycle * PS_PER_CYCLE;
+    let state = |running: bool, speed, rate, last: &Option<BotView>, samples, next: MotCtl, now| BoardView {
+        time_ps: now,
+        rate,
+        running,
+        speed,
+        samples,
+        bot: last.clone(),
+        motors: Some(next.0),
+        ..BoardView::default()
+    };
     loop {
         if crate::cli::interrupted() {
             break;
@@ -121,7 +117,7 @@ pub fn run(args: &Args) -> Result<(), String> {
                     pace.restart(now);
                 }
                 Command::Speed(f) => pace.set_speed(f, now),
-                Command::Save => server.reply(client, json!({"type": "motors", "text": script_text(&motors, samples)})),
+                Command::Save => server.reply(client, json!({"type": "motors", "text": motors.script(samples)})),
                 Command::Stop => stopped = true,
                 Command::Motors(v) => match &driven_by {
                     Some(d) => server.reply(
@@ -131,10 +127,7 @@ pub fn run(args: &Args) -> Result<(), String> {
                     None => {
                         // From the next iteration on: the one after the last sample taken.
                         let from = samples + 1;
-                        let hold = motors.last().copied().unwrap_or(MotCtl::STOP);
-                        motors.resize(motors.len().max(samples as usize), hold);
-                        motors.truncate(samples as usize);
-                        motors.push(MotCtl(v));
+                        motors.set_from(from, MotCtl(v));
                         bot.set_motors(MotCtl(v));
                         server.log(json!({"kind": "input", "time_ps": now, "iteration": from, "motors": v}));
                     }
@@ -157,19 +150,14 @@ pub fn run(args: &Args) -> Result<(), String> {
                 let s = bot.wait_update().map_err(|e| format!("error: sample {}: {e}", samples + 1))?;
                 samples = s.sample;
                 // The motors of the iteration that made this sample, and the next one's.
-                let given = motors.get(samples.saturating_sub(1) as usize).or(motors.last()).copied();
-                let next = match manual {
-                    true => motors.get(samples as usize).or(motors.last()).copied().unwrap_or(MotCtl::STOP),
-                    false => plan.driver.next(&s),
-                };
+                let given = motors.of(samples.max(1));
                 if !manual {
-                    motors.truncate(samples as usize);
-                    motors.push(next);
+                    motors.set_from(samples + 1, plan.driver.next(&s));
                 }
-                bot.set_motors(next);
-                let view = bot_view(&s, given.unwrap_or(MotCtl::STOP).0);
+                bot.set_motors(motors.of(samples + 1));
+                let view = bot_view(&s, given.0);
                 server.log(sample_entry(time(s.cycle), &s, &view));
-                last = Some((s, view));
+                last = Some(view);
                 if step {
                     (running, step) = (false, false);
                 }
@@ -182,17 +170,15 @@ pub fn run(args: &Args) -> Result<(), String> {
         }
         if last_state.elapsed() >= STATE_EVERY {
             let now = time(bot.cycle());
-            let next = motors.get(samples as usize).or(motors.last()).copied().unwrap_or(MotCtl::STOP);
-            server.state(state(running, pace.speed(), rate.at(now), &last, samples, next, now));
+            server.state(state(running, pace.speed(), rate.at(now), &last, samples, motors.of(samples + 1), now));
             last_state = Instant::now();
         }
     }
     let now = time(bot.cycle());
-    let next = motors.get(samples as usize).or(motors.last()).copied().unwrap_or(MotCtl::STOP);
-    server.state(state(false, pace.speed(), 0.0, &last, samples, next, now));
+    server.state(state(false, pace.speed(), 0.0, &last, samples, motors.of(samples + 1), now));
     server.close();
     if let Some(f) = &live.record {
-        botsim::files::write_atomic(f, script_text(&motors, samples).as_bytes())?;
+        botsim::files::write_atomic(f, motors.script(samples).as_bytes())?;
     }
     if !args.quiet {
         let recorded = live.record.as_ref().map_or(String::new(), |f| format!("; its motors in {}", f.display()));
@@ -206,22 +192,62 @@ pub fn run(args: &Args) -> Result<(), String> {
     Ok(())
 }
 
-/// The motors of iterations 1 to `samples` as a motor script (`--motors`): replayed, it
-/// runs those samples with the same MotCtl_in in each.
-fn script_text(motors: &[MotCtl], samples: u64) -> String {
-    let mut out = format!(
-        "# botsim run --live: MotCtl_in per main-loop iteration, {samples} samples (botsim run --motors FILE replays them)\n"
-    );
-    let value = |i: u64| motors.get(i as usize - 1).or(motors.last()).copied().unwrap_or(MotCtl::STOP);
-    let mut i = 1;
-    while i <= samples.max(1) {
-        let m = value(i);
-        let mut n = 1;
-        while i + n <= samples && value(i + n) == m {
-            n += 1;
-        }
-        out.push_str(&format!("{:02X} {n}\n", m.0));
-        i += n;
+/// MotCtl_in of each main-loop iteration from 1 on (index 0: iteration 1, from reset); the
+/// last holds for every later one.
+struct Motors(Vec<MotCtl>);
+
+impl Motors {
+    /// The motors of iteration `i` (from 1).
+    fn of(&self, i: u64) -> MotCtl {
+        let i = i.max(1) as usize - 1;
+        self.0.get(i).or(self.0.last()).copied().unwrap_or(MotCtl::STOP)
     }
-    out
+
+    /// `m` from iteration `i` on (what was set for later ones goes).
+    fn set_from(&mut self, i: u64, m: MotCtl) {
+        let keep = i.max(1) as usize - 1;
+        let hold = self.of(i);
+        self.0.resize(self.0.len().max(keep), hold);
+        self.0.truncate(keep);
+        self.0.push(m);
+    }
+
+    /// Iterations 1 to `samples` as a motor script (`--motors`): replayed, it runs those
+    /// samples with the same MotCtl_in in each.
+    fn script(&self, samples: u64) -> String {
+        let mut out = format!(
+            "# botsim run --live: MotCtl_in per main-loop iteration, {samples} samples (botsim run --motors FILE replays them)\n"
+        );
+        let mut i = 1;
+        while i <= samples.max(1) {
+            let m = self.of(i);
+            let mut n = 1;
+            while i + n <= samples && self.of(i + n) == m {
+                n += 1;
+            }
+            out.push_str(&format!("{:02X} {n}\n", m.0));
+            i += n;
+        }
+        out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A change applies from its iteration on and replaces later ones; the script covers the
+    /// samples, one segment per run of equal values.
+    #[test]
+    fn motors_per_iteration_and_their_script() {
+        let mut m = Motors(vec![MotCtl(0)]);
+        m.set_from(4, MotCtl(0x33));
+        assert_eq!([1, 3, 4, 9].map(|i| m.of(i).0), [0, 0, 0x33, 0x33]);
+        m.set_from(6, MotCtl(0x32));
+        m.set_from(6, MotCtl(0x22));
+        m.set_from(5, MotCtl(0x22));
+        assert_eq!([4, 5, 6, 7].map(|i| m.of(i).0), [0x33, 0x22, 0x22, 0x22]);
+        assert!(m.script(7).ends_with("00 3\n33 1\n22 3\n"), "{}", m.script(7));
+        assert!(Motors(vec![MotCtl(0x30)]).script(0).ends_with("30 1\n"));
+    }
 }

@@ -18,7 +18,7 @@ use botsim::kcpsm6::image::Format;
 use botsim::kcpsm6::source::SourceMap;
 use botsim::sim::lockstep::Lockstep;
 use botsim::sim::rtl::{Point, VcdWindow};
-use botsim::{IssBot, RtlBot, World};
+use botsim::{IssBot, RtlBot, World, PS_PER_CYCLE};
 use botsim_core::board::gtkw::{Format as Radix, SaveFile, View};
 use botsim_core::debug::{cpu_signals, register_filters, sample_state, BreakSpec, Breaks};
 
@@ -465,10 +465,10 @@ fn pass_to(args: &Args, end_frame: Option<PathBuf>, p: Pass, run_to: Option<u64>
 /// The save file's view of a window of cycles: its whole span, the marker at its end.
 fn view_of(from: Point, to: Point) -> View {
     let ps = |p: Point| match p {
-        Point::Cycle(c) => c * 10_000,
+        Point::Cycle(c) => c * PS_PER_CYCLE,
         Point::Sample(_) => 0,
     };
-    View { start_ps: ps(from), end_ps: ps(to), marker_ps: Some(ps(to).saturating_sub(CPU_BREAK_AFTER * 10_000)) }
+    View { start_ps: ps(from), end_ps: ps(to), marker_ps: Some(ps(to).saturating_sub(CPU_BREAK_AFTER * PS_PER_CYCLE)) }
 }
 
 /// The GTKWave save file beside a `botsim run` waveform (`<vcd>.gtkw`): the bot's ports and

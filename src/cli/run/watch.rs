@@ -11,11 +11,8 @@ use botsim::kcpsm6::source::SourceMap;
 use botsim::kcpsm6::trace::Tracer;
 use botsim::sim::rtl::Point;
 use botsim::sim::{Backend, CpuAt, Error};
-use botsim::{IssBot, MotCtl, Snapshot};
+use botsim::{IssBot, MotCtl, Snapshot, PS_PER_CYCLE};
 use botsim_core::debug::{describe_pc, Breaks};
-
-/// The bot's clock: 100 MHz, 10,000 ps a cycle (the trace's times).
-const CYCLE_PS: u64 = 10_000;
 
 /// A breakpoint that stopped the run.
 #[derive(Clone, Debug)]
@@ -95,7 +92,7 @@ impl Watched {
             h.what,
             describe_pc(self.map.as_ref(), h.pc),
             h.cycle,
-            (h.cycle * CYCLE_PS) as f64 / 1e9,
+            (h.cycle * PS_PER_CYCLE) as f64 / 1e9,
             h.sample
         ))
     }
@@ -124,9 +121,9 @@ impl Backend for Watched {
         let watch = |r: &Retired, end: u64| {
             if let Some(t) = trace.as_mut() {
                 let result = if t.covers(sample, r.cycle) {
-                    t.tracer.retired(r, end, Some(end * CYCLE_PS), &mut t.out)
+                    t.tracer.retired(r, end, Some(end * PS_PER_CYCLE), &mut t.out)
                 } else {
-                    t.tracer.retired(r, end, Some(end * CYCLE_PS), &mut std::io::sink())
+                    t.tracer.retired(r, end, Some(end * PS_PER_CYCLE), &mut std::io::sink())
                 };
                 if let Err(e) = result {
                     t.error.get_or_insert(e);

@@ -3,31 +3,14 @@
 //! project file) and the design runs, every decision said in a line of its own, or stops with
 //! one message that says what to add. Each shape of issue 26 has its own repository.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
+use std::process::Output;
 
 mod common;
 
-use common::repo::clone_of;
+use common::repo::{clone_of, clone_renamed};
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-/// `botsim board` with `args`, run in `dir`.
-fn board_in(dir: &Path, args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_botsim"))
-        .arg("board")
-        .args(args)
-        .current_dir(dir)
-        .env("BOTSIM_CACHE", root().join("target/botsim-board-cache"))
-        .output()
-        .unwrap()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use common::{board_in, stderr};
 
 /// The `--json` summary of a run that must have succeeded, and its messages.
 fn summary(o: &Output) -> (serde_json::Value, String) {
@@ -89,6 +72,39 @@ fn a_repository_with_the_release_folder_stale_copies_and_a_testbench_runs_as_com
     for never in ["ROM_form", "kcpsm6_design_template", "tb_nexys4fpga", "nexys4fpga_p1", "jtag_loader_6", "bot_if_v1"]
     {
         assert!(!said.contains(never), "{never}: {said}");
+    }
+}
+
+/// The rules go by what files hold and by their history, not by folder names: the same
+/// repository with every folder named otherwise (the design in `hdl/`, the stale copies in
+/// `backup_final/`, the release folder, Project 1 and the testbench elsewhere) makes the same
+/// choices for the same reasons and runs the same.
+#[test]
+fn the_same_repository_with_its_folders_named_otherwise_makes_the_same_choices() {
+    let renames = [
+        ("src", "hdl"),
+        ("old", "backup_final"),
+        ("KCPSM6_Release9", "picoblaze"),
+        ("proj1", "lab1"),
+        ("sim", "verification"),
+    ];
+    let args = [".", "--param", "SIMULATE=1", "--timing", "fast", "--seconds", "0.03"];
+    let (a, said_a) = run(clone_of("release_stale").path(), &args);
+    let (b, said_b) = run(clone_renamed("release_stale", &renames).path(), &args);
+    let renamed = |line: &str| {
+        renames.iter().fold(line.to_string(), |l, (from, to)| l.replace(&format!("{from}/"), &format!("{to}/")))
+    };
+    let choices = |said: &str| -> Vec<String> {
+        said.lines()
+            .filter(|l| l.starts_with("note: `") && l.contains("different definitions"))
+            .map(str::to_string)
+            .collect()
+    };
+    let want: Vec<String> = choices(&said_a).iter().map(|l| renamed(l)).collect();
+    assert_eq!(want.len(), 4, "{said_a}");
+    assert_eq!(choices(&said_b), want);
+    for k in ["top", "display", "leds", "samples", "end"] {
+        assert_eq!(a[k], b[k], "{k}");
     }
 }
 

@@ -13,18 +13,36 @@
 //!     the rest, as a team's stale copies are;
 //!   - `#` comments.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
+use super::root;
 
 /// The clone of repository `name`.
 pub fn clone_of(name: &str) -> tempfile::TempDir {
+    clone_renamed(name, &[])
+}
+
+/// The clone of repository `name` with its top folders renamed (`("old", "backup")`): the
+/// same repository as another team would name it, its history the same.
+pub fn clone_renamed(name: &str, renames: &[(&str, &str)]) -> tempfile::TempDir {
     let src = root().join("tests/board_designs/repos").join(name);
     let dir = tempfile::Builder::new().prefix(&format!("{name}-")).tempdir().unwrap();
+    let place = |p: &str| -> String {
+        let (first, rest) = p.split_once('/').unwrap_or((p, ""));
+        let first = renames.iter().find(|(from, _)| *from == first).map_or(first, |(_, to)| to);
+        if rest.is_empty() {
+            first.to_string()
+        } else {
+            format!("{first}/{rest}")
+        }
+    };
     copy_tree(&src, dir.path());
+    for (from, to) in renames {
+        if dir.path().join(from).exists() {
+            std::fs::rename(dir.path().join(from), dir.path().join(to)).unwrap();
+        }
+    }
     let manifest = std::fs::read_to_string(src.join("tree.txt")).unwrap_or_default();
     let mut older = Vec::new();
     for (n, line) in manifest.lines().enumerate() {
@@ -46,16 +64,16 @@ pub fn clone_of(name: &str) -> tempfile::TempDir {
                     assert!(text.contains(&old), "{at}: `{old}` is not in {}", files[0]);
                     text = text.replacen(&old, &new, 1);
                 }
-                write(&dir.path().join(files[1]), &text);
+                write(&dir.path().join(place(files[1])), &text);
             }
             "rom" => {
                 let files: Vec<&str> = rest.split_whitespace().collect();
                 let psm = root().join(files[0]);
                 let program = kcpsm6::asm::assemble_file(&psm, &Default::default()).unwrap();
                 let module = Path::new(files[1]).file_stem().unwrap().to_string_lossy().into_owned();
-                write(&dir.path().join(files[1]), &template_rom(&program.image, &module));
+                write(&dir.path().join(place(files[1])), &template_rom(&program.image, &module));
             }
-            "older" => older.extend(rest.split_whitespace().map(str::to_string)),
+            "older" => older.extend(rest.split_whitespace().map(place)),
             _ => panic!("{at}: unknown line"),
         }
     }

@@ -26,7 +26,7 @@ struct Run {
 fn run(params: &[&str], fast_forward: bool) -> Run {
     let dir = tempfile::tempdir().unwrap();
     let file = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
-    // Buttons (debounced in 4 clocks), the switches that drive the bot, and the CPU reset.
+    // Buttons (debounced in four ticks of 6 clocks), the switches that drive the bot, and the CPU reset.
     std::fs::write(
         dir.path().join("stimulus.txt"),
         "60ms press btnC 20ms\n130ms switches 0033\n170ms press btnCpuReset 5ms\n230ms press btnU 1ms\n250ms switches 0000\n",
@@ -36,7 +36,6 @@ fn run(params: &[&str], fast_forward: bool) -> Run {
     let (pins, trace, display) = (file("pins.csv"), file("trace.csv"), file("display.txt"));
     let mut args = vec![
         "tests/board_designs/shapes",
-        "examples/common/debounce.v",
         "examples/common/nexys4_bot_if.v",
         "--param",
         "SIMULATE=1",
@@ -118,7 +117,7 @@ fn an_mmcm_at_25_mhz_with_a_2_20_refresh() {
 
 /// The shapes design's arguments with `extra`.
 fn shapes(extra: &[&str]) -> Output {
-    let mut args = vec!["tests/board_designs/shapes", "examples/common/debounce.v", "examples/common/nexys4_bot_if.v"];
+    let mut args = vec!["tests/board_designs/shapes", "examples/common/nexys4_bot_if.v"];
     args.extend(["--param", "SIMULATE=1", "--switches", "0300"]);
     args.extend(extra);
     board(&args)

@@ -23,13 +23,15 @@ module proj2_system #(
     output wire [ 7:0] locy,
     output wire [ 7:0] botinfo
 );
-    wire        sysreset;
-    wire [ 4:0] db_btns;
+    // The course's debounce (spec board.md 2.1): bit 0 the CPU reset button (active low).
+    wire [ 5:0] db_pbtns;
     wire [15:0] db_sw;
+    wire [ 4:0] db_btns = db_pbtns[5:1];
+    wire        sysreset = ~db_pbtns[0];
 
     debounce #(.RESET_POLARITY_LOW(1), .SIMULATE(SIMULATE)) DB (
-        .clk(clk), .pbtn_in({btnC, btnL, btnU, btnR, btnD}), .switch_in(sw),
-        .reset_in(btnCpuReset), .pbtn_db(db_btns), .swtch_db(db_sw), .reset_out(sysreset)
+        .clk(clk), .pbtn_in({btnC, btnL, btnU, btnR, btnD, btnCpuReset}), .switch_in(sw),
+        .pbtn_db(db_pbtns), .swtch_db(db_sw)
     );
 
     // The team's PicoBlaze and its program.
@@ -78,10 +80,11 @@ module proj2_system #(
         .lmdist(lmdist), .rmdist(rmdist), .upd_sysregs(upd_sysregs)
     );
 
-    sevensegment SSB (
+    // The course's seven-segment driver (board.md 2.1), reset by the active-high sysreset.
+    sevensegment #(.RESET_POLARITY_LOW(0), .SIMULATE(SIMULATE)) SSB (
         .clk(clk), .reset(sysreset),
         .d7(dig7), .d6(dig6), .d5(dig5), .d4(dig4), .d3(dig3), .d2(dig2), .d1(dig1), .d0(dig0),
-        .dp(decpts), .seg(seg), .dp_out(dp), .an(an)
+        .dp(decpts), .seg({dp, seg}), .an(an), .digits_out()
     );
 
     assign led = leds;

@@ -25,7 +25,7 @@ module proj2demo #(
         fill = 18'h00000;
         for (i = 0; i < WORDS; i = i + 1) rom[i] = fill;
         rom[10'h000] = 18'h01E00;
-        rom[10'h001] = 18'h01010;
+        rom[10'h001] = 18'h01017;
         rom[10'h002] = 18'h2D004;
         rom[10'h003] = 18'h2D005;
         rom[10'h004] = 18'h2D006;

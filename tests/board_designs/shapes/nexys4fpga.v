@@ -14,7 +14,7 @@
 //   REFRESH_BITS  the display counter's width: each digit is lit for 2^(REFRESH_BITS-3)
 //              clocks
 //
-// With examples/common's debounce and port interface (nexys4_bot_if) and the bot.
+// With the course's debounce (botsim's, board.md 2.1), examples/common's port interface (nexys4_bot_if) and the bot.
 `timescale 1ns / 1ps
 module nexys4fpga #(
     parameter SIMULATE = 0,
@@ -64,12 +64,14 @@ module nexys4fpga #(
         end
     endgenerate
 
-    wire        sysreset;
-    wire [ 4:0] db_btns;
+    // The course's debounce (board.md 2.1): bit 0 the CPU reset button (active low).
+    wire [ 5:0] db_pbtns;
     wire [15:0] db_sw;
+    wire [ 4:0] db_btns = db_pbtns[5:1];
+    wire        sysreset = ~db_pbtns[0];
     debounce #(.RESET_POLARITY_LOW(1), .SIMULATE(SIMULATE)) DB (
-        .clk(sys_clk), .pbtn_in({btnC, btnL, btnU, btnR, btnD}), .switch_in(sw),
-        .reset_in(btnCpuReset & locked), .pbtn_db(db_btns), .swtch_db(db_sw), .reset_out(sysreset)
+        .clk(sys_clk), .pbtn_in({btnC, btnL, btnU, btnR, btnD, btnCpuReset & locked}), .switch_in(sw),
+        .pbtn_db(db_pbtns), .swtch_db(db_sw)
     );
 
     // The team's PicoBlaze and its polling firmware.

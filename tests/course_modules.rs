@@ -138,7 +138,13 @@ fn icarus(tb: &str, module: &str, inputs: &[String]) -> Option<Vec<String>> {
         .output()
         .unwrap();
     assert!(o.status.success(), "iverilog: {}", String::from_utf8_lossy(&o.stderr));
-    let o = Command::new("vvp").arg("-n").arg(&sim).arg(format!("+n={}", inputs.len())).current_dir(dir.path()).output().unwrap();
+    let o = Command::new("vvp")
+        .arg("-n")
+        .arg(&sim)
+        .arg(format!("+n={}", inputs.len()))
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
     assert!(o.status.success(), "vvp: {}", String::from_utf8_lossy(&o.stderr));
     let lines: Vec<String> =
         String::from_utf8_lossy(&o.stdout).lines().filter(|l| !l.starts_with("WARNING")).map(str::to_string).collect();

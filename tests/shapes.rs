@@ -76,10 +76,14 @@ fn first_difference(a: &str, b: &str) -> String {
 }
 
 fn skips_and_equals_every_edge(params: &[&str]) {
+    skips_and_equals_every_edge_at_least(params, 0.95);
+}
+
+fn skips_and_equals_every_edge_at_least(params: &[&str], fraction: f64) {
     let (every, fast) = (run(params, false), run(params, true));
     let ff = &fast.summary["fast_forward"];
     let skipped = ff["skipped_seconds"].as_f64().unwrap() / fast.summary["simulated_seconds"].as_f64().unwrap();
-    assert!(skipped > 0.95, "{params:?}: skipped {:.1} % ({ff})", skipped * 100.0);
+    assert!(skipped > fraction, "{params:?}: skipped {:.1} % ({ff})", skipped * 100.0);
     assert_eq!(every.summary["fast_forward"]["skips"], 0);
     // The run did what the stimulus asked: samples, the CPU reset blanking the display, the
     // LEDs showing the buttons.
@@ -93,6 +97,15 @@ fn skips_and_equals_every_edge(params: &[&str]) {
     ] {
         assert!(a == b, "{params:?} {what}: {}", first_difference(a, b));
     }
+}
+
+#[test]
+fn a_pwm_on_a_32_bit_counters_low_byte() {
+    // The low byte repeats every 256 clocks while the rest counts (a split counter). With the
+    // debounce's 6 clocks and the CPU's 18-clock loop the board repeats every 2,304 clocks,
+    // and each of the display's digits (2^15 clocks) costs two of them to prove the counters'
+    // drift, and a settle: at most about 85 % can be skipped.
+    skips_and_equals_every_edge_at_least(&["FREE32=2"], 0.8);
 }
 
 #[test]
@@ -145,21 +158,21 @@ fn the_bench_times_the_run_a_user_makes() {
 
 #[test]
 fn a_run_that_cannot_skip_names_what_kept_it_busy() {
-    // FREE32=2: LED 15 lit while the counter's low byte is below switches 15-8 (a PWM): the
-    // counter is compared whole, and never repeats. The run says which variable, where.
-    let s = json(&shapes(&["--param", "FREE32=2", "--seconds", "0.02", "--json"]));
+    // FREE32=3: LED 15 shows a bit of an LFSR stepped every clock: the board never repeats
+    // within the run. The run says which variable, where.
+    let s = json(&shapes(&["--param", "FREE32=3", "--seconds", "0.02", "--json"]));
     let ff = &s["fast_forward"];
     assert!(ff["skipped_fraction"].as_f64().unwrap() < 0.5, "{ff}");
     let busy = &ff["kept_busy_by"];
     let text = std::fs::read_to_string(root().join("tests/board_designs/shapes/nexys4fpga.v")).unwrap();
-    let line = text.lines().position(|l| l.contains("reg [31:0] free")).unwrap() + 1;
+    let line = text.lines().position(|l| l.contains("reg [31:0] lfsr")).unwrap() + 1;
     assert_eq!(
         (busy["variable"].as_str(), busy["module"].as_str(), busy["line"].as_u64()),
-        (Some("free"), Some("nexys4fpga"), Some(line as u64)),
+        (Some("lfsr"), Some("nexys4fpga"), Some(line as u64)),
         "{ff}"
     );
     // And in words, without --json.
-    let o = shapes(&["--param", "FREE32=2", "--seconds", "0.02"]);
+    let o = shapes(&["--param", "FREE32=3", "--seconds", "0.02"]);
     let out = String::from_utf8_lossy(&o.stdout);
-    assert!(out.contains(&format!("what kept it from skipping more: `free` (module nexys4fpga, tests/board_designs/shapes/nexys4fpga.v:{line})")), "{out}");
+    assert!(out.contains(&format!("what kept it from skipping more: `lfsr` (module nexys4fpga, tests/board_designs/shapes/nexys4fpga.v:{line})")), "{out}");
 }

@@ -4,7 +4,14 @@
 
 typedef struct Board Board;
 
-enum { BOARD_EVENT_DISPLAY = 1, BOARD_EVENT_LEDS = 2, BOARD_EVENT_SAMPLE = 3, BOARD_EVENT_VGA = 4, BOARD_EVENT_BOT = 5 };
+enum {
+    BOARD_EVENT_DISPLAY = 1,
+    BOARD_EVENT_LEDS = 2,
+    BOARD_EVENT_SAMPLE = 3,
+    BOARD_EVENT_VGA = 4,
+    BOARD_EVENT_BOT = 5,
+    BOARD_EVENT_REPEAT = 6
+};
 enum { BOARD_UNTIL = 0, BOARD_BUFFER_FULL = 1, BOARD_SAMPLES = 2, BOARD_FINISHED = 3 };
 
 /* One thing the board showed. DISPLAY: a = an | seg << 8 | dp << 15. LEDS: a = led.
@@ -12,7 +19,10 @@ enum { BOARD_UNTIL = 0, BOARD_BUFFER_FULL = 1, BOARD_SAMPLES = 2, BOARD_FINISHED
  * LMDist << 32 | RMDist << 40 | MotCtl << 48, c = the bot's clock cycles since power-up.
  * VGA (when board_record_vga is on): a = r << 8 | g << 4 | b | hsync << 12 | vsync << 13.
  * BOT (when board_record_bot is on): any of the bot's outputs changed; a = upd_sysregs,
- * b = LocX | LocY << 8 | BotInfo << 16 | Sensors << 24 | LMDist << 32 | RMDist << 40. */
+ * b = LocX | LocY << 8 | BotInfo << 16 | Sensors << 24 | LMDist << 32 | RMDist << 40.
+ * REPEAT (a fast-forward over a period in which the board showed something): the a records
+ * before this one happen c more times, each b ps after the last (time_ps: the first
+ * repetition's start). */
 typedef struct BoardEvent {
     uint64_t time_ps;
     uint32_t kind;

@@ -47,6 +47,32 @@ pub struct Counter {
     pub shift: Option<u32>,
     /// The constants it is compared with.
     pub consts: Vec<u64>,
+    /// Where its bits split in two that no read sees both of, the low ones read by masks
+    /// alone (a 32-bit counter whose low byte a PWM compares with a variable, whose bit 26
+    /// blinks an LED): the low part then repeats with a short period while the high part
+    /// counts. `None` when no read leaves such a split (a comparison with a constant reads
+    /// every bit).
+    pub split: Option<u32>,
+    /// The lowest bit a read above the split sees, if any read does.
+    pub split_shift: Option<u32>,
+}
+
+/// The smallest bit `e` (0 < e < bits) at which every read's bits (`lo..=hi`) lie wholly
+/// below or wholly at and above it, with some read below; and the lowest bit a read above
+/// it sees.
+///
+/// ```
+/// use botsim::board::counters::split;
+/// // A PWM reads bits 0-7, an LED bit 26: the low byte repeats, the rest counts.
+/// assert_eq!(split(32, &[(0, 7), (26, 26)]), Some((8, Some(26))));
+/// // A comparison with a constant reads every bit.
+/// assert_eq!(split(32, &[(0, 7), (0, 31)]), None);
+/// ```
+pub fn split(bits: u32, reads: &[(u32, u32)]) -> Option<(u32, Option<u32>)> {
+    let mut candidates: Vec<u32> = reads.iter().map(|&(_, hi)| hi + 1).filter(|&e| e < bits).collect();
+    candidates.sort_unstable();
+    let e = candidates.into_iter().find(|&e| reads.iter().all(|&(lo, hi)| hi < e || lo >= e))?;
+    Some((e, reads.iter().filter(|&&(lo, _)| lo >= e).map(|&(lo, _)| lo).min()))
 }
 
 /// The counters among the root's scalar variables (its header `root`), from the evaluation's
@@ -79,13 +105,19 @@ pub fn find(
     }
     seen.into_iter()
         .filter(|(name, s)| !spoiled.contains(name) && s.step > 0)
-        .map(|(name, s)| Counter {
-            bits: widths[&name],
-            name,
-            down: s.down,
-            step: s.step,
-            shift: s.shift,
-            consts: s.consts.into_iter().collect::<std::collections::BTreeSet<_>>().into_iter().collect(),
+        .map(|(name, s)| {
+            let bits = widths[&name];
+            let cut = split(bits, &s.reads);
+            Counter {
+                bits,
+                name,
+                down: s.down,
+                step: s.step,
+                shift: s.shift,
+                consts: s.consts.into_iter().collect::<std::collections::BTreeSet<_>>().into_iter().collect(),
+                split: cut.map(|(e, _)| e),
+                split_shift: cut.and_then(|(_, lo)| lo),
+            }
         })
         .collect()
 }
@@ -98,6 +130,8 @@ struct Seen {
     step: u64,
     shift: Option<u32>,
     consts: Vec<u64>,
+    /// The bits each read sees (`lo..=hi`).
+    reads: Vec<(u32, u32)>,
 }
 
 /// The root's scalar integer variables (`CData`..`QData`, not ports) and their widths, from
@@ -252,7 +286,9 @@ fn scan(
                     _ => None,
                 };
                 let low = n as u32 + mask.filter(|m| *m != 0).map_or(0, |m| m.trailing_zeros());
+                let high = mask.filter(|m| *m != 0).map_or(widths[name] - 1, |m| n as u32 + 63 - m.leading_zeros());
                 s.shift = Some(s.shift.map_or(low, |m| m.min(low)));
+                s.reads.push((low, high.min(widths[name] - 1)));
                 i += len;
                 continue;
             }
@@ -270,6 +306,7 @@ fn scan(
         if let Some(m) = mask.filter(|m| *m != 0) {
             let low = m.trailing_zeros();
             s.shift = Some(s.shift.map_or(low, |x| x.min(low)));
+            s.reads.push((low, (63 - m.leading_zeros()).min(widths[name] - 1)));
             i += len;
             continue;
         }
@@ -283,6 +320,7 @@ fn scan(
         if cmp_after || cmp_before {
             let c = if cmp_after { number(tok(b + 1)) } else { number(tok(a - 2)) };
             s.consts.extend(c);
+            s.reads.push((0, widths[name] - 1));
             i += len;
             continue;
         }

@@ -18,6 +18,7 @@
 #include <cstdarg>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -35,7 +36,9 @@ struct BoardMember {
 };
 // A counter the fast-forward moves on by arithmetic (src/board/counters.rs): its bytes, its
 // width in bits, whether it counts down, its largest step, the lowest bit a shifted read sees
-// (64: none) and the constants it is compared with.
+// (64: none), the constants it is compared with, the bit below which only masks read it
+// (64: none; the low part then repeats while the rest counts) and the lowest bit a read
+// above that split sees (64: none).
 struct BoardCounter {
     size_t off, len;
     uint32_t bits;
@@ -43,6 +46,7 @@ struct BoardCounter {
     uint64_t step;
     uint32_t shift;
     std::vector<uint64_t> consts;
+    uint32_t split, split_shift;
 };
 #include "botsim_observed.h"
 
@@ -147,6 +151,10 @@ constexpr uint64_t kFirstPatiencePs = (1ull << 16) * 10000;
 constexpr uint64_t kCounterSettlePs = (1ull << 8) * 10000;
 constexpr uint64_t kShortPatiencePs = (1ull << 10) * 10000;
 constexpr size_t kMaxPhases = 64;
+// The most records a period may show (the display's pins multiplexed every few clocks, an LED
+// dimmed): more, and the mark is taken again. A skip writes one period's and a phase's; the
+// caller's buffer (model.rs's RECORDS) has room for both.
+constexpr size_t kMaxShown = 1 << 15;
 
 // The fast-forward (a one-clock board whose KCPSM6s are models and whose bot is a model):
 // after a rising edge, when the whole model (every byte of Verilator's state, every KCPSM6
@@ -172,11 +180,22 @@ struct Span {
 
 // A counter at run time: the values around the mark's in which no read of the design can tell
 // it apart, [lo, lo + width) modulo 2^bits, and how far it moved in the period last found.
+//
+// How much of it counts: a counter is first taken whole (level 0: it must stay in its
+// interval from the mark until the skip). One that leaves it before a period is found twice
+// in a row (once may be a long counter marked just before its turn; the mark is then taken
+// again) is a short counter (a wrap counter of a few clocks, the low byte a PWM compares): it
+// is then compared as state, its bits below the split only (level 1: they repeat, the rest
+// still counts), or all of them (level 2). A level holds from mark to mark, until a mark
+// finds no period.
 struct Counting {
     BoardCounter c;
     uint64_t mask = 0;
     uint64_t lo = 0, width = 0;
     uint64_t drift = 0;
+    int level = 0;
+    uint64_t exact = 0;  // the bits compared as state (level 1: those below the split)
+    int early = 0;       // marks in a row it left its interval before a period was found
 };
 
 // Where a clock is in its period at a moment `t`: its next edges after `t` (the fractions of a
@@ -562,17 +581,24 @@ inline uint64_t counter_after(const Counting& k, uint64_t x, uint64_t n) {
 
 // The values around `x` that no read of the design tells apart from it: the same bits at and
 // above the lowest shifted read, the same side of every compared constant (and not it), no
-// wrap.
+// wrap. At level 1 only the reads above the split count (the bits below it are compared as
+// state); at level 2 the whole counter is state.
 void counter_interval(Counting& k, uint64_t x) {
     const BoardCounter& c = k.c;
+    if (k.level == 2) {
+        k.lo = 0;
+        k.width = ~0ull;
+        return;
+    }
+    const uint32_t shift = k.level == 1 ? c.split_shift : c.shift;
     uint64_t below = x, above = k.mask - x;
-    if (c.shift < c.bits) {
-        const uint64_t low = (1ull << c.shift) - 1;
+    if (shift < c.bits) {
+        const uint64_t low = (1ull << shift) - 1;
         below = std::min(below, x & low);
         above = std::min(above, low - (x & low));
     }
     for (uint64_t v : c.consts) {
-        if (v > k.mask) continue;  // never reached
+        if (v > k.mask || k.level != 0) continue;  // never reached; or read below the split
         if (v == x) {
             below = above = 0;
         } else if (v > x) {
@@ -586,11 +612,28 @@ void counter_interval(Counting& k, uint64_t x) {
 }
 
 // Every counter is still in its interval.
+inline bool counter_inside(const Counting& k, const uint8_t* root) {
+    return k.level == 2 || ((counter_value(root, k) - k.lo) & k.mask) < k.width;
+}
 inline bool counters_inside(const FastForward& f, const uint8_t* root) {
     for (const Counting& k : f.counters)
-        if (((counter_value(root, k) - k.lo) & k.mask) >= k.width) return false;
+        if (!counter_inside(k, root)) return false;
     return true;
 }
+
+// A counter's level (see Counting), and the bits it compares as state.
+void set_level(Counting& k, int level) {
+    k.level = level;
+    k.exact = level == 0 ? 0 : level == 1 ? (1ull << k.c.split) - 1 : k.mask;
+}
+
+// BOTSIM_FF_TRACE=1 in the environment: the fast-forward's decisions on standard error (marks,
+// periods, skips), for botsim's developers. Off the per-edge path.
+static const bool kFfTrace = std::getenv("BOTSIM_FF_TRACE") != nullptr;
+#define FF_TRACE(...)                                   \
+    do {                                                \
+        if (kFfTrace) std::fprintf(stderr, __VA_ARGS__); \
+    } while (0)
 
 // Mark the state the fast-forward compares with. `drifting`: the counters' drifts found in the
 // period that ends here stay, for the next to confirm.
@@ -602,6 +645,8 @@ void ff_mark(Board* b, uint64_t t, bool drifting = false) {
         counter_interval(k, counter_value(f.mark.data(), k));
         if (!drifting) k.drift = 0;
     }
+    FF_TRACE("ff %.6f ms: mark%s, patience %llu clocks\n", t / 1e9, drifting ? " (drifting)" : "",
+             (unsigned long long)(f.patience / 10000));
     f.mark_clocks.resize(b->clocks.size());
     for (size_t i = 0; i < b->clocks.size(); i++) f.mark_clocks[i] = phase_of(b->clocks[i], t);
     f.mark_t = t;
@@ -641,20 +686,30 @@ void ff_snap_take(Board* b, uint64_t t) {
 uint64_t ff_compare(Board* b, uint64_t t, uint64_t until_ps, BoardEvent* buf, uint32_t cap, uint32_t* n, Shown& s);
 uint64_t ff_restart(Board* b, uint64_t t);
 
-// A counter took a value the design can tell apart: the mark is no more; another once the
-// board has settled, waiting a few periods for its own.
+// A counter took a value the design can tell apart. Before its mark's period is found the
+// second time in a row, it is a short counter: from now on it is state (its low part, or all
+// of it), compared with the mark's value, which stays. Otherwise the mark is no more (after
+// a skip, or the first time); another once the board has settled, waiting a few periods for
+// its own.
 __attribute__((noinline)) uint64_t ff_counter_moved(Board* b, uint64_t t) {
     FastForward& f = b->ff;
-    // Before any skip from its mark: it keeps the board from skipping.
+    const uint8_t* root = (const uint8_t*)b->top->rootp;
     if (!f.proven) {
-        const uint8_t* root = (const uint8_t*)b->top->rootp;
-        for (const Counting& k : f.counters) {
-            if (((counter_value(root, k) - k.lo) & k.mask) < k.width) continue;
-            const long i = member_at(f, k.c.off);
-            if (i >= 0) f.busy[i]++;
-            break;
+        bool again = false;
+        for (Counting& k : f.counters) again |= !counter_inside(k, root) && ++k.early >= 2;
+        if (again) {
+            for (Counting& k : f.counters) {
+                if (!counter_inside(k, root)) FF_TRACE("ff %.6f ms: counter at %zu is state\n", t / 1e9, k.c.off);
+                while (!counter_inside(k, root)) {
+                    set_level(k, k.level == 0 && k.c.split < k.c.bits ? 1 : 2);
+                    counter_interval(k, counter_value(f.mark.data(), k));
+                }
+            }
+            f.drifting = false;
+            return 0;
         }
     }
+    FF_TRACE("ff %.6f ms: a counter turned\n", t / 1e9);
     f.marked = false;
     f.drifting = false;
     f.quiet_from = t;
@@ -688,6 +743,7 @@ __attribute__((noinline)) uint64_t ff_restart(Board* b, uint64_t t) {
     FastForward& f = b->ff;
     BoardHost* h = b->host;
     if (h->activity != f.activity) {
+        FF_TRACE("ff %.6f ms: activity\n", t / 1e9);
         f.activity = h->activity;
         f.quiet_from = t;
         f.settle = kSettlePs;
@@ -702,13 +758,19 @@ __attribute__((noinline)) uint64_t ff_restart(Board* b, uint64_t t) {
     }
     if (f.overflow || t - f.mark_t > f.patience) {
         // What still differed from the mark.
-        if (!f.overflow && f.hint_mask) {
+        if (f.hint_mask) {
             const unsigned byte = (unsigned)__builtin_ctzll(f.hint_mask) / 8;
             const long i = member_at(f, f.hint + byte);
             if (i >= 0) f.busy[i]++;
         }
-        // Marked too early (the firmware was still at work) or the period is longer.
+        FF_TRACE("ff %.6f ms: no period (%s)\n", t / 1e9, f.overflow ? "too much shown" : "patience");
+        // Marked too early (the firmware was still at work) or the period is longer; a counter
+        // taken for a short one may be a long one marked near its turn: all count again.
         f.patience = std::min(2 * f.patience, kMaxPeriodPs);
+        for (Counting& k : f.counters) {
+            set_level(k, 0);
+            k.early = 0;
+        }
         ff_mark(b, t);
     }
     return 0;
@@ -733,6 +795,16 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
         for (size_t j = 0; j < 8; j++)
             for (size_t k = 0; k < nspans; k++)
                 if (f.hint + j >= spans[k].off && f.hint + j < spans[k].off + spans[k].len) f.hint_mask |= 0xFFull << (8 * j);
+        ff_snap(b, t);
+        return 0;
+    }
+    // The counters compared as state: their bits below the split, or all.
+    for (const Counting& k : f.counters) {
+        const uint64_t differ = (counter_value(root, k) ^ counter_value(m, k)) & k.exact;
+        if (!differ) continue;
+        f.hint = k.c.off & ~(size_t)7;
+        const size_t at = k.c.off - f.hint;
+        f.hint_mask = at + k.c.len <= 8 ? k.exact << (8 * at) : 0;
         ff_snap(b, t);
         return 0;
     }
@@ -766,57 +838,67 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
     }
     // The board repeats the period since the mark. Whole periods, then a phase of the next,
     // within the run, with room for their records, up to the bot's next port write, and with
-    // every counter in its interval.
+    // every counter in its interval. With no room for one, the mark moves on one period: the
+    // next period found is this one again, whose records `shown` holds.
     const uint64_t period = t - f.mark_t;
     f.last_period = period;
     f.proven = true;
-    // The repeated records must fit with room for one evaluation's (5) to spare.
-    if (t >= until_ps || cap - *n < 8) return 0;
-    const uint64_t ahead = until_ps - t;
-    const size_t per = f.shown.size(), room = cap - *n - 8;
-    uint64_t most = ahead / period;
-    if (per) most = std::min<uint64_t>(most, room / per);
-    // Whole periods the counters allow (a phase of the next needs one more).
-    uint64_t counted = ~0ull;
-    for (const Counting& c : f.counters) {
-        if (!c.drift) continue;
-        const uint64_t at = (counter_value(root, c) - c.lo) & c.mask;
-        const uint64_t left = c.c.down ? at : c.width - 1 - at;
-        counted = std::min(counted, left / c.drift);
-    }
-    most = std::min(most, counted);
-    const uint64_t k = most ? h->ff_room(h->ctx, most) : 0;
+    for (Counting& c : f.counters) c.early = 0;
+    // The records of the skip: the period's once, one record repeating them, the phase's
+    // part; and room for one evaluation's (5) to spare.
+    const size_t per = f.shown.size();
+    uint64_t k = 0;
     size_t phase = 0;
-    for (size_t j = f.nphases; j > 0 && k < counted; j--) {
-        const Phase& p = f.phases[j - 1];
-        if (k * period + p.at <= ahead && k * per + p.shown <= room && h->ff_fits(h->ctx, k, (uint32_t)j)) {
-            phase = j;
-            break;
+    if (t < until_ps && cap - *n >= 2 * per + 8) {
+        const uint64_t ahead = until_ps - t;
+        // Whole periods the counters allow (a phase of the next needs one more).
+        uint64_t counted = ~0ull;
+        for (const Counting& c : f.counters) {
+            if (!c.drift) continue;
+            const uint64_t at = (counter_value(root, c) - c.lo) & c.mask;
+            const uint64_t left = c.c.down ? at : c.width - 1 - at;
+            counted = std::min(counted, left / c.drift);
+        }
+        const uint64_t most = std::min(ahead / period, counted);
+        k = most ? h->ff_room(h->ctx, most) : 0;
+        for (size_t j = f.nphases; j > 0 && k < counted; j--) {
+            const Phase& p = f.phases[j - 1];
+            if (k * period + p.at <= ahead && h->ff_fits(h->ctx, k, (uint32_t)j)) {
+                phase = j;
+                break;
+            }
         }
     }
-    if (k == 0 && phase == 0) return 0;
     const uint64_t edges = h->ff_skip(h->ctx, k, (uint32_t)phase);
-    // Period j after the mark's shows what the mark's did, j periods later.
-    for (uint64_t j = 1; j <= k + (phase ? 1 : 0); j++) {
-        const size_t count = j <= k ? per : f.phases[phase - 1].shown;
+    // Period j after the mark's shows what the mark's did, j periods later: the first of
+    // them written out, the others as a repeat of it.
+    auto shown = [&](size_t count, uint64_t from) {
         for (size_t i = 0; i < count; i++) {
             buf[*n] = f.shown[i];
-            buf[(*n)++].time_ps += f.mark_t + j * period;
+            buf[(*n)++].time_ps += from;
         }
+    };
+    if (k && per) {
+        shown(per, f.mark_t + period);
+        if (k > 1) record(buf, n, f.mark_t + 2 * period, BOARD_EVENT_REPEAT, (uint32_t)per, period, k - 1);
     }
+    if (phase) shown(f.phases[phase - 1].shown, f.mark_t + (k + 1) * period);
     uint64_t skipped = k * period;
     const uint64_t bot_cycles = b->top->rootp->bot_cycles;
     // The counters move on with the board: the mark and the snapshots to the period it is now
-    // in, the board to its place in it.
+    // in, the board to its place in it (a counter compared as state: its value at the phase).
     for (const Counting& c : f.counters) {
-        if (!c.drift) continue;
-        const uint64_t here = counter_after(c, counter_value(root, c), k);
-        set_counter(m, c, counter_after(c, counter_value(m, c), k + 1));
-        for (size_t j = 0; j < f.nphases; j++) {
-            uint8_t* q = f.phases[j].root.data();
-            set_counter(q, c, counter_after(c, counter_value(q, c), k + 1));
+        if (c.drift) {
+            const uint64_t here = counter_after(c, counter_value(root, c), k);
+            set_counter(m, c, counter_after(c, counter_value(m, c), k + 1));
+            for (size_t j = 0; j < f.nphases; j++) {
+                uint8_t* q = f.phases[j].root.data();
+                set_counter(q, c, counter_after(c, counter_value(q, c), k + 1));
+            }
+            set_counter(root, c, phase ? counter_value(f.phases[phase - 1].root.data(), c) : here);
+        } else if (phase) {
+            set_counter(root, c, counter_value(f.phases[phase - 1].root.data(), c));
         }
-        set_counter(root, c, phase ? counter_value(f.phases[phase - 1].root.data(), c) : here);
     }
     if (phase) {
         const Phase& p = f.phases[phase - 1];
@@ -824,6 +906,9 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
         skipped += p.at;
     }
     f.mark_t += (k + 1) * period;  // the start of the period the board is now in
+    FF_TRACE("ff %.6f ms: period %llu clocks, %zu shown, skip %llu periods + phase %zu (%.6f ms)\n", t / 1e9,
+             (unsigned long long)(period / 10000), per, (unsigned long long)k, phase, skipped / 1e9);
+    if (k == 0 && phase == 0) return 0;
     // Every clock that runs where it was at the phase, or now, that much later.
     for (size_t i = 0; i < b->clocks.size(); i++) {
         Clock& c = b->clocks[i];
@@ -973,7 +1058,7 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
         if (ff) {
             FastForward& f = b->ff;
             if (*n != n0 && f.marked && !f.proven) {
-                if (f.shown.size() + (*n - n0) > 1024) {
+                if (f.shown.size() + (*n - n0) > kMaxShown) {
                     f.overflow = true;
                 } else {
                     for (uint32_t i = n0; i < *n; i++) {

@@ -8,7 +8,7 @@ use botsim_core::board::BoardError;
 use botsim_core::board::plan::BOT_CPU_INSTANCE;
 
 use super::iss::{Host, Recorded};
-use super::model::{BoardModel, Event, RawEvent, Stop};
+use super::model::{expand, BoardModel, Event, RawEvent, Stop, RECORDS};
 
 /// The most simulated time the two boards run apart between comparisons (1 ms: 100,000
 /// cycles of 100 MHz, a few MB of recorded ports).
@@ -63,7 +63,7 @@ impl Lockstep {
     pub fn new(mut rtl: BoardModel, mut iss: BoardModel) -> Lockstep {
         rtl.record_bot(true);
         iss.record_bot(true);
-        Lockstep { rtl, iss, buf: vec![RawEvent::default(); 4096], cycles: Vec::new() }
+        Lockstep { rtl, iss, buf: vec![RawEvent::default(); RECORDS], cycles: Vec::new() }
     }
 
     /// Both boards' inputs.
@@ -86,16 +86,17 @@ impl Lockstep {
         let mut theirs = Vec::with_capacity(n);
         loop {
             let (s, m) = self.iss.run(t, stop_after_samples, &mut self.buf);
-            theirs.extend(self.buf[..m].iter().filter_map(Event::of));
+            let events: Vec<Event> = self.buf[..m].iter().filter_map(Event::of).collect();
+            theirs.extend(expand(&events));
             if s != Stop::BufferFull || self.iss.time_ps() >= t {
                 break;
             }
         }
         // The CPUs first: a difference in their ports comes before what it causes.
         self.compare_ports()?;
-        let ours: Vec<Event> = buf[..n].iter().filter_map(Event::of).collect();
+        let ours: Vec<Event> = expand(&buf[..n].iter().filter_map(Event::of).collect::<Vec<_>>());
         if let Some(k) = (0..ours.len().max(theirs.len())).find(|&k| ours.get(k) != theirs.get(k)) {
-            let time_ps = [ours.get(k), theirs.get(k)].into_iter().flatten().map(time_of).min().unwrap_or(t);
+            let time_ps = [ours.get(k), theirs.get(k)].into_iter().flatten().map(Event::time_ps).min().unwrap_or(t);
             return Err(Divergence {
                 time_ps,
                 what: format!(
@@ -163,16 +164,6 @@ impl Lockstep {
     }
 }
 
-fn time_of(e: &Event) -> u64 {
-    match *e {
-        Event::Display { time_ps, .. }
-        | Event::Leds { time_ps, .. }
-        | Event::Sample { time_ps, .. }
-        | Event::Vga { time_ps, .. }
-        | Event::Bot { time_ps, .. } => time_ps,
-    }
-}
-
 fn show(e: Option<&Event>) -> String {
     match e {
         None => "nothing".into(),
@@ -185,5 +176,6 @@ fn show(e: Option<&Event>) -> String {
         Some(Event::Bot { upd, regs, .. }) => {
             format!("the bot's outputs upd_sysregs {} registers {regs:012X} (RMDist..LocX)", *upd as u8)
         }
+        Some(Event::Repeat { events, count, .. }) => format!("the last {events} records repeated {count} times"),
     }
 }

@@ -39,6 +39,11 @@ pub enum Event {
     /// Any of the bot's outputs changed (recorded only after [`BoardModel::record_bot`]):
     /// upd_sysregs, and the registers packed as in `Sample` (LocX in the low byte).
     Bot { time_ps: u64, upd: bool, regs: u64 },
+    /// The fast-forward skipped over periods in which the board showed something: the
+    /// `events` records before this one (one period's) happen `count` more times, each
+    /// `period_ps` after the last; the first repetition starts at `time_ps`. [`expand`]
+    /// writes them out; a consumer that knows better (the display decoder) takes them whole.
+    Repeat { time_ps: u64, events: usize, period_ps: u64, count: u64 },
 }
 
 impl RawEvent {
@@ -73,10 +78,65 @@ impl Event {
             }
             4 => Event::Vga { time_ps: t, pins: e.a as u16 },
             5 => Event::Bot { time_ps: t, upd: e.a & 1 == 1, regs: e.b },
+            6 => Event::Repeat { time_ps: t, events: e.a as usize, period_ps: e.b, count: e.c },
             _ => return None,
         })
     }
+
+    /// When it happened.
+    pub fn time_ps(&self) -> u64 {
+        match *self {
+            Event::Display { time_ps, .. }
+            | Event::Leds { time_ps, .. }
+            | Event::Sample { time_ps, .. }
+            | Event::Vga { time_ps, .. }
+            | Event::Bot { time_ps, .. }
+            | Event::Repeat { time_ps, .. } => time_ps,
+        }
+    }
+
+    /// The same event `by` ps later.
+    pub fn later(mut self, by: u64) -> Event {
+        match &mut self {
+            Event::Display { time_ps, .. }
+            | Event::Leds { time_ps, .. }
+            | Event::Sample { time_ps, .. }
+            | Event::Vga { time_ps, .. }
+            | Event::Bot { time_ps, .. }
+            | Event::Repeat { time_ps, .. } => *time_ps += by,
+        }
+        self
+    }
 }
+
+/// The records of a run, each [`Event::Repeat`] written out as the events it stands for:
+/// what the board showed, in order, as if every edge had been simulated.
+///
+/// ```
+/// use botsim::board::model::{expand, Event};
+/// let led = |t, leds| Event::Leds { time_ps: t, leds };
+/// let run = [led(10, 1), led(20, 0), Event::Repeat { time_ps: 40, events: 2, period_ps: 30, count: 2 }];
+/// assert_eq!(expand(&run), [led(10, 1), led(20, 0), led(40, 1), led(50, 0), led(70, 1), led(80, 0)]);
+/// ```
+pub fn expand(events: &[Event]) -> Vec<Event> {
+    let mut out = Vec::with_capacity(events.len());
+    for (i, e) in events.iter().enumerate() {
+        match *e {
+            Event::Repeat { events: n, period_ps, count, .. } => {
+                let period = &events[i.saturating_sub(n)..i];
+                for j in 1..=count {
+                    out.extend(period.iter().map(|p| p.later(j * period_ps)));
+                }
+            }
+            e => out.push(e),
+        }
+    }
+    out
+}
+
+/// The records a run's buffer holds: room for a skip over periods that show many changes
+/// (harness.cpp keeps up to 2^15 of a period, and writes one period's and a phase's).
+pub const RECORDS: usize = 1 << 17;
 
 /// `RTLD_DEEPBIND` (glibc): the library resolves its symbols in itself first.
 #[cfg(target_os = "linux")]

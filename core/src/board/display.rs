@@ -73,6 +73,33 @@ pub struct Display {
     lines: Vec<Line>,
 }
 
+/// The decoder's state but its lines ([`Display::repeat`]).
+struct State {
+    last_time: u64,
+    pins: (u8, u8, bool),
+    window: [Vec<(u8, u64)>; 8],
+    seen: [u8; 8],
+    refreshed: [Option<u64>; 8],
+    first: Option<u64>,
+}
+
+impl State {
+    /// This state is `before`'s, `period_ps` later: the same pins, windows and patterns,
+    /// every digit refreshed a period later or not at all since.
+    fn repeats(&self, before: &State, period_ps: u64) -> bool {
+        self.last_time == before.last_time + period_ps
+            && self.pins == before.pins
+            && self.window == before.window
+            && self.seen == before.seen
+            && self.first == before.first
+            && self.refreshed.iter().zip(&before.refreshed).all(|(a, b)| match (a, b) {
+                (Some(a), Some(b)) => *a == *b || *a == b + period_ps,
+                (None, None) => true,
+                _ => false,
+            })
+    }
+}
+
 impl Default for Display {
     fn default() -> Display {
         Display {
@@ -123,6 +150,90 @@ impl Display {
         self.dp = dp;
         if ended || self.first.is_some_and(|f| time_ps >= f + FADE_PS) {
             self.report(time_ps);
+        }
+    }
+
+    /// The changes `pins` (`(time_ps, an, seg, dp)`: one period of them, `period_ps` long,
+    /// already given to [`Display::pins`]) happen `count` more times, each a period after the
+    /// last. The same as giving every copy, but without the cost: once a copy changes nothing
+    /// a person sees (no line, every digit refreshed as in the copy before, a period later),
+    /// the next ones change nothing either, up to the moment a digit no copy refreshes fades
+    /// or the first line is due, so the decoder moves on to there at once.
+    ///
+    /// ```
+    /// use botsim_core::board::display::Display;
+    /// // Digit 0 shows "1" for 1 ms of every 8 ms, then 100,000 periods more.
+    /// const MS: u64 = 1_000_000_000;
+    /// let period = [(0, 0xFE, !0b000_0110 & 0x7F, true), (MS, 0xFF, 0x7F, true)];
+    /// let (mut fast, mut slow) = (Display::default(), Display::default());
+    /// for d in [&mut fast, &mut slow] {
+    ///     for &(t, an, seg, dp) in &period {
+    ///         d.pins(t, an, seg, dp);
+    ///     }
+    /// }
+    /// fast.repeat(&period, 8 * MS, 100_000);
+    /// for j in 1..=100_000 {
+    ///     for &(t, an, seg, dp) in &period {
+    ///         slow.pins(t + j * 8 * MS, an, seg, dp);
+    ///     }
+    /// }
+    /// fast.settle(900_000 * MS);
+    /// slow.settle(900_000 * MS);
+    /// assert_eq!(fast.lines(), slow.lines());
+    /// assert_eq!(fast.lines().last().unwrap().text, "       1");
+    /// ```
+    pub fn repeat(&mut self, pins: &[(u64, u8, u8, bool)], period_ps: u64, count: u64) {
+        let mut j = 0;
+        while j < count {
+            let (before, lines) = (self.state(), self.lines.len());
+            j += 1;
+            for &(t, an, seg, dp) in pins {
+                self.pins(t + j * period_ps, an, seg, dp);
+            }
+            let after = self.state();
+            if self.lines.len() != lines || !after.repeats(&before, period_ps) {
+                continue;
+            }
+            // The next copies change nothing until a moment an absolute time decides: a
+            // digit no copy refreshes fades, or the first line becomes due.
+            let mut critical = u64::MAX;
+            for (i, r) in after.refreshed.iter().enumerate() {
+                if let Some(r) = *r {
+                    if before.refreshed[i] == Some(r) {
+                        critical = critical.min(r.saturating_add(FADE_PS));
+                    }
+                }
+            }
+            if let Some(f) = self.first {
+                if f.saturating_add(FADE_PS) > self.last_time {
+                    critical = critical.min(f + FADE_PS);
+                }
+            }
+            // Copies whose changes all come before it (the last change of a copy is its latest).
+            let room = critical.saturating_sub(self.last_time).saturating_sub(1) / period_ps.max(1);
+            let m = room.min(count - j);
+            let by = m * period_ps;
+            self.last_time += by;
+            for (i, r) in self.refreshed.iter_mut().enumerate() {
+                if let Some(r) = r {
+                    if before.refreshed[i] != Some(*r) {
+                        *r += by;
+                    }
+                }
+            }
+            j += m;
+        }
+    }
+
+    /// Everything but the lines, to compare one copy of a period with the last.
+    fn state(&self) -> State {
+        State {
+            last_time: self.last_time,
+            pins: (self.an, self.seg, self.dp),
+            window: self.window.clone(),
+            seen: self.seen,
+            refreshed: self.refreshed,
+            first: self.first,
         }
     }
 
@@ -206,6 +317,70 @@ mod tests {
         }
         d.settle(70 * MS);
         assert_eq!(d.lines().last().unwrap().text, "      18");
+    }
+
+    #[test]
+    fn a_repeated_period_reads_as_every_copy_given() {
+        // Random periods of pin changes (some digits never lit, some lit once; short and
+        // long periods, starting before and after the first line is due), repeated whole
+        // and given copy by copy: the same lines, to the picosecond.
+        let mut x = 0x9E37_79B9_7F4A_7C15u64;
+        let mut next = move |n: u64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x % n
+        };
+        for case in 0..300 {
+            let period = 1 + next(30) * MS / 4 + next(1000);
+            let changes = 1 + next(12) as usize;
+            let mut times: Vec<u64> = (0..changes).map(|_| next(period)).collect();
+            times.sort_unstable();
+            times.dedup();
+            let digits = 1 + next(8) as u32;
+            // Half the cases walk the anodes over the digits in turn (each refreshed once a
+            // period, as a driver does), the others drive them at random.
+            let walk = case % 2 == 0;
+            let pins: Vec<(u64, u8, u8, bool)> = times
+                .iter()
+                .enumerate()
+                .map(|(k, &t)| {
+                    let an = match (walk, next(4)) {
+                        (true, _) => !(1u8 << (k as u32 % digits)),
+                        (false, 0) => 0xFF,
+                        _ => !(1u8 << next(digits as u64)),
+                    };
+                    (t, an, next(128) as u8, next(2) == 0)
+                })
+                .collect();
+            let start = next(3) * 9 * MS;
+            let count = next(2000);
+            let (mut fast, mut slow) = (Display::default(), Display::default());
+            for d in [&mut fast, &mut slow] {
+                for &(t, an, seg, dp) in &pins {
+                    d.pins(start + t, an, seg, dp);
+                }
+            }
+            let shifted: Vec<_> = pins.iter().map(|&(t, a, s, d)| (start + t, a, s, d)).collect();
+            fast.repeat(&shifted, period, count);
+            for j in 1..=count {
+                for &(t, an, seg, dp) in &shifted {
+                    slow.pins(t + j * period, an, seg, dp);
+                }
+            }
+            // The board goes on as before after the skip.
+            for j in count + 1..count + 4 {
+                for d in [&mut fast, &mut slow] {
+                    for &(t, an, seg, dp) in &shifted {
+                        d.pins(t + j * period, an, seg, dp);
+                    }
+                }
+            }
+            let end = start + (count + 5) * period + 25 * MS;
+            fast.settle(end);
+            slow.settle(end);
+            assert_eq!(fast.lines(), slow.lines(), "case {case}: period {period}, {count} copies of {pins:?}");
+        }
     }
 
     #[test]

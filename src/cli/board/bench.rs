@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use botsim::board::build::CpuModel;
 use botsim::board::iss::Host;
-use botsim::board::model::{Event, FastForward, Printing, RawEvent, Stop};
+use botsim::board::model::{Event, FastForward, Printing, RawEvent, Stop, RECORDS};
 use botsim::{World, PS_PER_CYCLE};
 use botsim_core::board::display::Display;
 use botsim_core::board::plan::Rom;
@@ -114,14 +114,26 @@ fn board_rate(
     let mut m = load(library, world, roms, host, &Printing::SILENT)?;
     m.set_inputs(false, 0, 0);
     m.fast_forward(if fast_forward { FastForward::Recorded } else { FastForward::Off });
-    let mut buf = vec![RawEvent::default(); 4096];
+    let mut buf = vec![RawEvent::default(); RECORDS];
     let mut display = Display::default();
     let t = Instant::now();
     loop {
         let (stop, n) = m.run(cycles * PS_PER_CYCLE, u64::MAX, &mut buf);
-        for e in buf[..n].iter().filter_map(Event::of) {
-            if let Event::Display { time_ps, an, seg, dp } = e {
-                display.pins(time_ps, an, seg, dp);
+        let events: Vec<Event> = buf[..n].iter().filter_map(Event::of).collect();
+        for (i, e) in events.iter().enumerate() {
+            match *e {
+                Event::Display { time_ps, an, seg, dp } => display.pins(time_ps, an, seg, dp),
+                Event::Repeat { events: per, period_ps, count, .. } => {
+                    let pins: Vec<_> = events[i - per..i]
+                        .iter()
+                        .filter_map(|p| match *p {
+                            Event::Display { time_ps, an, seg, dp } => Some((time_ps, an, seg, dp)),
+                            _ => None,
+                        })
+                        .collect();
+                    display.repeat(&pins, period_ps, count);
+                }
+                _ => {}
             }
         }
         if stop != Stop::BufferFull {

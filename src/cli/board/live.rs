@@ -16,7 +16,7 @@
 use std::time::{Duration, Instant};
 
 use botsim::board::build::{BotKind, CpuModel};
-use botsim::board::model::{BoardModel, Event, FastForward, Printing, RawEvent};
+use botsim::board::model::{BoardModel, Event, FastForward, Printing, RawEvent, RECORDS};
 use botsim::files::write_atomic;
 use botsim::PS_PER_CYCLE;
 use botsim_core::board::display::Display;
@@ -103,7 +103,7 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
     }
     let mut b = Board {
         model,
-        buf: vec![RawEvent::default(); 4096],
+        buf: vec![RawEvent::default(); RECORDS],
         display: Display::default(),
         leds: 0,
         samples: 0,
@@ -252,9 +252,13 @@ impl Board {
         let released = self.model.time_ps() < POWER_ON_RESET_PS && until == POWER_ON_RESET_PS;
         loop {
             let (stop, n) = self.model.run(until, limit, &mut self.buf);
-            for i in 0..n {
-                if let Some(e) = Event::of(&self.buf[i]) {
-                    self.take(e);
+            let events: Vec<Event> = self.buf[..n].iter().filter_map(Event::of).collect();
+            for (i, &e) in events.iter().enumerate() {
+                match e {
+                    Event::Repeat { events: per, period_ps, count, .. } => {
+                        self.repeat(&events[i - per..i], period_ps, count)
+                    }
+                    e => self.take(e),
                 }
             }
             match stop {
@@ -290,8 +294,27 @@ impl Board {
                 self.bot = Some(view);
             }
             Event::Vga { time_ps, pins } => self.vga.pins(time_ps, pins),
-            Event::Bot { .. } => {}
+            Event::Bot { .. } | Event::Repeat { .. } => {}
         }
+    }
+
+    /// One period's events (`period`, already taken) happen `count` more times, each
+    /// `period_ps` after the last: the display decoder takes them whole, the LEDs end as
+    /// the period ends.
+    fn repeat(&mut self, period: &[Event], period_ps: u64, count: u64) {
+        let mut pins = Vec::new();
+        for e in period {
+            match *e {
+                Event::Display { time_ps, an, seg, dp } => pins.push((time_ps, an, seg, dp)),
+                Event::Leds { leds, .. } => self.leds = leds,
+                e => {
+                    for j in 1..=count {
+                        self.take(e.later(j * period_ps));
+                    }
+                }
+            }
+        }
+        self.display.repeat(&pins, period_ps, count);
     }
 
     /// Run on to the next cycle boundary (a step may have stopped between two): the time at

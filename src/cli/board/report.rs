@@ -59,7 +59,7 @@ pub fn report(a: &Args, p: &Prepared, o: Outcome) -> Result<Stopped, String> {
         write_atomic(f, o.rec.json.as_bytes())?;
     }
     if let Some(f) = &a.pins {
-        write_atomic(f, o.rec.pins_csv.as_bytes())?;
+        write_atomic(f, o.rec.pins_csv.as_deref().unwrap_or_default().as_bytes())?;
     }
     if let Some(f) = &a.display {
         write_atomic(f, o.rec.display_log.as_bytes())?;

@@ -9,7 +9,7 @@ use std::time::Instant;
 use botsim::board::build::{BotKind, CpuModel};
 use botsim::board::iss::Host;
 use botsim::board::lockstep::Lockstep;
-use botsim::board::model::{BoardModel, Event, FastForward, Printing, RawEvent, Stop};
+use botsim::board::model::{BoardModel, Event, FastForward, Printing, RawEvent, Stop, RECORDS};
 use botsim::files::write_atomic;
 use botsim::{Snapshot, World};
 use botsim_core::board::display::Display;
@@ -49,8 +49,8 @@ pub struct Records {
     pub display: Display,
     /// `--display`: the display's and the LEDs' changes, a line each.
     pub display_log: String,
-    /// `--pins`: every change of the display's and the LEDs' pins.
-    pub pins_csv: String,
+    /// `--pins`: every change of the display's and the LEDs' pins (kept only when asked for).
+    pub pins_csv: Option<String>,
     pins_now: (u8, u8, u8, u16),
     pub last_led: u16,
     /// The bot's samples, and their JSON lines (`--trace-json`).
@@ -66,11 +66,11 @@ pub struct Records {
 }
 
 impl Records {
-    pub fn new(frames: Option<PathBuf>, frame_every: u64) -> Records {
+    pub fn new(frames: Option<PathBuf>, frame_every: u64, pins: bool) -> Records {
         Records {
             display: Display::default(),
             display_log: String::new(),
-            pins_csv: String::from("time_ps,an,seg,dp,led\n"),
+            pins_csv: pins.then(|| String::from("time_ps,an,seg,dp,led\n")),
             pins_now: (0xFF, 0x7F, 1, 0),
             last_led: 0,
             snapshots: Vec::new(),
@@ -89,16 +89,18 @@ impl Records {
         match e {
             Event::Display { time_ps, an, seg, dp } => {
                 self.pins_now = (an, seg, dp as u8, self.pins_now.3);
-                self.pins_csv.push_str(&pins_row(time_ps, self.pins_now));
+                if let Some(csv) = &mut self.pins_csv {
+                    csv.push_str(&pins_row(time_ps, self.pins_now));
+                }
                 let before = self.display.lines().len();
                 self.display.pins(time_ps, an, seg, dp);
-                for l in &self.display.lines()[before..] {
-                    self.display_log.push_str(&format!("{:>12.3} ms  display {}\n", l.time_ps as f64 / 1e9, l.text));
-                }
+                self.log_display_lines(before);
             }
             Event::Leds { time_ps, leds } => {
                 self.pins_now.3 = leds;
-                self.pins_csv.push_str(&pins_row(time_ps, self.pins_now));
+                if let Some(csv) = &mut self.pins_csv {
+                    csv.push_str(&pins_row(time_ps, self.pins_now));
+                }
                 self.last_led = leds;
                 self.display_log.push_str(&format!("{:>12.3} ms  leds    {leds:016b}\n", time_ps as f64 / 1e9));
             }
@@ -110,6 +112,44 @@ impl Records {
             Event::Vga { time_ps, pins } => self.vga.pins(time_ps, pins),
             // Recorded for the lock-step's comparison only.
             Event::Bot { .. } => {}
+            // Taken whole by `repeat`; here, written out is all that can be done.
+            Event::Repeat { .. } => {}
+        }
+    }
+
+    /// The events of one period (`period`, already recorded) happen `count` more times, each
+    /// `period_ps` after the last: as if each were recorded, but a period that only
+    /// multiplexes the display (the course's sevensegment at SIMULATE = 1 shows eight digits
+    /// every 48 clocks) costs the decoder a few periods, not all of them.
+    pub fn repeat(&mut self, period: &[Event], period_ps: u64, count: u64) {
+        let display_only = period.iter().all(|e| matches!(e, Event::Display { .. }));
+        if !display_only || self.pins_csv.is_some() {
+            for j in 1..=count {
+                for e in period {
+                    self.event(e.later(j * period_ps));
+                }
+            }
+            return;
+        }
+        let pins: Vec<(u64, u8, u8, bool)> = period
+            .iter()
+            .filter_map(|e| match *e {
+                Event::Display { time_ps, an, seg, dp } => Some((time_ps, an, seg, dp)),
+                _ => None,
+            })
+            .collect();
+        let before = self.display.lines().len();
+        self.display.repeat(&pins, period_ps, count);
+        self.log_display_lines(before);
+        if let Some(&(_, an, seg, dp)) = pins.last() {
+            self.pins_now = (an, seg, dp as u8, self.pins_now.3);
+        }
+    }
+
+    /// The display's lines from `before` on into `--display`'s log.
+    fn log_display_lines(&mut self, before: usize) {
+        for l in &self.display.lines()[before..] {
+            self.display_log.push_str(&format!("{:>12.3} ms  display {}\n", l.time_ps as f64 / 1e9, l.text));
         }
     }
 
@@ -245,8 +285,8 @@ pub fn simulate(a: &Args, p: &Prepared) -> Result<Outcome, String> {
     let t0 = Instant::now();
     let vcd_max = a.vcd_max.as_deref().map_or(Ok(VCD_MAX), parse_size)?;
     let mut progress = Progress::new(!a.quiet && !a.json && !a.finding, end_ps, sample_limit);
-    let mut rec = Records::new(a.frames.clone(), a.frame_every);
-    let mut buf = vec![RawEvent::default(); 4096];
+    let mut rec = Records::new(a.frames.clone(), a.frame_every, a.pins.is_some());
+    let mut buf = vec![RawEvent::default(); RECORDS];
     let mut at_end = false;
     let mut blocked_now = false;
     let mut bot_stop: Option<BreakStop> = None;
@@ -290,7 +330,26 @@ pub fn simulate(a: &Args, p: &Prepared) -> Result<Outcome, String> {
             limit = limit.min(rec.snapshots.len() as u64 + 1);
         }
         let (stop, n) = model.run(until, limit, &mut buf)?;
-        for e in buf[..n].iter().filter(|r| !past_stop(r.time_ps())).filter_map(Event::of) {
+        let events: Vec<Event> = buf[..n].iter().filter_map(Event::of).collect();
+        for (i, &e) in events.iter().enumerate() {
+            if let Event::Repeat { events: per, period_ps, count, .. } = e {
+                // A run repeated to a stop records the copies up to it only.
+                let period = &events[i - per..i];
+                let end = period.last().map_or(0, Event::time_ps);
+                let whole = match &a.stopped_at {
+                    Some(s) => (1..=count).take_while(|j| end + j * period_ps <= s.time_ps).count() as u64,
+                    None => count,
+                };
+                rec.repeat(period, period_ps, whole);
+                if whole < count {
+                    let next = period.iter().map(|p| p.later((whole + 1) * period_ps));
+                    next.filter(|p| !past_stop(p.time_ps())).for_each(|p| rec.event(p));
+                }
+                continue;
+            }
+            if past_stop(e.time_ps()) {
+                continue;
+            }
             if let Event::Sample { time_ps, snapshot, .. } = &e {
                 let before = rec.snapshots.last();
                 at_end = at_end || (a.stop_at_line_end && at_line_end(snapshot));

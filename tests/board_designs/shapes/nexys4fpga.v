@@ -8,7 +8,9 @@
 //              display on CLKDV (25 MHz), a CLKFX (50 MHz) divider; 2: an MMCM, the system
 //              on the oscillator and the display on 25 MHz
 //   FREE32     1: a 32-bit counter on every clock; its bit 26 blinks LED 15; 2: its low byte
-//              dims LED 15 (lit while below switches 15-8: a PWM, which no skip can see through)
+//              dims LED 15 (lit while below switches 15-8: a PWM); 3: LED 15 shows bit 0 of a
+//              32-bit LFSR stepped every clock (a random source a game uses, which never
+//              repeats within a run: nothing can be skipped)
 //   TOGGLES    1: 25 Hz and 10 Hz toggles nobody reads (a header pin); 2: the 10 Hz one
 //              blinks the point of digit 0 and the 25 Hz one LED 14
 //   REFRESH_BITS  the display counter's width: each digit is lit for 2^(REFRESH_BITS-3)
@@ -115,6 +117,8 @@ module nexys4fpga #(
     // Free-running counters and toggles.
     reg [31:0] free = 32'd0;
     always @(posedge sys_clk) free <= free + 32'd1;
+    reg [31:0] lfsr = 32'h1;
+    always @(posedge sys_clk) lfsr <= {lfsr[30:0], lfsr[31] ^ lfsr[21] ^ lfsr[1] ^ lfsr[0]};
     wire tog25, tog10;
     divider #(.COUNT(2_000_000)) D25 (.clk(sys_clk), .q(tog25));
     divider #(.COUNT(CLOCKING == 1 ? 2_500_000 : 5_000_000)) D10 (.clk(fx_clk), .q(tog10));
@@ -126,7 +130,7 @@ module nexys4fpga #(
         .dp(points), .seg(seg), .dp_out(dp), .an(an)
     );
 
-    wire led15 = FREE32 == 1 ? free[26] : FREE32 == 2 ? free[7:0] < sw[15:8] : leds[15];
+    wire led15 = FREE32 == 1 ? free[26] : FREE32 == 2 ? free[7:0] < sw[15:8] : FREE32 == 3 ? lfsr[0] : leds[15];
     assign led = {led15, TOGGLES == 2 ? tog25 : leds[14], leds[13:0]};
     assign JA = {6'd0, TOGGLES == 1 ? tog25 : 1'b0, TOGGLES == 1 ? tog10 : 1'b0};
 endmodule

@@ -87,6 +87,7 @@ fn lit(code: u8) -> u8 {
 /// each digit's pattern registered, `seg` registered from the lit digit's pattern.
 struct SevenSegment {
     top: u64,
+    digits: usize,
     count: u64,
     an: u8,
     patterns: [u8; 8],
@@ -94,8 +95,8 @@ struct SevenSegment {
 }
 
 impl SevenSegment {
-    fn new(top: u64) -> SevenSegment {
-        SevenSegment { top, count: 0, an: 0, patterns: [0; 8], seg: 0 }
+    fn new(top: u64, digits: usize) -> SevenSegment {
+        SevenSegment { top, digits, count: 0, an: 0, patterns: [0; 8], seg: 0 }
     }
     /// One rising edge with reset (active) and the digits' codes and points.
     fn edge(&mut self, reset: bool, codes: [u8; 8], dp: u8) {
@@ -108,7 +109,7 @@ impl SevenSegment {
             *p = (!lit(codes[i]) & 0x7F) | if dp >> i & 1 == 1 { 0 } else { 0x80 };
         }
         if tick {
-            self.an = match (0..7).find(|&i| self.an == !(1u8 << i)) {
+            self.an = match (0..self.digits - 1).find(|&i| self.an == !(1u8 << i)) {
                 Some(i) => !(1u8 << (i + 1)),
                 None => !1u8,
             };
@@ -217,7 +218,7 @@ fn debounce_pins_follow_the_spec_at_every_clock() {
     debounce_case(4, ".SIMULATE(1), .RESET_POLARITY_LOW(0)", 5, false);
 }
 
-fn sevensegment_case(seed: u64, params: &str, top: u64, polarity_low: bool) {
+fn sevensegment_case(seed: u64, params: &str, top: u64, polarity_low: bool, digits: usize) {
     let tb = format!(
         "`timescale 1ns / 1ps
 module tb;
@@ -259,7 +260,7 @@ endmodule
     }
     let text: Vec<String> = ins.iter().map(|v| format!("{v:013x}")).collect();
     let Some(got) = icarus(&tb, "sevensegment.v", &text) else { return };
-    let mut m = SevenSegment::new(top);
+    let mut m = SevenSegment::new(top, digits);
     for (k, (v, line)) in ins.iter().zip(&got).enumerate() {
         let codes = std::array::from_fn(|i| (v >> (5 * i) & 0x1F) as u8);
         let reset = (v >> 48 & 1 == 1) != polarity_low;
@@ -271,9 +272,11 @@ endmodule
 
 #[test]
 fn sevensegment_pins_follow_the_spec_at_every_clock() {
-    sevensegment_case(11, ".SIMULATE(1)", 5, true);
-    sevensegment_case(12, ".SIMULATE(1), .RESET_POLARITY_LOW(0)", 5, false);
-    sevensegment_case(13, ".CLK_FREQUENCY_HZ(1000), .REFRESH_FREQUENCY_HZ(100)", 9, true);
+    sevensegment_case(11, ".SIMULATE(1)", 5, true, 8);
+    sevensegment_case(12, ".SIMULATE(1), .RESET_POLARITY_LOW(0)", 5, false, 8);
+    sevensegment_case(13, ".CLK_FREQUENCY_HZ(1000), .REFRESH_FREQUENCY_HZ(100)", 9, true, 8);
+    // The Nexys3 version: four digits.
+    sevensegment_case(14, ".SIMULATE(1), .DIGITS(4)", 5, true, 4);
 }
 
 #[test]
@@ -281,7 +284,7 @@ fn every_digit_code_shows_the_spec_glyph() {
     // Codes 0-31 on digit 0, the anodes held on it by a long tick, the point on odd codes.
     let ins: Vec<u64> = (0..32u64).flat_map(|c| [c | (c & 1) << 40 | 1 << 48; 4]).collect();
     let tb_params = ".CLK_FREQUENCY_HZ(1000000), .REFRESH_FREQUENCY_HZ(1)";
-    let mut m = SevenSegment::new(999_999);
+    let mut m = SevenSegment::new(999_999, 8);
     let text: Vec<String> = ins.iter().map(|v| format!("{v:013x}")).collect();
     let tb = format!(
         "`timescale 1ns / 1ps

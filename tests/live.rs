@@ -12,13 +12,7 @@ use serde_json::{json, Value};
 
 /// The shapes design (a team CPU polling: the buttons on LED[4:0], the switches on the
 /// motors), its debounce in simulation mode.
-const SHAPES: [&str; 5] = [
-    "tests/board_designs/shapes",
-    "examples/common/debounce.v",
-    "examples/common/nexys4_bot_if.v",
-    "--param",
-    "SIMULATE=1",
-];
+const SHAPES: [&str; 4] = ["tests/board_designs/shapes", "examples/common/nexys4_bot_if.v", "--param", "SIMULATE=1"];
 
 fn shapes(extra: &[&str]) -> Vec<String> {
     SHAPES.iter().chain(extra).map(|s| s.to_string()).collect()

@@ -12,14 +12,17 @@
 //!   the same direction, directly or through Verilator's delayed copy (`__Vdly__x`); or
 //! - sets it to a constant (a reset, a wrap at a terminal count),
 //!
-//! and whose every other read is either a shift right by a constant (`x >> 0xfU`: bits at and
-//! above it), a mask (`0x80000U & x`: bits from its lowest), or a comparison with a constant
-//! (`0x7a11fU == x`). Between two values at which
-//! such a read could change (the next multiple of 2^shift, a compared constant, the wrap),
-//! nothing else in the design can tell the counter's value: the harness (harness.cpp) then
-//! proves the rest periodic, confirms that each counter moved by the same amount in two
-//! periods in a row, and moves it on by that amount per skipped period, up to just before the
-//! first value that could be told apart.
+//! and whose every other read needs only some of its bits or compares it with a constant, as
+//! [`super::demand`] finds for any expression around the read: a shift then a mask
+//! (`7U & (x >> 0xfU)`: bits 15-17), a value stored into fewer bits (a port's read mux into
+//! an 8-bit register: bits 0-7), a comparison with a constant (`0x7a11fU == x`). A read of
+//! every bit spoils it (it is then plain state). Between two values at which such a read
+//! could change (the next multiple of 2^shift, a compared constant, the wrap), nothing else in
+//! the design can tell the counter's value: the harness (harness.cpp) then proves the rest
+//! periodic, confirms that each counter moved by the same amount in two periods in a row, and
+//! moves it on by that amount per skipped period, up to just before the first value that could
+//! be told apart. Reads of its low bits alone ([`Counter::split`]) let those repeat as state
+//! while the rest counts.
 //!
 //! ```
 //! let root = "class Vboard___024root final : public VerilatedModule {\n  public:\n    struct {\n        VL_IN8(clk,0,0);\n        VL_OUT8(an,7,0);\n        IData/*17:0*/ refresh;\n    };\n};\n";
@@ -32,6 +35,7 @@
 use std::collections::{BTreeMap, HashSet};
 
 use super::cpp::{functions, strip_comments, tokens, Tok};
+use super::demand::{demands, Demand};
 
 /// A counter of the root, as the harness moves it on.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -47,26 +51,27 @@ pub struct Counter {
     pub shift: Option<u32>,
     /// The constants it is compared with.
     pub consts: Vec<u64>,
-    /// Where its bits split in two that no read sees both of, the low ones read by masks
-    /// alone (a 32-bit counter whose low byte a PWM compares with a variable, whose bit 26
-    /// blinks an LED): the low part then repeats with a short period while the high part
-    /// counts. `None` when no read leaves such a split (a comparison with a constant reads
-    /// every bit).
+    /// Where its bits split in two that no shifted or masked read sees both of, the low ones
+    /// read by masks alone (a 32-bit counter whose low byte a PWM compares with a variable,
+    /// whose bit 26 blinks an LED; a wrap counter whose low byte a port reads): the low part
+    /// then repeats with a short period while the whole value counts, up to the next
+    /// compared constant. `None` when no read leaves such a split.
     pub split: Option<u32>,
     /// The lowest bit a read above the split sees, if any read does.
     pub split_shift: Option<u32>,
 }
 
-/// The smallest bit `e` (0 < e < bits) at which every read's bits (`lo..=hi`) lie wholly
-/// below or wholly at and above it, with some read below; and the lowest bit a read above
-/// it sees.
+/// The smallest bit `e` (0 < e < bits) at which every shifted or masked read's bits
+/// (`lo..=hi`) lie wholly below or wholly at and above it, with some read below; and the
+/// lowest bit a read above it sees. (A comparison with a constant is no read here: it tells
+/// the counter apart only at the constant, which bounds its interval at any split.)
 ///
 /// ```
 /// use botsim::board::counters::split;
 /// // A PWM reads bits 0-7, an LED bit 26: the low byte repeats, the rest counts.
 /// assert_eq!(split(32, &[(0, 7), (26, 26)]), Some((8, Some(26))));
-/// // A comparison with a constant reads every bit.
-/// assert_eq!(split(32, &[(0, 7), (0, 31)]), None);
+/// // A shift by 4 reads bits 4-31: it straddles bit 8.
+/// assert_eq!(split(32, &[(0, 7), (4, 31)]), None);
 /// ```
 pub fn split(bits: u32, reads: &[(u32, u32)]) -> Option<(u32, Option<u32>)> {
     let mut candidates: Vec<u32> = reads.iter().map(|&(_, hi)| hi + 1).filter(|&e| e < bits).collect();
@@ -87,6 +92,7 @@ pub fn find(
     observed: &dyn Fn(&str) -> bool,
 ) -> Vec<Counter> {
     let widths = scalar_widths(root);
+    let ports = port_widths(root);
     let mut bodies: BTreeMap<&str, &str> = BTreeMap::new();
     for c in code {
         for (name, body) in functions(c) {
@@ -101,7 +107,7 @@ pub fn find(
             // Nothing in a function the tokenizer cannot read may be trusted.
             return Vec::new();
         };
-        scan(&toks, &widths, observed, &mut seen, &mut spoiled);
+        scan(&toks, &widths, &ports, observed, &mut seen, &mut spoiled);
     }
     seen.into_iter()
         .filter(|(name, s)| !spoiled.contains(name) && s.step > 0)
@@ -130,7 +136,7 @@ struct Seen {
     step: u64,
     shift: Option<u32>,
     consts: Vec<u64>,
-    /// The bits each read sees (`lo..=hi`).
+    /// The bits each shifted or masked read sees (`lo..=hi`).
     reads: Vec<(u32, u32)>,
 }
 
@@ -156,22 +162,39 @@ fn scalar_widths(root: &str) -> BTreeMap<String, u32> {
     out
 }
 
-const CMP: &[&str] = &["==", "!=", "<", ">", "<=", ">="];
+/// The root's ports (`VL_IN8(clk,0,0);`, `VL_OUT16(led,15,0);`) and their widths: what a
+/// value written to one needs.
+fn port_widths(root: &str) -> BTreeMap<String, u32> {
+    let mut out = BTreeMap::new();
+    for line in root.lines() {
+        let t = line.trim();
+        let Some(args) = ["VL_IN8(", "VL_IN16(", "VL_IN(", "VL_IN64(", "VL_OUT8(", "VL_OUT16(", "VL_OUT(", "VL_OUT64("]
+            .iter()
+            .find_map(|p| t.strip_prefix(p))
+        else {
+            continue;
+        };
+        let parts: Vec<&str> = args.trim_end_matches(");").split(',').map(str::trim).collect();
+        if let [name, hi, lo] = parts[..] {
+            if let (Ok(hi), Ok(lo)) = (hi.parse::<u32>(), lo.parse::<u32>()) {
+                out.insert(name.to_string(), hi - lo + 1);
+            }
+        }
+    }
+    out
+}
 
 /// A number Verilator writes (`0x3ffffU`, `15U`, `1ULL`), if it is one.
 fn number(t: Tok) -> Option<u64> {
     let Tok::Num(n) = t else { return None };
-    let n = n.trim_end_matches(['U', 'L', 'u', 'l']);
-    match n.strip_prefix("0x").or_else(|| n.strip_prefix("0X")) {
-        Some(h) => u64::from_str_radix(h, 16).ok(),
-        None => n.parse().ok(),
-    }
+    super::demand::number(n)
 }
 
 /// Scan one function's tokens.
 fn scan(
     toks: &[Tok],
     widths: &BTreeMap<String, u32>,
+    ports: &BTreeMap<String, u32>,
     observed: &dyn Fn(&str) -> bool,
     seen: &mut BTreeMap<String, Seen>,
     spoiled: &mut HashSet<String>,
@@ -194,6 +217,8 @@ fn scan(
         }
         j += 1;
     }
+    // What each read needs of the variable it reads.
+    let reads = demands(toks, &|n| widths.get(n).or_else(|| ports.get(n)).copied());
     // Every use of a candidate: `vlSelf->x` (3 tokens) or its delayed copy `__Vdly__x`.
     let use_at = |i: usize| -> Option<(&str, usize)> {
         match (tok(i), tok(i + 1), tok(i + 2)) {
@@ -275,56 +300,28 @@ fn scan(
             i = b + 1;
             continue;
         }
-        if tok(b) == Tok::P(">>") {
-            if let Some(n) = number(tok(b + 1)) {
-                // A mask on the shifted value keeps its bits from its lowest set one:
-                // `(0x8000U & (x >> 0xbU))` reads bit 26 alone.
-                let group = a >= 1 && tok(a - 1) == Tok::P("(") && tok(b + 2) == Tok::P(")");
-                let mask = match (group, a >= 3) {
-                    (true, true) if tok(a - 2) == Tok::P("&") && tok(a - 4) == Tok::P("(") => number(tok(a - 3)),
-                    (true, _) if tok(b + 3) == Tok::P("&") && tok(b + 5) == Tok::P(")") => number(tok(b + 4)),
-                    _ => None,
-                };
-                let low = n as u32 + mask.filter(|m| *m != 0).map_or(0, |m| m.trailing_zeros());
-                let high = mask.filter(|m| *m != 0).map_or(widths[name] - 1, |m| n as u32 + 63 - m.leading_zeros());
-                s.shift = Some(s.shift.map_or(low, |m| m.min(low)));
-                s.reads.push((low, high.min(widths[name] - 1)));
-                i += len;
-                continue;
+        // A read: the bits of it that matter there (src/board/demand.rs).
+        let bits = widths[name];
+        match reads.get(&i) {
+            Some(Demand::Compare(c)) => s.consts.push(*c),
+            Some(Demand::Bits(m)) => {
+                let m = m & if bits >= 64 { u64::MAX } else { (1u64 << bits) - 1 };
+                let (lo, hi) = (m.trailing_zeros(), 63 - m.leading_zeros().min(63));
+                if m == 0 {
+                    // Nothing of it matters there.
+                } else if lo == 0 && hi + 1 >= bits {
+                    // All of it: a counter's every step shows.
+                    spoiled.insert(name.to_string());
+                } else {
+                    s.shift = Some(s.shift.map_or(lo, |x| x.min(lo)));
+                    s.reads.push((lo, hi));
+                }
+            }
+            // In a statement the parser does not know.
+            None => {
+                spoiled.insert(name.to_string());
             }
         }
-        // A mask alone reads the bits from its lowest set one: `(0x80000U & x)` bit 19.
-        let mask_before = a >= 3 && tok(a - 1) == Tok::P("&") && tok(a - 3) == Tok::P("(") && tok(b) == Tok::P(")");
-        let mask_after = a >= 1 && tok(a - 1) == Tok::P("(") && tok(b) == Tok::P("&") && tok(b + 2) == Tok::P(")");
-        let mask = if mask_before {
-            number(tok(a - 2))
-        } else if mask_after {
-            number(tok(b + 1))
-        } else {
-            None
-        };
-        if let Some(m) = mask.filter(|m| *m != 0) {
-            let low = m.trailing_zeros();
-            s.shift = Some(s.shift.map_or(low, |x| x.min(low)));
-            s.reads.push((low, (63 - m.leading_zeros()).min(widths[name] - 1)));
-            i += len;
-            continue;
-        }
-        let cmp_after = matches!(tok(b), Tok::P(p) if CMP.contains(&p))
-            && number(tok(b + 1)).is_some()
-            && tok(b + 2) == Tok::P(")");
-        let cmp_before = a >= 3
-            && matches!(tok(a - 1), Tok::P(p) if CMP.contains(&p))
-            && number(tok(a - 2)).is_some()
-            && tok(a - 3) == Tok::P("(");
-        if cmp_after || cmp_before {
-            let c = if cmp_after { number(tok(b + 1)) } else { number(tok(a - 2)) };
-            s.consts.extend(c);
-            s.reads.push((0, widths[name] - 1));
-            i += len;
-            continue;
-        }
-        spoiled.insert(name.to_string());
         i += len;
     }
 }
@@ -546,10 +543,10 @@ mod tests {
         let names = |nba: &str| found(nba).into_iter().map(|c| c.name).collect::<Vec<_>>();
         let all = names(NBA);
         assert!(all.iter().any(|n| n.ends_with("refresh")), "{all:?}");
-        // Read whole (into an output), added to, compared with a variable.
+        // Read whole (into a variable as wide), added to on every bit, compared with a variable.
         for read in [
-            "    vlSelf->an = vlSelf->top__DOT__refresh;\n",
-            "    vlSelf->an = (1U + vlSelf->top__DOT__refresh);\n",
+            "    vlSelf->top__DOT__copy = vlSelf->top__DOT__refresh;\n",
+            "    vlSelf->top__DOT__copy = (1U + vlSelf->top__DOT__refresh);\n",
             "    vlSelf->an = (vlSelf->top__DOT__refresh == vlSelf->d0);\n",
         ] {
             let nba = NBA.replacen("    vlSelf->seg", &format!("{read}    vlSelf->seg"), 1);
@@ -577,10 +574,30 @@ mod tests {
     }
 
     #[test]
+    fn a_read_into_fewer_bits_reads_the_low_ones_and_splits_the_counter() {
+        // Into the 8-bit `an`, whole, plus one, or through a choice (a port's read mux): the
+        // low byte repeats while the rest counts.
+        for read in [
+            "    vlSelf->an = vlSelf->top__DOT__refresh;\n",
+            "    vlSelf->an = (1U + vlSelf->top__DOT__refresh);\n",
+            "    vlSelf->an = (vlSelf->rst ? vlSelf->top__DOT__refresh : (IData)(vlSelf->d0));\n",
+        ] {
+            let nba = NBA.replacen("    vlSelf->seg", &format!("{read}    vlSelf->seg"), 1);
+            let c = found(&nba);
+            let r = c.iter().find(|c| c.name.ends_with("refresh")).unwrap_or_else(|| panic!("{read}: {c:?}"));
+            // Its top bits shown (15..17) stay above the split.
+            assert_eq!((r.shift, r.split, r.split_shift), (Some(0), Some(8), Some(15)), "{read}");
+        }
+    }
+
+    #[test]
     fn a_read_that_computes_only_what_no_run_observes_is_no_read() {
-        // `an` taking the refresh counter plus one spoils it, unless no run observes `an`.
-        let nba =
-            NBA.replacen("    vlSelf->seg", "    vlSelf->an = (1U + vlSelf->top__DOT__refresh);\n    vlSelf->seg", 1);
+        // `copy` taking the refresh counter plus one spoils it, unless no run observes `copy`.
+        let nba = NBA.replacen(
+            "    vlSelf->seg",
+            "    vlSelf->top__DOT__copy = (1U + vlSelf->top__DOT__refresh);\n    vlSelf->seg",
+            1,
+        );
         let with = |observed: &dyn Fn(&str) -> bool| {
             find(ROOT, &[&nba], &["Vtop___024root___nba_sequent__TOP__0".to_string()], &[], observed)
                 .iter()
@@ -588,7 +605,7 @@ mod tests {
         };
         assert!(!with(&|_| true));
         // (Nothing else reads it then but its own update.)
-        assert!(with(&|n| n != "an"));
+        assert!(with(&|n| n != "top__DOT__copy"));
     }
 
     #[test]

@@ -581,8 +581,8 @@ inline uint64_t counter_after(const Counting& k, uint64_t x, uint64_t n) {
 
 // The values around `x` that no read of the design tells apart from it: the same bits at and
 // above the lowest shifted read, the same side of every compared constant (and not it), no
-// wrap. At level 1 only the reads above the split count (the bits below it are compared as
-// state); at level 2 the whole counter is state.
+// wrap. At level 1 only the shifted reads above the split count (the bits below it are
+// compared as state); at level 2 the whole counter is state.
 void counter_interval(Counting& k, uint64_t x) {
     const BoardCounter& c = k.c;
     if (k.level == 2) {
@@ -591,6 +591,12 @@ void counter_interval(Counting& k, uint64_t x) {
         return;
     }
     const uint32_t shift = k.level == 1 ? c.split_shift : c.shift;
+    if (shift >= c.bits && c.consts.empty()) {
+        // Nothing reads it (above the split): it may even wrap.
+        k.lo = 0;
+        k.width = ~0ull;
+        return;
+    }
     uint64_t below = x, above = k.mask - x;
     if (shift < c.bits) {
         const uint64_t low = (1ull << shift) - 1;
@@ -598,7 +604,7 @@ void counter_interval(Counting& k, uint64_t x) {
         above = std::min(above, low - (x & low));
     }
     for (uint64_t v : c.consts) {
-        if (v > k.mask || k.level != 0) continue;  // never reached; or read below the split
+        if (v > k.mask) continue;  // never reached
         if (v == x) {
             below = above = 0;
         } else if (v > x) {
@@ -613,7 +619,7 @@ void counter_interval(Counting& k, uint64_t x) {
 
 // Every counter is still in its interval.
 inline bool counter_inside(const Counting& k, const uint8_t* root) {
-    return k.level == 2 || ((counter_value(root, k) - k.lo) & k.mask) < k.width;
+    return k.width == ~0ull || ((counter_value(root, k) - k.lo) & k.mask) < k.width;
 }
 inline bool counters_inside(const FastForward& f, const uint8_t* root) {
     for (const Counting& k : f.counters)
@@ -758,12 +764,16 @@ __attribute__((noinline)) uint64_t ff_restart(Board* b, uint64_t t) {
     }
     if (f.overflow || t - f.mark_t > f.patience) {
         // What still differed from the mark.
-        if (f.hint_mask) {
-            const unsigned byte = (unsigned)__builtin_ctzll(f.hint_mask) / 8;
-            const long i = member_at(f, f.hint + byte);
-            if (i >= 0) f.busy[i]++;
+        long busy = -1;
+        const uint64_t differ =
+            (load64((const uint8_t*)b->top->rootp + f.hint) ^ load64(f.mark.data() + f.hint)) & f.hint_mask;
+        if (differ) {
+            const unsigned byte = (unsigned)__builtin_ctzll(differ) / 8;
+            busy = member_at(f, f.hint + byte);
+            if (busy >= 0) f.busy[busy]++;
         }
-        FF_TRACE("ff %.6f ms: no period (%s)\n", t / 1e9, f.overflow ? "too much shown" : "patience");
+        FF_TRACE("ff %.6f ms: no period (%s; %s differs)\n", t / 1e9, f.overflow ? "too much shown" : "patience",
+                 busy >= 0 ? f.members[busy].name : "?");
         // Marked too early (the firmware was still at work) or the period is longer; a counter
         // taken for a short one may be a long one marked near its turn: all count again.
         f.patience = std::min(2 * f.patience, kMaxPeriodPs);
@@ -854,7 +864,7 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
         // Whole periods the counters allow (a phase of the next needs one more).
         uint64_t counted = ~0ull;
         for (const Counting& c : f.counters) {
-            if (!c.drift) continue;
+            if (!c.drift || c.width == ~0ull) continue;  // still, or free to wrap
             const uint64_t at = (counter_value(root, c) - c.lo) & c.mask;
             const uint64_t left = c.c.down ? at : c.width - 1 - at;
             counted = std::min(counted, left / c.drift);

@@ -6,6 +6,7 @@ pub mod build;
 pub mod checks;
 pub mod counters;
 pub mod cpp;
+pub mod demand;
 pub mod dialect;
 pub mod iss;
 pub mod lockstep;

@@ -6,6 +6,7 @@ pub mod debug;
 pub mod icarus;
 pub mod live;
 pub mod lockstep;
+pub mod random_design;
 pub mod repo;
 pub mod strategies;
 

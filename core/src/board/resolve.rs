@@ -673,7 +673,8 @@ impl<'a> Walk<'a> {
             }
         }
         // The course's modules.
-        if let Some((text, module)) = course::stand_in(name) {
+        let connected: Vec<&str> = inst.connections.iter().map(|(p, _)| p.as_str()).collect();
+        if let Some((text, module)) = course::stand_in(name, &connected) {
             let unknown: Vec<&str> = inst
                 .connections
                 .iter()

@@ -12,6 +12,10 @@
 // `reset` is active low when RESET_POLARITY_LOW, else active high (board.md names the
 // parameter, not its effect: this reading is botsim's). Registers power up 0, as an FPGA
 // configures registers without an initial value.
+//
+// DIGITS is botsim's, not the course's: the Nexys3 version (Winter 2014) walks four digits
+// (1111_1110 .. 1111_0111), otherwise the same; botsim sets it to 4 for an instance that
+// connects none of d4..d7.
 `timescale 1ns / 1ps
 module sevensegment #(
     parameter integer CLK_FREQUENCY_HZ       = 100_000_000,
@@ -19,7 +23,8 @@ module sevensegment #(
     parameter integer RESET_POLARITY_LOW     = 1,
     parameter integer CNTR_WIDTH             = 32,
     parameter integer SIMULATE               = 0,
-    parameter integer SIMULATE_FREQUENCY_CNT = 5
+    parameter integer SIMULATE_FREQUENCY_CNT = 5,
+    parameter integer DIGITS                 = 8
 ) (
     input  wire        clk,
     input  wire        reset,
@@ -41,19 +46,16 @@ module sevensegment #(
         else clk_cnt <= tick ? {CNTR_WIDTH{1'b0}} : clk_cnt + 1'b1;
     end
 
+    // The next digit's anode: the one after the lit one, back to digit 0 after the last.
+    reg [7:0] next_an;
+    integer j;
+    always @(*) begin
+        next_an = 8'b1111_1110;
+        for (j = 0; j < DIGITS - 1; j = j + 1)
+            if (an == ~(8'd1 << j)) next_an = ~(8'd1 << (j + 1));
+    end
     always @(posedge clk) begin
-        if (tick) begin
-            case (an)
-                8'b1111_1110: an <= 8'b1111_1101;
-                8'b1111_1101: an <= 8'b1111_1011;
-                8'b1111_1011: an <= 8'b1111_0111;
-                8'b1111_0111: an <= 8'b1110_1111;
-                8'b1110_1111: an <= 8'b1101_1111;
-                8'b1101_1111: an <= 8'b1011_1111;
-                8'b1011_1111: an <= 8'b0111_1111;
-                default:      an <= 8'b1111_1110;
-            endcase
-        end
+        if (tick) an <= next_an;
     end
 
     wire [7:0] p0, p1, p2, p3, p4, p5, p6, p7;

@@ -1,0 +1,566 @@
+//! Which bits of each variable the generated code reads, read by read: a small parser for the
+//! statements and expressions Verilator writes, and a walk from each consumer down to the
+//! variables it reads, carrying the bits of the value that matter.
+//!
+//! A value assigned to an 8-bit variable needs only its low 8 bits; so do both operands of a
+//! sum whose low 8 bits are needed (a carry only goes up), both branches of a choice, both
+//! sides of a bitwise operation; a mask with a constant keeps those bits; a shift by a
+//! constant moves them; anything else (a comparison with a variable, a product, a call, an
+//! index) needs all. A comparison of a variable with a constant is kept apart: it tells the
+//! variable apart only at the constant. [`super::counters`] asks this of every read of a
+//! candidate counter, whatever shape the expression around it has (a port's read mux that
+//! Verilator writes as a chain of choices, a sum shown on a digit).
+//!
+//! ```
+//! use botsim::board::cpp::tokens;
+//! use botsim::board::demand::{demands, Demand};
+//! let code = "vlSelf->an = (0xffU & (vlSelf->sel ? vlSelf->cnt : vlSelf->other));\n\
+//!             if ((0x1fU == vlSelf->cnt)) { vlSelf->x = 1U; }\n";
+//! let toks = tokens(code).unwrap();
+//! let d = demands(&toks, &|name| (name == "an" || name == "x").then_some(8));
+//! let mut cnt: Vec<(usize, Demand)> =
+//!     d.into_iter().filter(|(i, _)| toks[*i + 2] == botsim::board::cpp::Tok::Id("cnt")).collect();
+//! cnt.sort_by_key(|(i, _)| *i);
+//! assert_eq!(cnt.iter().map(|(_, d)| *d).collect::<Vec<_>>(), [Demand::Bits(0xff), Demand::Compare(0x1f)]);
+//! ```
+
+use std::collections::HashMap;
+
+use super::cpp::Tok;
+
+/// What a read needs of the variable it reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Demand {
+    /// These bits of its value.
+    Bits(u64),
+    /// Whether it equals, or is above or below, this constant (all its bits, but only the
+    /// constant tells it apart).
+    Compare(u64),
+}
+
+/// Every read of a variable in `toks` (a function body) whose statement the parser knows, by
+/// the index of its first token (`vlSelf` of `vlSelf->x`, or a local's name): the bits it
+/// needs. `width`: a root variable's width in bits, when it is a scalar. Reads in statements
+/// the parser does not know are not in the map (a caller takes them as needing all).
+pub fn demands(toks: &[Tok], width: &dyn Fn(&str) -> Option<u32>) -> HashMap<usize, Demand> {
+    let mut p = Parser { t: toks, i: 0, locals: HashMap::new(), width, out: HashMap::new() };
+    while p.i < toks.len() {
+        let start = p.i;
+        let mut stmt = Parser { t: toks, i: start, locals: std::mem::take(&mut p.locals), width, out: HashMap::new() };
+        let ok = stmt.statement().is_some();
+        p.locals = std::mem::take(&mut stmt.locals);
+        if ok && stmt.i > start {
+            p.out.extend(stmt.out);
+            p.i = stmt.i;
+        } else {
+            // A statement the parser does not know: skipped whole, its reads unknown.
+            p.i = skip_statement(toks, start);
+        }
+    }
+    p.out
+}
+
+/// The index after the statement that starts at `i` (its `;` at the same depth, or its
+/// braced block).
+fn skip_statement(t: &[Tok], mut i: usize) -> usize {
+    let mut depth = 0i32;
+    let start = i;
+    while i < t.len() {
+        match t[i] {
+            Tok::P("(" | "[" | "{") => depth += 1,
+            Tok::P(")" | "]" | "}") => {
+                depth -= 1;
+                if depth <= 0 && t[i] == Tok::P("}") {
+                    return i + 1;
+                }
+                if depth < 0 {
+                    return (i + 1).max(start + 1);
+                }
+            }
+            Tok::P(";") if depth <= 0 => return i + 1,
+            _ => {}
+        }
+        i += 1;
+    }
+    t.len().max(start + 1)
+}
+
+/// An expression, as far as the demand walk needs it.
+#[derive(Debug)]
+enum Expr {
+    /// A variable read: the index of its first token and its name.
+    Var(usize, String),
+    Num(u64),
+    /// A cast to an integer type of this many bits.
+    Cast(u32, Box<Expr>),
+    Bin(&'static str, Box<Expr>, Box<Expr>),
+    Not(Box<Expr>),
+    /// `~x`, `-x`: bit by bit (a negation's low bits need only the low bits).
+    Bitwise(Box<Expr>),
+    Choice(Box<Expr>, Box<Expr>, Box<Expr>),
+    /// Anything else (a call, an index, a member of something else): its parts need all.
+    Opaque(Vec<Expr>),
+}
+
+/// The bits below and at the highest bit of `d`.
+fn low(d: u64) -> u64 {
+    if d == 0 {
+        0
+    } else {
+        u64::MAX >> d.leading_zeros()
+    }
+}
+
+fn mask(bits: u32) -> u64 {
+    if bits >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << bits) - 1
+    }
+}
+
+const TYPES: &[(&str, u32)] = &[
+    ("CData", 8),
+    ("SData", 16),
+    ("IData", 32),
+    ("QData", 64),
+    ("uint8_t", 8),
+    ("uint16_t", 16),
+    ("uint32_t", 32),
+    ("uint64_t", 64),
+    ("vluint8_t", 8),
+    ("vluint16_t", 16),
+    ("vluint32_t", 32),
+    ("vluint64_t", 64),
+    ("int", 32),
+    ("bool", 1),
+];
+
+struct Parser<'a, 't> {
+    t: &'t [Tok<'a>],
+    i: usize,
+    /// Locals declared so far, with their types' widths.
+    locals: HashMap<&'a str, u32>,
+    width: &'t dyn Fn(&str) -> Option<u32>,
+    out: HashMap<usize, Demand>,
+}
+
+impl<'a, 't> Parser<'a, 't> {
+    fn peek(&self, k: usize) -> Tok<'a> {
+        self.t.get(self.i + k).copied().unwrap_or(Tok::P(""))
+    }
+    fn eat(&mut self, p: &str) -> Option<()> {
+        (self.peek(0) == Tok::P(p)).then(|| self.i += 1)
+    }
+
+    fn statement(&mut self) -> Option<()> {
+        match self.peek(0) {
+            Tok::P(";") => {
+                self.i += 1;
+                Some(())
+            }
+            Tok::P("{") => {
+                self.i += 1;
+                while self.peek(0) != Tok::P("}") {
+                    if self.i >= self.t.len() {
+                        return None;
+                    }
+                    self.statement()?;
+                }
+                self.i += 1;
+                Some(())
+            }
+            Tok::Id("if") | Tok::Id("while") | Tok::Id("switch") => {
+                let switch = self.peek(0) == Tok::Id("switch");
+                self.i += 1;
+                self.eat("(")?;
+                let c = self.expr()?;
+                self.eat(")")?;
+                self.demand(&c, u64::MAX);
+                if switch {
+                    return self.switch_body();
+                }
+                self.statement()?;
+                if self.peek(0) == Tok::Id("else") {
+                    self.i += 1;
+                    self.statement()?;
+                }
+                Some(())
+            }
+            Tok::Id("return") => {
+                self.i += 1;
+                if self.eat(";").is_some() {
+                    return Some(());
+                }
+                let e = self.expr()?;
+                self.demand(&e, u64::MAX);
+                self.eat(";")
+            }
+            Tok::Id("break" | "continue") => {
+                self.i += 1;
+                self.eat(";")
+            }
+            Tok::Id(ty) if TYPES.iter().any(|(n, _)| *n == ty) && matches!(self.peek(1), Tok::Id(_)) => {
+                // A local: `IData __Vdly__x;` or `CData x = e;`.
+                let bits = TYPES.iter().find(|(n, _)| *n == ty).map(|(_, b)| *b).unwrap_or(64);
+                let Tok::Id(name) = self.peek(1) else { return None };
+                self.i += 2;
+                self.locals.insert(name, bits);
+                if self.eat("=").is_some() {
+                    let e = self.expr()?;
+                    self.demand(&e, mask(bits));
+                }
+                self.eat(";")
+            }
+            _ => {
+                // An expression statement, most often an assignment.
+                let lhs = self.expr()?;
+                let op = match self.peek(0) {
+                    Tok::P(op @ ("=" | "|=" | "&=" | "^=" | "+=" | "-=")) => op,
+                    Tok::P(";") => {
+                        self.demand(&lhs, u64::MAX);
+                        self.i += 1;
+                        return Some(());
+                    }
+                    _ => return None,
+                };
+                self.i += 1;
+                let rhs = self.expr()?;
+                self.eat(";")?;
+                // The destination's width bounds what its value needs; its index is read.
+                let bits = match &lhs {
+                    Expr::Var(_, name) => self.var_width(name),
+                    Expr::Opaque(parts) => {
+                        for p in parts {
+                            self.demand(p, u64::MAX);
+                        }
+                        None
+                    }
+                    _ => None,
+                };
+                let d = bits.map_or(u64::MAX, mask);
+                if op != "=" {
+                    // `x |= e` reads x as well.
+                    self.demand(&lhs, d);
+                }
+                self.demand(&rhs, d);
+                Some(())
+            }
+        }
+    }
+
+    fn switch_body(&mut self) -> Option<()> {
+        self.eat("{")?;
+        loop {
+            match self.peek(0) {
+                Tok::P("}") => {
+                    self.i += 1;
+                    return Some(());
+                }
+                Tok::Id("case") => {
+                    self.i += 1;
+                    self.expr()?;
+                    self.eat(":")?;
+                }
+                Tok::Id("default") => {
+                    self.i += 1;
+                    self.eat(":")?;
+                }
+                _ => {
+                    if self.i >= self.t.len() {
+                        return None;
+                    }
+                    self.statement()?
+                }
+            }
+        }
+    }
+
+    /// A variable's width: a local's type, or the root's scalar.
+    fn var_width(&self, name: &str) -> Option<u32> {
+        self.locals.get(name).copied().or_else(|| (self.width)(name))
+    }
+
+    /// Record what `e`'s reads need when `d` of its value's bits are needed.
+    fn demand(&mut self, e: &Expr, d: u64) {
+        match e {
+            Expr::Var(at, name) => {
+                let d = self.var_width(name).map_or(d, |w| d & mask(w));
+                self.record(*at, Demand::Bits(d));
+            }
+            Expr::Num(_) => {}
+            Expr::Cast(bits, x) => self.demand(x, d & mask(*bits)),
+            Expr::Not(x) => self.demand(x, u64::MAX),
+            Expr::Bitwise(x) => self.demand(x, low(d)),
+            Expr::Choice(c, a, b) => {
+                self.demand(c, u64::MAX);
+                self.demand(a, d);
+                self.demand(b, d);
+            }
+            Expr::Opaque(parts) => {
+                for p in parts {
+                    self.demand(p, u64::MAX);
+                }
+            }
+            Expr::Bin(op, a, b) => match *op {
+                "&" => match (constant(a), constant(b)) {
+                    (Some(m), _) => self.demand(b, d & m),
+                    (_, Some(m)) => self.demand(a, d & m),
+                    _ => {
+                        self.demand(a, d);
+                        self.demand(b, d);
+                    }
+                },
+                "|" | "^" => {
+                    self.demand(a, d);
+                    self.demand(b, d);
+                }
+                "+" | "-" => {
+                    self.demand(a, low(d));
+                    self.demand(b, low(d));
+                }
+                "<<" | ">>" => match constant(b) {
+                    Some(k) if k < 64 => {
+                        let moved = if *op == "<<" {
+                            d >> k
+                        } else if d == u64::MAX {
+                            u64::MAX << k
+                        } else {
+                            d << k
+                        };
+                        self.demand(a, moved);
+                    }
+                    _ => {
+                        self.demand(a, u64::MAX);
+                        self.demand(b, u64::MAX);
+                    }
+                },
+                "==" | "!=" | "<" | ">" | "<=" | ">=" => match (constant(a), constant(b)) {
+                    (Some(c), None) => self.compare(b, c),
+                    (None, Some(c)) => self.compare(a, c),
+                    _ => {
+                        self.demand(a, u64::MAX);
+                        self.demand(b, u64::MAX);
+                    }
+                },
+                _ => {
+                    self.demand(a, u64::MAX);
+                    self.demand(b, u64::MAX);
+                }
+            },
+        }
+    }
+
+    /// `e` compared with the constant `c`: a variable (under casts) keeps the constant.
+    fn compare(&mut self, e: &Expr, c: u64) {
+        match e {
+            Expr::Var(at, _) => self.record(*at, Demand::Compare(c)),
+            Expr::Cast(bits, x) if matches!(**x, Expr::Var(..)) && c <= mask(*bits) => self.compare(x, c),
+            _ => self.demand(e, u64::MAX),
+        }
+    }
+
+    fn record(&mut self, at: usize, d: Demand) {
+        // A read met twice (never, in a tree) keeps what needs more.
+        let d = match (self.out.get(&at), d) {
+            (Some(Demand::Bits(a)), Demand::Bits(b)) => Demand::Bits(a | b),
+            (Some(_), _) => Demand::Bits(u64::MAX),
+            (None, d) => d,
+        };
+        self.out.insert(at, d);
+    }
+
+    // Expressions, by C's precedence.
+    fn expr(&mut self) -> Option<Expr> {
+        let c = self.binary(0)?;
+        if self.eat("?").is_some() {
+            let a = self.expr()?;
+            self.eat(":")?;
+            let b = self.expr()?;
+            return Some(Expr::Choice(Box::new(c), Box::new(a), Box::new(b)));
+        }
+        Some(c)
+    }
+
+    fn binary(&mut self, level: usize) -> Option<Expr> {
+        const LEVELS: &[&[&str]] = &[
+            &["||"],
+            &["&&"],
+            &["|"],
+            &["^"],
+            &["&"],
+            &["==", "!="],
+            &["<", ">", "<=", ">="],
+            &["<<", ">>"],
+            &["+", "-"],
+            &["*", "/", "%"],
+        ];
+        if level == LEVELS.len() {
+            return self.unary();
+        }
+        let mut a = self.binary(level + 1)?;
+        while let Tok::P(op) = self.peek(0) {
+            let Some(op) = LEVELS[level].iter().find(|o| **o == op) else { break };
+            self.i += 1;
+            let b = self.binary(level + 1)?;
+            a = Expr::Bin(op, Box::new(a), Box::new(b));
+        }
+        Some(a)
+    }
+
+    fn unary(&mut self) -> Option<Expr> {
+        match self.peek(0) {
+            Tok::P("!") => {
+                self.i += 1;
+                Some(Expr::Not(Box::new(self.unary()?)))
+            }
+            Tok::P("~" | "-") => {
+                self.i += 1;
+                Some(Expr::Bitwise(Box::new(self.unary()?)))
+            }
+            Tok::P("(") => {
+                if let (Tok::Id(ty), Tok::P(")")) = (self.peek(1), self.peek(2)) {
+                    if let Some((_, bits)) = TYPES.iter().find(|(n, _)| *n == ty) {
+                        self.i += 3;
+                        return Some(Expr::Cast(*bits, Box::new(self.unary()?)));
+                    }
+                }
+                self.postfix()
+            }
+            _ => self.postfix(),
+        }
+    }
+
+    fn postfix(&mut self) -> Option<Expr> {
+        let mut e = self.primary()?;
+        loop {
+            match self.peek(0) {
+                Tok::P("[") => {
+                    self.i += 1;
+                    let idx = self.expr()?;
+                    self.eat("]")?;
+                    e = Expr::Opaque(vec![e, idx]);
+                }
+                Tok::P("(") => {
+                    self.i += 1;
+                    let mut parts = vec![e];
+                    if self.eat(")").is_none() {
+                        loop {
+                            parts.push(self.expr()?);
+                            if self.eat(")").is_some() {
+                                break;
+                            }
+                            self.eat(",")?;
+                        }
+                    }
+                    e = Expr::Opaque(parts);
+                }
+                Tok::P("." | "->") if matches!(self.peek(1), Tok::Id(_)) => {
+                    self.i += 2;
+                    e = Expr::Opaque(vec![e]);
+                }
+                _ => return Some(e),
+            }
+        }
+    }
+
+    fn primary(&mut self) -> Option<Expr> {
+        let at = self.i;
+        match (self.peek(0), self.peek(1), self.peek(2)) {
+            (Tok::Id("vlSelf" | "vlSelfRef"), Tok::P("->" | "."), Tok::Id(name)) => {
+                self.i += 3;
+                Some(Expr::Var(at, name.to_string()))
+            }
+            (Tok::Num(n), _, _) => {
+                self.i += 1;
+                Some(number(n).map_or(Expr::Opaque(Vec::new()), Expr::Num))
+            }
+            (Tok::Str, _, _) => {
+                self.i += 1;
+                Some(Expr::Opaque(Vec::new()))
+            }
+            (Tok::Id(name), _, _) => {
+                self.i += 1;
+                Some(if self.locals.contains_key(name) || name.starts_with("__V") {
+                    Expr::Var(at, name.to_string())
+                } else {
+                    // A function's or a constant's name.
+                    Expr::Opaque(Vec::new())
+                })
+            }
+            (Tok::P("("), _, _) => {
+                self.i += 1;
+                let e = self.expr()?;
+                self.eat(")")?;
+                Some(e)
+            }
+            _ => None,
+        }
+    }
+}
+
+/// The constant an expression is (under casts), if it is one.
+fn constant(e: &Expr) -> Option<u64> {
+    match e {
+        Expr::Num(n) => Some(*n),
+        Expr::Cast(bits, x) => constant(x).map(|v| v & mask(*bits)),
+        _ => None,
+    }
+}
+
+/// A number Verilator writes (`0x3ffffU`, `15U`, `1ULL`), if it is one.
+pub fn number(n: &str) -> Option<u64> {
+    let n = n.trim_end_matches(['U', 'L', 'u', 'l']);
+    match n.strip_prefix("0x").or_else(|| n.strip_prefix("0X")) {
+        Some(h) => u64::from_str_radix(h, 16).ok(),
+        None => n.parse().ok(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::board::cpp::tokens;
+
+    /// The demands of the reads of `x` in `code`, in order.
+    fn of_x(code: &str, widths: &[(&str, u32)]) -> Vec<Demand> {
+        let toks = tokens(code).unwrap();
+        let w = |n: &str| widths.iter().find(|(m, _)| *m == n).map(|(_, b)| *b);
+        let d = demands(&toks, &w);
+        let mut v: Vec<(usize, Demand)> =
+            d.into_iter().filter(|(i, _)| toks.get(i + 2) == Some(&Tok::Id("x")) || toks[*i] == Tok::Id("x")).collect();
+        v.sort_by_key(|(i, _)| *i);
+        v.into_iter().map(|(_, d)| d).collect()
+    }
+
+    #[test]
+    fn each_shape_of_read_needs_the_bits_it_uses() {
+        let w = [("x", 27), ("an", 8), ("wide", 32), ("y", 27)];
+        // Into an 8-bit variable, through a choice (a port's read mux).
+        assert_eq!(of_x("vlSelf->an = (vlSelf->s ? vlSelf->x : vlSelf->y);", &w), [Demand::Bits(0xff)]);
+        // A shift then a mask: bits 15-17.
+        assert_eq!(of_x("vlSelf->an = (7U & (vlSelf->x >> 0xfU));", &w), [Demand::Bits(7 << 15)]);
+        // A sum shown on 8 bits needs the low 8 bits only.
+        assert_eq!(of_x("vlSelf->an = ((IData)(1U) + vlSelf->x);", &w), [Demand::Bits(0xff)]);
+        // A mask, either side.
+        assert_eq!(of_x("vlSelf->wide = (vlSelf->x & 0x80000U);", &w), [Demand::Bits(0x80000)]);
+        // Compared with a constant (under a cast), or with a variable.
+        assert_eq!(of_x("vlSelf->an = (0x16eb4eU == (IData)(vlSelf->x));", &w), [Demand::Compare(0x16eb4e)]);
+        assert_eq!(of_x("vlSelf->an = (vlSelf->x < vlSelf->y);", &w), [Demand::Bits((1 << 27) - 1)]);
+        // In a condition, a call, an index: all of it.
+        assert_eq!(of_x("if (vlSelf->x) { vlSelf->an = 1U; }", &w), [Demand::Bits((1 << 27) - 1)]);
+        assert_eq!(of_x("vlSelf->an = VL_REDXOR_32(vlSelf->x);", &w), [Demand::Bits((1 << 27) - 1)]);
+        // Into a local: its type's width.
+        assert_eq!(of_x("CData t; t = vlSelf->x; vlSelf->an = t;", &w), [Demand::Bits(0xff)]);
+    }
+
+    #[test]
+    fn a_statement_it_does_not_know_leaves_its_reads_unknown_and_goes_on() {
+        let toks = tokens("for (i = 0; i < 4; ++i) { vlSelf->an = vlSelf->x; }\nvlSelf->an = vlSelf->x;").unwrap();
+        let d = demands(&toks, &|n| (n == "an").then_some(8).or((n == "x").then_some(27)));
+        let reads: Vec<usize> = d.keys().copied().filter(|i| toks[i + 2] == Tok::Id("x")).collect();
+        // Only the second read, after the loop the parser does not follow.
+        assert_eq!(reads.len(), 1);
+        assert!(reads[0] > toks.iter().position(|t| *t == Tok::P("}")).unwrap());
+    }
+}

@@ -1,0 +1,819 @@
+//! Random board designs for the fast-forward's property tests (tests/random_designs.rs):
+//! clean-room Verilog and a team program, generated from a seed.
+//!
+//! A design is a Nexys4 top around the course's system, as teams build it: the course's
+//! `debounce` and `sevensegment` (botsim's, board.md §2.1, with `SIMULATE` 0 or 1), the team's
+//! KCPSM6 with its program (`teampgm.psm`, which botsim assembles) waiting in one of a few
+//! kinds of loop, its port interface, the upd_sysregs interrupt, and the bot; around them a
+//! random mix of the things teams add: wrap counters of any terminal count, free-running
+//! counters, clock dividers, toggles, rotating shift registers, PWM compares, LFSRs, some
+//! enabled by others' ticks, on the oscillator or on clocks from an MMCM or a DCM_SP with
+//! rational ratios; their bits feed the LEDs, the display's digits and points, the CPU's input
+//! ports and sometimes a VGA output (the course's `dtg` on a 25 MHz clock).
+//!
+//! The generator also says whether it knows the design to be periodic within reach: every
+//! part either repeats with a short period (the CPU's loop, a short wrap counter, a ring, a
+//! PWM's low byte...) or is a counter whose value the rest reads only at long intervals, so a
+//! run should skip nearly all of it. That knowledge comes from the elements' definitions
+//! here, not from botsim.
+
+use std::fmt::Write;
+
+/// A deterministic generator (xorshift64*).
+pub struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Rng {
+        Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
+    }
+    pub fn next(&mut self) -> u64 {
+        self.0 ^= self.0 >> 12;
+        self.0 ^= self.0 << 25;
+        self.0 ^= self.0 >> 27;
+        self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
+    }
+    /// A number in `lo..=hi`.
+    pub fn range(&mut self, lo: u64, hi: u64) -> u64 {
+        lo + self.next() % (hi - lo + 1)
+    }
+    pub fn chance(&mut self, percent: u64) -> bool {
+        self.next() % 100 < percent
+    }
+    pub fn pick<'a, T>(&mut self, items: &'a [T]) -> &'a T {
+        &items[(self.next() % items.len() as u64) as usize]
+    }
+}
+
+/// A design, ready to write out.
+pub struct Design {
+    pub seed: u64,
+    /// `nexys4fpga.v`, `teampgm.psm`.
+    pub top: String,
+    pub program: String,
+    pub simulate: bool,
+    /// A stimulus file (botsim board --stimulus).
+    pub stimulus: String,
+    pub seconds: f64,
+    /// Ok(the period of what is not a counter, in 100 MHz clocks): the design should skip
+    /// nearly all of a run; Err(why the generator does not know that).
+    pub reach: Result<u64, String>,
+    /// One line per part, for a failure's message.
+    pub parts: Vec<String>,
+}
+
+impl Design {
+    /// Write the design's files into `dir`.
+    pub fn write(&self, dir: &std::path::Path) {
+        std::fs::write(dir.join("nexys4fpga.v"), &self.top).unwrap();
+        std::fs::write(dir.join("teampgm.psm"), &self.program).unwrap();
+        std::fs::write(dir.join("stimulus.txt"), &self.stimulus).unwrap();
+        std::fs::write(dir.join("parts.txt"), self.parts.join("\n") + "\n").unwrap();
+    }
+}
+
+/// A time as a fraction of a picosecond: num / den.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Ps {
+    num: u128,
+    den: u128,
+}
+
+fn gcd(a: u128, b: u128) -> u128 {
+    if b == 0 {
+        a
+    } else {
+        gcd(b, a % b)
+    }
+}
+
+impl Ps {
+    fn new(num: u128, den: u128) -> Ps {
+        let g = gcd(num, den);
+        Ps { num: num / g, den: den / g }
+    }
+    /// The least common multiple of two periods (in lowest terms: lcm of the numerators over
+    /// the gcd of the denominators).
+    fn lcm(self, o: Ps) -> Ps {
+        let n = self.num / gcd(self.num, o.num) * o.num;
+        Ps::new(n, gcd(self.den, o.den))
+    }
+    fn times(self, k: u64) -> Ps {
+        Ps::new(self.num * k as u128, self.den)
+    }
+    /// In 100 MHz clocks, rounded up.
+    fn clocks(self) -> u64 {
+        (self.num.div_ceil(self.den * 10_000)) as u64
+    }
+}
+
+/// A clock of the design: its net and period.
+struct Clock {
+    net: String,
+    period: Ps,
+}
+
+/// What the rest of the design can tell of a part over time.
+#[derive(Clone, Copy, Debug)]
+enum Shape {
+    /// What the rest reads of it repeats every `period` cycles of its clock, but at its
+    /// boundaries, at least `boundary` cycles apart (a counter whose low bits repeat while the
+    /// rest counts: a compared constant, a high bit shown).
+    Known { period: u64, boundary: Option<u64> },
+    /// Not within reach (an LFSR of 32 bits, a count between short and long).
+    Unknown(&'static str),
+}
+
+/// A part whose state repeats every `period` cycles.
+fn periodic(period: u64) -> Shape {
+    Shape::Known { period, boundary: None }
+}
+
+/// A counter of `width` bits counting to `top` (wrapping there, or at 2^width: `None`), of
+/// which bit `bit` is shown, and whose low byte the CPU's port mux reads: short, it is state;
+/// long, its low byte repeats every 256 and its boundaries (the wrap, the bit shown) are
+/// far apart; neither in between (the fast-forward may take it either way, and the
+/// generator does not claim a skip then).
+fn counter(width: u32, top: Option<u64>, bit: Option<u32>) -> Shape {
+    let cycle = top.map_or(1u64 << width.min(48), |t| t + 1);
+    if cycle <= 64 {
+        return periodic(cycle);
+    }
+    if width <= 8 {
+        return Shape::Unknown("a short counter read whole");
+    }
+    let mut boundary = top.map(|t| t + 1);
+    if let Some(k) = bit.filter(|&k| k >= 8) {
+        boundary = Some(boundary.map_or(1 << k, |b| b.min(1 << k)));
+    }
+    match boundary {
+        Some(b) if b < 50_000 => Shape::Unknown("a count between short and long"),
+        b => Shape::Known { period: 256, boundary: b },
+    }
+}
+
+/// One part the generator adds.
+struct Part {
+    /// Its Verilog (declarations and always blocks).
+    verilog: String,
+    /// A one-bit output, and a wider value (at least 5 bits) for a digit.
+    bit: String,
+    value: String,
+    shape: Shape,
+    clock: usize,
+    text: String,
+}
+
+/// The design for `seed`.
+pub fn generate(seed: u64) -> Design {
+    let mut r = Rng::new(seed);
+    let simulate = r.chance(50);
+    let mut parts_text = vec![format!("seed {seed}, SIMULATE = {}", simulate as u8)];
+
+    // Clocks: the oscillator, and maybe an MMCM or a DCM_SP.
+    let osc = Ps::new(10_000, 1);
+    let mut clocks = vec![Clock { net: "clk".into(), period: osc }];
+    let mut clocking = String::new();
+    let mut vga_clock = None;
+    match r.range(0, 2) {
+        1 => {
+            let mult = r.range(6, 12);
+            let d0 = r.range(2, 40);
+            let d1 = r.range(2, 40);
+            // VGA's 25 MHz when it fits: VCO / 25 (600..1200 MHz: 24..48).
+            let vga =
+                if (24..=48).contains(&(mult * 100 / 25)) && (mult * 100) % 25 == 0 { Some(mult * 4) } else { None };
+            let d2 = vga.unwrap_or(r.range(2, 40));
+            writeln!(
+                clocking,
+                "    // An MMCM: VCO = 100 MHz x {mult}; outputs / {d0}, / {d1}, / {d2}.
+    wire mmcm_fb, mmcm_a, mmcm_b, mmcm_c, locked;
+    MMCME2_BASE #(.CLKIN1_PERIOD(10.0), .CLKFBOUT_MULT_F({mult}.0), .DIVCLK_DIVIDE(1),
+        .CLKOUT0_DIVIDE_F({d0}.0), .CLKOUT1_DIVIDE({d1}), .CLKOUT2_DIVIDE({d2})) MMCM (
+        .CLKIN1(clk), .CLKFBIN(mmcm_fb), .CLKFBOUT(mmcm_fb), .CLKOUT0(mmcm_a), .CLKOUT1(mmcm_b),
+        .CLKOUT2(mmcm_c), .LOCKED(locked), .PWRDWN(1'b0), .RST(1'b0));
+    wire clk_a, clk_b, clk_c;
+    BUFG BA (.I(mmcm_a), .O(clk_a));
+    BUFG BB (.I(mmcm_b), .O(clk_b));
+    BUFG BC (.I(mmcm_c), .O(clk_c));"
+            )
+            .unwrap();
+            for (net, d) in [("clk_a", d0), ("clk_b", d1), ("clk_c", d2)] {
+                clocks.push(Clock { net: net.into(), period: Ps::new(10_000 * d as u128, mult as u128) });
+            }
+            if vga.is_some() {
+                vga_clock = Some(3);
+            }
+            parts_text.push(format!("MMCM x{mult}: /{d0} /{d1} /{d2}"));
+        }
+        2 => {
+            let dv = *r.pick(&[2u64, 4, 5, 8, 10, 16]);
+            let (m, d) = *r.pick(&[(2u64, 1u64), (3, 2), (4, 3), (5, 4), (3, 4), (2, 3), (7, 5), (5, 2)]);
+            writeln!(
+                clocking,
+                "    // A DCM_SP: CLK0 through a BUFG, CLKDV = 100 MHz / {dv}, CLKFX = 100 MHz x {m} / {d}.
+    wire dcm_0, dcm_dv, dcm_fx, clk_0, clk_dv, clk_fx, locked;
+    DCM_SP #(.CLKIN_PERIOD(10.0), .CLKDV_DIVIDE({dv}.0), .CLKFX_MULTIPLY({m}), .CLKFX_DIVIDE({d})) DCM (
+        .CLKIN(clk), .CLKFB(clk_0), .CLK0(dcm_0), .CLKDV(dcm_dv), .CLKFX(dcm_fx), .LOCKED(locked),
+        .RST(1'b0), .PSEN(1'b0), .PSINCDEC(1'b0), .PSCLK(1'b0), .DSSEN(1'b0));
+    BUFG B0 (.I(dcm_0), .O(clk_0));
+    BUFG BDV (.I(dcm_dv), .O(clk_dv));
+    BUFG BFX (.I(dcm_fx), .O(clk_fx));"
+            )
+            .unwrap();
+            clocks.push(Clock { net: "clk_0".into(), period: osc });
+            clocks.push(Clock { net: "clk_dv".into(), period: Ps::new(10_000 * dv as u128, 1) });
+            clocks.push(Clock { net: "clk_fx".into(), period: Ps::new(10_000 * d as u128, m as u128) });
+            if dv == 4 {
+                vga_clock = Some(2);
+            }
+            parts_text.push(format!("DCM_SP: CLKDV /{dv}, CLKFX x{m}/{d}"));
+        }
+        _ => {
+            clocking.push_str("    wire locked = 1'b1;\n");
+        }
+    }
+
+    // The parts.
+    let mut parts: Vec<Part> = Vec::new();
+    let n = r.range(2, 7) as usize;
+    for i in 0..n {
+        let clock = if clocks.len() > 1 && r.chance(40) { r.range(1, clocks.len() as u64 - 1) as usize } else { 0 };
+        // Enabled by an earlier part's one-bit output (its tick, its toggle), sometimes.
+        let enable =
+            (i > 0 && r.chance(25)).then(|| r.range(0, i as u64 - 1) as usize).filter(|&j| parts[j].clock == clock);
+        let part = make_part(&mut r, i, clock, enable.map(|j| &parts[j]), simulate);
+        parts_text.push(format!("part {i} on {}: {}", clocks[clock].net, part.text));
+        parts.push(part);
+    }
+
+    // The team's program.
+    let kind = *r.pick(&[Program::Semaphore, Program::PollSwitches, Program::Countdown(0)]);
+    let kind = match kind {
+        Program::Countdown(_) => Program::Countdown(r.range(1, 200)),
+        k => k,
+    };
+    parts_text.push(format!("team program: {kind:?}"));
+    let program = program(kind);
+
+    // VGA, sometimes, on a 25 MHz clock; its vertical sync sometimes shown on an LED too
+    // (then what a run observes includes the pixel clock's part: a frame is 1.68 M clocks).
+    let vga = vga_clock.filter(|_| r.chance(50));
+    let vga_on_led = vga.is_some() && r.chance(30);
+    if let Some(c) = vga {
+        parts_text.push(format!("VGA on {}{}", clocks[c].net, if vga_on_led { ", its vsync on LED 15" } else { "" }));
+    }
+
+    // What each LED, digit and point shows.
+    let sources: Vec<String> = parts.iter().map(|p| p.bit.clone()).collect();
+    let mut leds = Vec::new();
+    for k in 0..16 {
+        let s = if k == 15 && vga_on_led {
+            "vga_vs".to_string()
+        } else {
+            match r.range(0, 3) {
+                0 => format!("cpu_leds[{k}]"),
+                1 => format!("db_sw[{k}]"),
+                2 => format!("db_btns[{}]", k % 5),
+                _ => r.pick(&sources).clone(),
+            }
+        };
+        leds.push(s);
+    }
+    leds.reverse();
+    let mut digits = Vec::new();
+    for k in 0..8 {
+        digits.push(if r.chance(60) {
+            format!("cpu_dig{k}")
+        } else {
+            let p = r.pick(&parts);
+            format!("{}[4:0]", p.value)
+        });
+    }
+    let mut points = Vec::new();
+    for _ in 0..8 {
+        points.push(if r.chance(50) { "1'b0".to_string() } else { r.pick(&sources).clone() });
+    }
+    points.reverse();
+    // Input ports 20.. read the parts' values (the CPU's programs here do not read them, but
+    // the read mux is logic the design has).
+    let mut in_mux = String::new();
+    for (i, p) in parts.iter().enumerate() {
+        writeln!(in_mux, "            8'h{:02X}: in_port <= {}[7:0];", 0x20 + i, p.value).unwrap();
+    }
+
+    // Whether the generator knows the design to repeat within reach.
+    let reach = reach(&parts, &clocks, simulate, kind, vga.is_some() && vga_on_led);
+    parts_text.push(match &reach {
+        Ok(p) => format!("periodic within reach: {p} clocks"),
+        Err(why) => format!("not known to be periodic within reach: {why}"),
+    });
+
+    let mut verilog_parts = String::new();
+    for p in &parts {
+        verilog_parts.push_str(&p.verilog);
+    }
+    for (i, c) in clocks.iter().enumerate() {
+        verilog_parts = verilog_parts.replace(&format!("@CLK{i}@"), &c.net);
+    }
+    let vga_verilog = match vga {
+        Some(c) => {
+            let color = r.pick(&sources).clone();
+            format!(
+                "    // VGA from the course's display timing generator on {net}.
+    wire vga_hs, vga_vs, video_on;
+    wire [10:0] pixel_row, pixel_column;
+    dtg DTG (.clock({net}), .rst(sysreset), .horiz_sync(vga_hs), .vert_sync(vga_vs), .video_on(video_on),
+        .pixel_row(pixel_row), .pixel_column(pixel_column));
+    reg [11:0] rgb = 12'd0;
+    always @(posedge {net}) rgb <= video_on ? {{pixel_row[5:2], pixel_column[5:2], {color}, 3'b101}} : 12'd0;
+    assign vgaRed = rgb[11:8];
+    assign vgaGreen = rgb[7:4];
+    assign vgaBlue = rgb[3:0];
+    assign Hsync = vga_hs;
+    assign Vsync = vga_vs;
+",
+                net = clocks[c].net
+            )
+        }
+        None => "    wire vga_vs = 1'b0;\n".into(),
+    };
+    let vga_ports = if vga.is_some() {
+        "    output wire [ 3:0] vgaRed, vgaGreen, vgaBlue,\n    output wire        Hsync, Vsync,\n"
+    } else {
+        ""
+    };
+    let interrupt = if kind == Program::Semaphore {
+        "    // upd_sysregs interrupts the team CPU until it acknowledges.
+    always @(posedge clk) begin
+        if (interrupt_ack | sysreset) interrupt <= 1'b0;
+        else if (upd_sysregs) interrupt <= 1'b1;
+    end
+"
+    } else {
+        ""
+    };
+    let top = format!(
+        "// nexys4fpga.v: a random board design (tests/common/random_design.rs, seed {seed}).
+`timescale 1ns / 1ps
+module nexys4fpga #(
+    parameter SIMULATE = 0
+) (
+    input  wire        clk,
+    input  wire        btnCpuReset,
+    input  wire        btnC, btnU, btnD, btnL, btnR,
+    input  wire [15:0] sw,
+    output wire [15:0] led,
+    output wire [ 6:0] seg,
+    output wire        dp,
+{vga_ports}    output wire [ 7:0] an
+);
+{clocking}
+    // The course's debounce: bit 0 the CPU reset button (active low).
+    wire [ 5:0] db_pbtns;
+    wire [15:0] db_sw;
+    wire [ 4:0] db_btns = db_pbtns[5:1];
+    wire        sysreset = ~db_pbtns[0] | ~locked;
+    debounce #(.RESET_POLARITY_LOW(1), .SIMULATE(SIMULATE)) DB (
+        .clk(clk), .pbtn_in({{btnC, btnL, btnU, btnR, btnD, btnCpuReset}}), .switch_in(sw),
+        .pbtn_db(db_pbtns), .swtch_db(db_sw));
+
+    // The team's PicoBlaze and its program.
+    wire [11:0] address;
+    wire [17:0] instruction;
+    wire        bram_enable, rdl;
+    wire [ 7:0] port_id, out_port;
+    reg  [ 7:0] in_port = 8'd0;
+    wire        write_strobe, k_write_strobe, read_strobe, interrupt_ack;
+    reg         interrupt = 1'b0;
+    kcpsm6 #(.interrupt_vector(12'h3FF), .scratch_pad_memory_size(64), .hwbuild(8'h00)) APPCPU (
+        .address(address), .instruction(instruction), .bram_enable(bram_enable),
+        .port_id(port_id), .write_strobe(write_strobe), .k_write_strobe(k_write_strobe),
+        .out_port(out_port), .read_strobe(read_strobe), .in_port(in_port),
+        .interrupt(interrupt), .interrupt_ack(interrupt_ack), .sleep(1'b0),
+        .reset(sysreset | rdl), .clk(clk));
+    teampgm APPPGM (.enable(bram_enable), .address(address), .instruction(instruction), .rdl(rdl), .clk(clk));
+
+    // The bot.
+    reg  [ 7:0] motctl = 8'd0;
+    wire [ 7:0] locx, locy, botinfo, sensors, lmdist, rmdist;
+    wire        upd_sysregs;
+    bot ROJOBOT (.MotCtl_in(motctl), .LocX_reg(locx), .LocY_reg(locy), .Sensors_reg(sensors),
+        .BotInfo_reg(botinfo), .LMDist_reg(lmdist), .RMDist_reg(rmdist),
+        .vid_row(7'd0), .vid_col(7'd0), .vid_pixel_out(), .clk(clk), .reset(sysreset), .upd_sysregs(upd_sysregs));
+{interrupt}
+    // The parts.
+{verilog_parts}
+    // The port interface (the course's demo port numbers).
+    reg [15:0] cpu_leds = 16'd0;
+    reg [ 4:0] cpu_dig0 = 5'd23, cpu_dig1 = 5'd23, cpu_dig2 = 5'd23, cpu_dig3 = 5'd23;
+    reg [ 4:0] cpu_dig4 = 5'd23, cpu_dig5 = 5'd23, cpu_dig6 = 5'd23, cpu_dig7 = 5'd23;
+    always @(posedge clk) begin
+        case (port_id)
+            8'h00: in_port <= {{3'b000, db_btns}};
+            8'h01: in_port <= db_sw[7:0];
+            8'h0A: in_port <= locx;
+            8'h0B: in_port <= locy;
+            8'h0C: in_port <= botinfo;
+            8'h0D: in_port <= sensors;
+            8'h0E: in_port <= lmdist;
+            8'h0F: in_port <= rmdist;
+            8'h11: in_port <= db_sw[15:8];
+{in_mux}            default: in_port <= 8'h00;
+        endcase
+    end
+    always @(posedge clk) begin
+        if (sysreset) begin
+            cpu_leds <= 16'd0;
+            motctl <= 8'd0;
+        end else if (write_strobe | k_write_strobe) begin
+            case (port_id)
+                8'h02: cpu_leds[7:0] <= out_port;
+                8'h03: cpu_dig0 <= out_port[4:0];
+                8'h04: cpu_dig1 <= out_port[4:0];
+                8'h05: cpu_dig2 <= out_port[4:0];
+                8'h06: cpu_dig3 <= out_port[4:0];
+                8'h09: motctl <= out_port;
+                8'h12: cpu_leds[15:8] <= out_port;
+                8'h13: cpu_dig4 <= out_port[4:0];
+                8'h14: cpu_dig5 <= out_port[4:0];
+                8'h15: cpu_dig6 <= out_port[4:0];
+                8'h16: cpu_dig7 <= out_port[4:0];
+                default: ;
+            endcase
+        end
+    end
+{vga_verilog}
+    // The course's seven-segment driver.
+    sevensegment #(.RESET_POLARITY_LOW(0), .SIMULATE(SIMULATE)) SSB (
+        .clk(clk), .reset(sysreset),
+        .d7({d7}), .d6({d6}), .d5({d5}), .d4({d4}), .d3({d3}), .d2({d2}), .d1({d1}), .d0({d0}),
+        .dp({{{points}}}), .seg({{dp, seg}}), .an(an), .digits_out());
+
+    assign led = {{{leds}}};
+endmodule
+",
+        d7 = digits[7],
+        d6 = digits[6],
+        d5 = digits[5],
+        d4 = digits[4],
+        d3 = digits[3],
+        d2 = digits[2],
+        d1 = digits[1],
+        d0 = digits[0],
+        points = points.join(", "),
+        leds = leds.join(", "),
+    );
+
+    // Random inputs: switch changes and presses, and one CPU reset.
+    let seconds = if simulate { 0.12 } else { 0.15 };
+    let mut stimulus = String::new();
+    let mut at = 5.0 + r.range(0, 10) as f64;
+    while at < seconds * 1000.0 - 20.0 {
+        match r.range(0, 3) {
+            0 => writeln!(stimulus, "{at:.3}ms switches {:04X}", r.next() & 0xFFFF).unwrap(),
+            1 => writeln!(
+                stimulus,
+                "{at:.3}ms press {} {}ms",
+                r.pick(&["btnC", "btnU", "btnD", "btnL", "btnR"]),
+                r.range(1, 25)
+            )
+            .unwrap(),
+            _ => writeln!(stimulus, "{at:.3}ms switches {:04X}", 1u64 << r.range(0, 15)).unwrap(),
+        }
+        at += r.range(8, 45) as f64 + r.range(0, 999) as f64 / 1000.0;
+    }
+    writeln!(stimulus, "{:.3}ms press btnCpuReset {}ms", seconds * 500.0, r.range(1, 20)).unwrap();
+
+    Design { seed, top, program, simulate, stimulus, seconds, reach, parts: parts_text }
+}
+
+/// The team program's kind.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Program {
+    /// Waits on a semaphore in the scratchpad (no port access), set by the upd_sysregs
+    /// interrupt's routine; then shows the bot's place and drives it with the switches.
+    Semaphore,
+    /// Polls the switches; on a change shows them and drives the bot with them.
+    PollSwitches,
+    /// Counts down from N, then toggles an LED and a digit.
+    Countdown(u64),
+}
+
+/// The program of `kind`, and the clocks of its loop's period once settled.
+fn program(kind: Program) -> String {
+    let head = "; teampgm.psm: a random design's team program (tests/common/random_design.rs).
+CONSTANT PA_PBTNS, 00
+CONSTANT PA_SW, 01
+CONSTANT PA_LEDS, 02
+CONSTANT PA_DIG0, 03
+CONSTANT PA_DIG1, 04
+CONSTANT PA_MOTCTL, 09
+CONSTANT PA_LOCX, 0A
+CONSTANT PA_LOCY, 0B
+CONSTANT PA_SENSORS, 0D
+CONSTANT PA_LEDS_HI, 12
+CONSTANT PA_DIG7, 16
+CONSTANT PA_SW_HI, 11
+CONSTANT SEM, 10
+";
+    let body = match kind {
+        Program::Semaphore => "            ADDRESS 000
+main:       LOAD    s0, 00
+            STORE   s0, SEM
+            ENABLE  INTERRUPT
+wait:       FETCH   s0, SEM
+            COMPARE s0, 00
+            JUMP    Z, wait
+            LOAD    s0, 00
+            STORE   s0, SEM
+            INPUT   s1, PA_LOCX
+            INPUT   s2, PA_LOCY
+            AND     s1, 0F
+            AND     s2, 0F
+            OUTPUT  s1, PA_DIG0
+            OUTPUT  s2, PA_DIG1
+            INPUT   s3, PA_SENSORS
+            OUTPUT  s3, PA_LEDS_HI
+            INPUT   s4, PA_SW
+            OUTPUT  s4, PA_MOTCTL
+            JUMP    wait
+
+            ADDRESS 300
+isr:        LOAD    s0, 01
+            STORE   s0, SEM
+            RETURNI ENABLE
+
+            ADDRESS 3FF
+            JUMP    isr
+"
+        .to_string(),
+        Program::PollSwitches => "            ADDRESS 000
+main:       LOAD    s1, FF
+poll:       INPUT   s0, PA_SW
+            COMPARE s0, s1
+            JUMP    Z, poll
+            LOAD    s1, s0
+            OUTPUT  s0, PA_LEDS
+            OUTPUT  s0, PA_MOTCTL
+            AND     s0, 0F
+            OUTPUT  s0, PA_DIG7
+            JUMP    poll
+"
+        .to_string(),
+        Program::Countdown(n) => format!(
+            "            ADDRESS 000
+main:       LOAD    s3, 00
+            INPUT   s4, PA_SW_HI
+            OUTPUT  s4, PA_MOTCTL
+top:        LOAD    s2, {n:02X}
+delay:      SUB     s2, 01
+            JUMP    NZ, delay
+            XOR     s3, 01
+            OUTPUT  s3, PA_LEDS
+            OUTPUT  s3, PA_DIG0
+            JUMP    top
+"
+        ),
+    };
+    format!("{head}{body}")
+}
+
+/// The clocks one trip of a program's waiting loop takes (two per instruction), the trip
+/// the state repeats after.
+fn program_period(kind: Program) -> u64 {
+    match kind {
+        Program::Semaphore | Program::PollSwitches => 6,
+        // LOAD, N x (SUB, JUMP), XOR, OUTPUT, OUTPUT, JUMP; s3 toggles: two trips.
+        Program::Countdown(n) => 2 * 2 * (1 + 2 * n + 4),
+    }
+}
+
+/// One random part, number `i`, on clock `clock` (its nets are `@CLK{clock}@` until the
+/// clocks are named), enabled by `enable`'s one-bit output when given.
+fn make_part(r: &mut Rng, i: usize, clock: usize, enable: Option<&Part>, simulate: bool) -> Part {
+    let clk = format!("@CLK{clock}@");
+    let reset = r.chance(40);
+    let en = enable.map_or("1'b1".to_string(), |p| p.bit.clone());
+    let guard = |body: &str| -> String {
+        let body = if enable.is_some() { format!("if ({en}) begin {body} end") } else { body.to_string() };
+        if reset {
+            format!("if (sysreset) begin p{i} <= 0; end else begin {body} end")
+        } else {
+            body
+        }
+    };
+    // Short counts (state) or long ones (counters); SIMULATE = 1 designs favour short ones,
+    // as course modules are then.
+    let short = r.chance(if simulate { 60 } else { 40 });
+    let count = |r: &mut Rng| if short { r.range(1, 60) } else { r.range(100_000, 3_000_000) };
+    let (verilog, bit, value, shape, text) = match r.range(0, 6) {
+        0 => {
+            // A wrap counter: == top sets 0; its tick or one of its bits shown.
+            let top = count(r);
+            let width = 64 - top.leading_zeros() + r.range(0, 8) as u32;
+            let width = width.min(32);
+            let by_bit = r.chance(40);
+            let k = r.range(0, (64 - top.leading_zeros() - 1) as u64) as u32;
+            let body = format!("p{i} <= (p{i} == {width}'d{top}) ? {width}'d0 : p{i} + {width}'d1;");
+            let verilog = format!(
+                "    reg [{w1}:0] p{i} = {width}'d0;\n    always @(posedge {clk}) begin {} end\n    wire p{i}_tick = p{i} == {width}'d{top};\n",
+                guard(&body),
+                w1 = width - 1
+            );
+            let bit = if by_bit { format!("p{i}[{k}]") } else { format!("p{i}_tick") };
+            let shape = counter(width, Some(top), by_bit.then_some(k));
+            (
+                verilog,
+                bit,
+                widen(&format!("p{i}"), width),
+                shape,
+                format!(
+                    "wrap counter to {top} ({width} bits), shows {}",
+                    if by_bit { format!("bit {k}") } else { "its tick".into() }
+                ),
+            )
+        }
+        1 => {
+            // A free-running counter, one of its bits shown.
+            let width = r.range(3, 32) as u32;
+            let k = if short {
+                r.range(0, (width - 1).min(5) as u64) as u32
+            } else {
+                r.range((width - 1).min(16) as u64, (width - 1) as u64) as u32
+            };
+            let body = format!("p{i} <= p{i} + {width}'d1;");
+            let verilog = format!(
+                "    reg [{w1}:0] p{i} = {width}'d0;\n    always @(posedge {clk}) begin {} end\n",
+                guard(&body),
+                w1 = width - 1
+            );
+            let shape = counter(width, None, Some(k));
+            (
+                verilog,
+                format!("p{i}[{k}]"),
+                widen(&format!("p{i}"), width),
+                shape,
+                format!("free counter ({width} bits), shows bit {k}"),
+            )
+        }
+        2 => {
+            // A divider: a wrap counter and a toggle that flips at its tick.
+            let top = count(r);
+            let width = (64 - top.leading_zeros()).min(32);
+            let body = format!(
+                "if (c{i} == {width}'d{top}) begin c{i} <= {width}'d0; p{i} <= ~p{i}; end else c{i} <= c{i} + {width}'d1;"
+            );
+            let verilog = format!(
+                "    reg [{w1}:0] c{i} = {width}'d0;\n    reg p{i} = 1'b0;\n    always @(posedge {clk}) begin {} end\n",
+                guard(&body).replace(&format!("p{i} <= 0;"), &format!("p{i} <= 1'b0; c{i} <= {width}'d0;")),
+                w1 = width - 1
+            );
+            // Short, a toggle every top + 1; long, the counter's low 4 bits (read with the
+            // toggle by the port mux) repeat every 16 and the toggle flips at its wrap.
+            let shape = if 2 * (top + 1) <= 64 {
+                periodic(2 * (top + 1))
+            } else if top + 1 >= 50_000 {
+                Shape::Known { period: 16, boundary: Some(top + 1) }
+            } else {
+                Shape::Unknown("a count between short and long")
+            };
+            (
+                verilog,
+                format!("p{i}"),
+                format!("{{c{i}[3:0], p{i}}}"),
+                shape,
+                format!("divider by {} (toggle)", 2 * (top + 1)),
+            )
+        }
+        3 => {
+            // A rotating shift register (a ring), its last bit shown.
+            let width = r.range(2, 16) as u32;
+            let body = format!("p{i} <= {{p{i}[{}:0], p{i}[{}]}};", width - 2, width - 1);
+            let init = format!("{width}'d{}", 1 + r.range(0, (1 << (width - 1)) - 1));
+            let verilog = format!(
+                "    reg [{w1}:0] p{i} = {init};\n    always @(posedge {clk}) begin {} end\n",
+                guard(&body).replace(&format!("p{i} <= 0;"), &format!("p{i} <= {init};")),
+                w1 = width - 1
+            );
+            (
+                verilog,
+                format!("p{i}[{}]", width - 1),
+                widen(&format!("p{i}"), width),
+                periodic(width as u64),
+                format!("ring of {width} bits"),
+            )
+        }
+        4 => {
+            // A PWM: a counter's low byte compared with a switch byte; the counter may be wider.
+            let width = if r.chance(50) { 8 } else { r.range(9, 32) as u32 };
+            let body = format!("p{i} <= p{i} + {width}'d1;");
+            let byte = if r.chance(50) { "db_sw[15:8]" } else { "db_sw[7:0]" };
+            let verilog = format!(
+                "    reg [{w1}:0] p{i} = {width}'d0;\n    always @(posedge {clk}) begin {} end\n    wire p{i}_pwm = p{i}[7:0] < {byte};\n",
+                guard(&body),
+                w1 = width - 1
+            );
+            (
+                verilog,
+                format!("p{i}_pwm"),
+                widen(&format!("p{i}"), width),
+                periodic(256),
+                format!("PWM: the low byte of a {width}-bit counter below {byte}"),
+            )
+        }
+        5 => {
+            // An LFSR (a game's random source): short ones repeat, long ones never within a run.
+            let (width, taps): (u32, &[u32]) =
+                *r.pick(&[(4, &[3, 2][..]), (5, &[4, 2]), (7, &[6, 5]), (16, &[15, 14, 12, 3]), (32, &[31, 21, 1, 0])]);
+            let fb: Vec<String> = taps.iter().map(|t| format!("p{i}[{t}]")).collect();
+            let body = format!("p{i} <= {{p{i}[{}:0], {}}};", width - 2, fb.join(" ^ "));
+            let verilog = format!(
+                "    reg [{w1}:0] p{i} = {width}'d1;\n    always @(posedge {clk}) begin {} end\n",
+                guard(&body).replace(&format!("p{i} <= 0;"), &format!("p{i} <= {width}'d1;")),
+                w1 = width - 1
+            );
+            let shape = if width <= 7 { periodic((1 << width) - 1) } else { Shape::Unknown("a long LFSR") };
+            (verilog, format!("p{i}[0]"), widen(&format!("p{i}"), width), shape, format!("LFSR of {width} bits"))
+        }
+        _ => {
+            // A toggle.
+            let body = format!("p{i} <= ~p{i};");
+            let verilog = format!(
+                "    reg p{i} = 1'b0;\n    always @(posedge {clk}) begin {} end\n",
+                guard(&body).replace(&format!("p{i} <= 0;"), &format!("p{i} <= 1'b0;"))
+            );
+            (verilog, format!("p{i}"), format!("{{4'd0, p{i}}}"), periodic(2), "toggle".to_string())
+        }
+    };
+    // An enabled part moves once per period of its enable: its period (in its clock) grows
+    // by that much; enabled by a counter's tick, it changes only at the counter's boundary.
+    let shape = match (shape, enable.map(|p| p.shape)) {
+        (s, None) => s,
+        (Shape::Known { period, boundary }, Some(Shape::Known { period: q, boundary: None })) => {
+            Shape::Known { period: period * q, boundary: boundary.map(|b| b.saturating_mul(q)) }
+        }
+        (Shape::Unknown(w), _) | (_, Some(Shape::Unknown(w))) => Shape::Unknown(w),
+        (_, Some(Shape::Known { .. })) => Shape::Unknown("moved by a counter's bit (not only at its boundaries)"),
+    };
+    let text = format!(
+        "{text}{}{}",
+        if reset { ", reset" } else { "" },
+        enable.map_or(String::new(), |p| format!(", enabled by {}", p.bit))
+    );
+    Part { verilog, bit, value, shape, clock, text }
+}
+
+/// At least five bits of `name` (a `width`-bit register), for a digit.
+fn widen(name: &str, width: u32) -> String {
+    if width >= 5 {
+        name.to_string()
+    } else {
+        format!("{{{}'d0, {name}}}", 8 - width)
+    }
+}
+
+/// Whether the design repeats within reach, and with which period (100 MHz clocks).
+fn reach(parts: &[Part], clocks: &[Clock], simulate: bool, kind: Program, vga_observed: bool) -> Result<u64, String> {
+    if vga_observed {
+        return Err("an LED shows the VGA timing (a frame is 1.68 M clocks)".into());
+    }
+    let osc = clocks[0].period;
+    // The course's modules: 6-clock wrap counters with SIMULATE = 1 (a display of 8 digits
+    // every 48), long counters with 0.
+    let mut period = osc.times(if simulate { 48 } else { 1 });
+    let mut shortest = u64::MAX;
+    if !simulate {
+        shortest = 200_000;
+    }
+    period = period.lcm(osc.times(program_period(kind)));
+    let mut used = vec![false; clocks.len()];
+    used[0] = true;
+    for p in parts {
+        used[p.clock] = true;
+        let c = clocks[p.clock].period;
+        match p.shape {
+            Shape::Known { period: k, boundary } => {
+                period = period.lcm(c.times(k));
+                if let Some(b) = boundary {
+                    shortest = shortest.min(c.times(b).clocks());
+                }
+            }
+            Shape::Unknown(why) => return Err(why.into()),
+        }
+    }
+    for (i, c) in clocks.iter().enumerate() {
+        if used[i] {
+            period = period.lcm(c.period);
+        }
+    }
+    let clocks_in_period = period.clocks();
+    // A skip needs the period proved twice and a settle after each counter boundary: with
+    // boundaries 50 x that far apart, under 5 % of the time is simulated.
+    if clocks_in_period > 4096 {
+        return Err(format!("its period is {clocks_in_period} clocks"));
+    }
+    if shortest < 50 * (256 + 3 * clocks_in_period) {
+        return Err(format!("a counter's boundaries are {shortest} clocks apart, its period {clocks_in_period}"));
+    }
+    Ok(clocks_in_period)
+}

@@ -210,6 +210,8 @@ function showState(s) {
   }
   $("time").textContent = (s.time_ps / 1e12).toFixed(3) + " s";
   $("rate").textContent = s.running ? s.rate.toFixed(2) + " x real time" : "paused";
+  $("behind").textContent = s.behind || "";
+  $("behind").hidden = !s.behind;
   $("samples").textContent = s.samples + " samples";
   $("run").textContent = s.running ? "Pause" : "Run";
   if (s.motors != null) {

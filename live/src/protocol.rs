@@ -222,6 +222,8 @@ pub struct BoardView {
     pub frame_rate: f64,
     /// The bot alone: the MotCtl_in the page set (or the driver gave) for the next sample.
     pub motors: Option<u8>,
+    /// Why the run cannot keep the pace asked for, in one line; `None` while it keeps it.
+    pub behind: Option<String>,
 }
 
 impl BoardView {
@@ -244,6 +246,7 @@ impl BoardView {
                 "info": b.info, "sensors": b.sensors, "lmdist": b.lmdist, "rmdist": b.rmdist, "motctl": b.motctl,
             })),
             "frame_rate": self.frame_rate,
+            "behind": self.behind,
             "motors": self.motors,
         })
     }

@@ -720,7 +720,10 @@ __attribute__((noinline)) uint64_t ff_counter_moved(Board* b, uint64_t t) {
     f.drifting = false;
     f.quiet_from = t;
     f.settle = kCounterSettlePs;
-    f.patience = std::max(4 * f.last_period, kShortPatiencePs);
+    // After a skip the period is known: a few of them. Before one is found, no less than
+    // the mark had (it may need all of it).
+    const uint64_t few = std::max(4 * f.last_period, kShortPatiencePs);
+    f.patience = f.proven ? few : std::max(f.patience, few);
     return 0;
 }
 
@@ -775,11 +778,15 @@ __attribute__((noinline)) uint64_t ff_restart(Board* b, uint64_t t) {
         FF_TRACE("ff %.6f ms: no period (%s; %s differs)\n", t / 1e9, f.overflow ? "too much shown" : "patience",
                  busy >= 0 ? f.members[busy].name : "?");
         // Marked too early (the firmware was still at work) or the period is longer; a counter
-        // taken for a short one may be a long one marked near its turn: all count again.
+        // taken for a short one that is not back where it was may be a long one marked near
+        // its turn: it counts again.
         f.patience = std::min(2 * f.patience, kMaxPeriodPs);
+        const uint8_t* root = (const uint8_t*)b->top->rootp;
         for (Counting& k : f.counters) {
-            set_level(k, 0);
-            k.early = 0;
+            if ((counter_value(root, k) ^ counter_value(f.mark.data(), k)) & k.exact) {
+                set_level(k, 0);
+                k.early = 0;
+            }
         }
         ff_mark(b, t);
     }

@@ -161,13 +161,22 @@ struct Part {
     shape: Shape,
     clock: usize,
     text: String,
+    /// Its one-bit output changes nearly every cycle (a toggle, a ring, an LFSR, a counter's
+    /// lowest bits): shown on an LED or a point it makes a pin change a clock, which costs the
+    /// runs that record every pin more than it tests.
+    fast: bool,
 }
+
 
 /// The design for `seed`.
 pub fn generate(seed: u64) -> Design {
     let mut r = Rng::new(seed);
     let simulate = r.chance(50);
-    let mut parts_text = vec![format!("seed {seed}, SIMULATE = {}", simulate as u8)];
+    // Half the designs are drawn tame (clock ratios with short common periods, counts either
+    // short or long, short LFSRs, short delays), so that many repeat within reach; whether
+    // one does is still worked out from its parts (`reach`), whatever the draw.
+    let tame = r.chance(50);
+    let mut parts_text = vec![format!("seed {seed}, SIMULATE = {}{}", simulate as u8, if tame { ", tame" } else { "" })];
 
     // Clocks: the oscillator, and maybe an MMCM or a DCM_SP.
     let osc = Ps::new(10_000, 1);
@@ -176,13 +185,14 @@ pub fn generate(seed: u64) -> Design {
     let mut vga_clock = None;
     match r.range(0, 2) {
         1 => {
-            let mult = r.range(6, 12);
-            let d0 = r.range(2, 40);
-            let d1 = r.range(2, 40);
+            let mult = if tame { 10 } else { r.range(6, 12) };
+            let divide = |r: &mut Rng| if tame { *r.pick(&[10u64, 20, 25, 40, 50]) } else { r.range(2, 40) };
+            let d0 = divide(&mut r);
+            let d1 = divide(&mut r);
             // VGA's 25 MHz when it fits: VCO / 25 (600..1200 MHz: 24..48).
             let vga =
                 if (24..=48).contains(&(mult * 100 / 25)) && (mult * 100) % 25 == 0 { Some(mult * 4) } else { None };
-            let d2 = vga.unwrap_or(r.range(2, 40));
+            let d2 = vga.unwrap_or_else(|| divide(&mut r));
             writeln!(
                 clocking,
                 "    // An MMCM: VCO = 100 MHz x {mult}; outputs / {d0}, / {d1}, / {d2}.
@@ -207,7 +217,9 @@ pub fn generate(seed: u64) -> Design {
         }
         2 => {
             let dv = *r.pick(&[2u64, 4, 5, 8, 10, 16]);
-            let (m, d) = *r.pick(&[(2u64, 1u64), (3, 2), (4, 3), (5, 4), (3, 4), (2, 3), (7, 5), (5, 2)]);
+            let ratios: &[(u64, u64)] =
+                if tame { &[(2, 1), (2, 4), (4, 8)] } else { &[(2, 1), (3, 2), (4, 3), (5, 4), (3, 4), (2, 3), (7, 5), (5, 2)] };
+            let (m, d) = *r.pick(ratios);
             writeln!(
                 clocking,
                 "    // A DCM_SP: CLK0 through a BUFG, CLKDV = 100 MHz / {dv}, CLKFX = 100 MHz x {m} / {d}.
@@ -241,7 +253,7 @@ pub fn generate(seed: u64) -> Design {
         // Enabled by an earlier part's one-bit output (its tick, its toggle), sometimes.
         let enable =
             (i > 0 && r.chance(25)).then(|| r.range(0, i as u64 - 1) as usize).filter(|&j| parts[j].clock == clock);
-        let part = make_part(&mut r, i, clock, enable.map(|j| &parts[j]), simulate);
+        let part = make_part(&mut r, i, clock, enable.map(|j| &parts[j]), simulate, tame);
         parts_text.push(format!("part {i} on {}: {}", clocks[clock].net, part.text));
         parts.push(part);
     }
@@ -249,7 +261,7 @@ pub fn generate(seed: u64) -> Design {
     // The team's program.
     let kind = *r.pick(&[Program::Semaphore, Program::PollSwitches, Program::Countdown(0)]);
     let kind = match kind {
-        Program::Countdown(_) => Program::Countdown(r.range(1, 200)),
+        Program::Countdown(_) => Program::Countdown(if tame { r.range(1, 40) } else { r.range(1, 200) }),
         k => k,
     };
     parts_text.push(format!("team program: {kind:?}"));
@@ -264,7 +276,11 @@ pub fn generate(seed: u64) -> Design {
     }
 
     // What each LED, digit and point shows.
-    let sources: Vec<String> = parts.iter().map(|p| p.bit.clone()).collect();
+    // The parts' outputs shown on LEDs and points: the slower ones (all, if none is slow).
+    let mut sources: Vec<String> = parts.iter().filter(|p| !p.fast).map(|p| p.bit.clone()).collect();
+    if sources.is_empty() {
+        sources = parts.iter().map(|p| p.bit.clone()).collect();
+    }
     let mut leds = Vec::new();
     for k in 0..16 {
         let s = if k == 15 && vga_on_led {
@@ -465,7 +481,7 @@ endmodule
     );
 
     // Random inputs: switch changes and presses, and one CPU reset.
-    let seconds = if simulate { 0.12 } else { 0.15 };
+    let seconds = if simulate { 0.08 } else { 0.12 };
     let mut stimulus = String::new();
     let mut at = 5.0 + r.range(0, 10) as f64;
     while at < seconds * 1000.0 - 20.0 {
@@ -590,7 +606,7 @@ fn program_period(kind: Program) -> u64 {
 
 /// One random part, number `i`, on clock `clock` (its nets are `@CLK{clock}@` until the
 /// clocks are named), enabled by `enable`'s one-bit output when given.
-fn make_part(r: &mut Rng, i: usize, clock: usize, enable: Option<&Part>, simulate: bool) -> Part {
+fn make_part(r: &mut Rng, i: usize, clock: usize, enable: Option<&Part>, simulate: bool, tame: bool) -> Part {
     let clk = format!("@CLK{clock}@");
     let reset = r.chance(40);
     let en = enable.map_or("1'b1".to_string(), |p| p.bit.clone());
@@ -606,14 +622,17 @@ fn make_part(r: &mut Rng, i: usize, clock: usize, enable: Option<&Part>, simulat
     // as course modules are then.
     let short = r.chance(if simulate { 60 } else { 40 });
     let count = |r: &mut Rng| if short { r.range(1, 60) } else { r.range(100_000, 3_000_000) };
-    let (verilog, bit, value, shape, text) = match r.range(0, 6) {
+    let kind = r.range(0, 6);
+    let mut fast = matches!(kind, 3 | 5 | 6);
+    let (verilog, bit, value, shape, text) = match kind {
         0 => {
             // A wrap counter: == top sets 0; its tick or one of its bits shown.
             let top = count(r);
             let width = 64 - top.leading_zeros() + r.range(0, 8) as u32;
             let width = width.min(32);
             let by_bit = r.chance(40);
-            let k = r.range(0, (64 - top.leading_zeros() - 1) as u64) as u32;
+            let bits = 64 - top.leading_zeros();
+            let k = if tame && !short { r.range(17.min(bits as u64 - 1), bits as u64 - 1) } else { r.range(0, bits as u64 - 1) } as u32;
             let body = format!("p{i} <= (p{i} == {width}'d{top}) ? {width}'d0 : p{i} + {width}'d1;");
             let verilog = format!(
                 "    reg [{w1}:0] p{i} = {width}'d0;\n    always @(posedge {clk}) begin {} end\n    wire p{i}_tick = p{i} == {width}'d{top};\n",
@@ -648,6 +667,7 @@ fn make_part(r: &mut Rng, i: usize, clock: usize, enable: Option<&Part>, simulat
                 w1 = width - 1
             );
             let shape = counter(width, None, Some(k));
+            fast = k <= 1;
             (
                 verilog,
                 format!("p{i}[{k}]"),
@@ -724,7 +744,7 @@ fn make_part(r: &mut Rng, i: usize, clock: usize, enable: Option<&Part>, simulat
         5 => {
             // An LFSR (a game's random source): short ones repeat, long ones never within a run.
             let (width, taps): (u32, &[u32]) =
-                *r.pick(&[(4, &[3, 2][..]), (5, &[4, 2]), (7, &[6, 5]), (16, &[15, 14, 12, 3]), (32, &[31, 21, 1, 0])]);
+                *r.pick(&LFSRS[..if tame { 3 } else { LFSRS.len() }]);
             let fb: Vec<String> = taps.iter().map(|t| format!("p{i}[{t}]")).collect();
             let body = format!("p{i} <= {{p{i}[{}:0], {}}};", width - 2, fb.join(" ^ "));
             let verilog = format!(
@@ -760,8 +780,12 @@ fn make_part(r: &mut Rng, i: usize, clock: usize, enable: Option<&Part>, simulat
         if reset { ", reset" } else { "" },
         enable.map_or(String::new(), |p| format!(", enabled by {}", p.bit))
     );
-    Part { verilog, bit, value, shape, clock, text }
+    Part { verilog, bit, value, shape, clock, text, fast }
 }
+
+/// LFSRs: width and taps (maximal length: 2^width - 1).
+const LFSRS: [(u32, &[u32]); 5] =
+    [(4, &[3, 2]), (5, &[4, 2]), (7, &[6, 5]), (16, &[15, 14, 12, 3]), (32, &[31, 21, 1, 0])];
 
 /// At least five bits of `name` (a `width`-bit register), for a digit.
 fn widen(name: &str, width: u32) -> String {

@@ -68,6 +68,65 @@ struct Board {
     fresh: Vec<serde_json::Value>,
 }
 
+/// Whether a live run keeps the pace asked for: how long it has been behind, and the VGA
+/// frames of the last seconds (their wall time).
+#[derive(Default)]
+struct Lag {
+    slow_since: Option<Instant>,
+    frames: Vec<(Instant, Duration)>,
+}
+
+impl Lag {
+    /// How long a run must stay behind before the page is told.
+    const SAID_AFTER: Duration = Duration::from_secs(2);
+    /// The wall time over which the frames' share is taken.
+    const WINDOW: Duration = Duration::from_secs(3);
+
+    /// The line for the page while the run, at `rate` x real time, has been under 90 % of
+    /// `speed` for a while (`why` the rest of it); `None` on pace, paused or at full speed.
+    fn behind(&mut self, speed: Option<f64>, rate: f64, why: impl FnOnce() -> String) -> Option<String> {
+        let speed = speed?;
+        if rate >= 0.9 * speed {
+            self.slow_since = None;
+            return None;
+        }
+        let since = *self.slow_since.get_or_insert_with(Instant::now);
+        if since.elapsed() < Self::SAID_AFTER {
+            return None;
+        }
+        self.frames.retain(|(at, _)| at.elapsed() < Self::WINDOW);
+        let in_frames: Duration = self.frames.iter().map(|(_, d)| *d).sum();
+        let reason = if !self.frames.is_empty() && in_frames.as_secs_f64() > 0.3 * Self::WINDOW.as_secs_f64() {
+            format!(
+                "its VGA frames take {:.2} s of wall time each (a frame is simulated edge by edge)",
+                in_frames.as_secs_f64() / self.frames.len() as f64
+            )
+        } else {
+            why()
+        };
+        Some(format!("{rate:.2} x real time, not the {speed} x asked: {reason}"))
+    }
+}
+
+/// Why a board runs slower than real time, its frames aside: the fast-forward off, or what
+/// kept it from skipping.
+fn why_behind(a: &Args, p: &Prepared, model: &BoardModel, mode: FastForward) -> String {
+    if mode == FastForward::Off {
+        return match model.fast_forward_blocker() {
+            Some(why) => format!("no fast-forward ({why})"),
+            None if a.no_fast_forward => "no fast-forward (--no-fast-forward)".into(),
+            None => "no fast-forward (it needs --cpu iss and the bot as a model, the defaults)".into(),
+        };
+    }
+    match model.fast_forward_busy() {
+        Some((name, times)) => {
+            let b = super::report::Busy::of(p, &name, times);
+            format!("{} keeps it from skipping (still different at {times} looks for a period)", b.describe())
+        }
+        None => "what it runs does not repeat within reach".into(),
+    }
+}
+
 /// Round `t` up to a cycle boundary.
 fn aligned(t: u64) -> u64 {
     t.div_ceil(PS_PER_CYCLE) * PS_PER_CYCLE
@@ -125,6 +184,7 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
     let mut frames: Vec<Instant> = Vec::new();
     let mut frames_shown = 0u64;
     let mut rate = Rate::new(0);
+    let mut lag = Lag::default();
     let started = Instant::now();
     let mut stopped = false;
     while !stopped && !crate::cli::interrupted() {
@@ -183,7 +243,10 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
                 last_frame.map_or(true, |f| f.elapsed() >= FRAME_EVERY && (b.dirty || f.elapsed() >= REFRESH_EVERY));
             if has_vga && on_pace && due {
                 let (t0, s0) = (b.model.time_ps(), b.bot.as_ref().map(|v| v.sample));
-                if let Some(frame) = b.frame(skip_mode)? {
+                let began = Instant::now();
+                let made = b.frame(skip_mode)?;
+                lag.frames.push((began, began.elapsed()));
+                if let Some(frame) = made {
                     // The bot's last sample when the frame began and when it ended: equal,
                     // the frame shows the bot as that sample left it.
                     let s1 = b.bot.as_ref().map(|v| v.sample);
@@ -209,7 +272,13 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
             } else {
                 (frames.len() - 1) as f64 / frames[frames.len() - 1].duration_since(frames[0]).as_secs_f64().max(1e-3)
             };
-            server.state(b.view(running, pace.speed(), rate.at(t), frame_rate));
+            let now_rate = rate.at(t);
+            let behind = lag.behind(running.then_some(pace.speed()).flatten(), now_rate, || {
+                why_behind(a, p, &b.model, skip_mode)
+            });
+            let mut view = b.view(running, pace.speed(), now_rate, frame_rate);
+            view.behind = behind;
+            server.state(view);
             last_state = Instant::now();
         }
     }
@@ -423,6 +492,7 @@ impl Board {
             bot: self.bot.clone(),
             frame_rate,
             motors: None,
+            behind: None,
         }
     }
 }

@@ -3,6 +3,7 @@
 //! recorded ([`Records`]): the display, the LEDs, the bot's samples, the VGA frames.
 
 use std::collections::BTreeSet;
+use std::fmt::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -36,8 +37,8 @@ const CHUNK_PS: u64 = 50_000_000_000;
 const NO_SAMPLE_PS: u64 = 1_000_000_000_000;
 
 /// A row of --pins: the time and the display's and the LEDs' pins after a change.
-fn pins_row(time_ps: u64, (an, seg, dp, led): (u8, u8, u8, u16)) -> String {
-    format!("{time_ps},{an:02X},{seg:02X},{dp},{led:04X}\n")
+fn pins_row(csv: &mut String, time_ps: u64, (an, seg, dp, led): (u8, u8, u8, u16)) {
+    let _ = writeln!(csv, "{time_ps},{an:02X},{seg:02X},{dp},{led:04X}");
 }
 
 /// Models created by this process (their temporary files' names).
@@ -90,7 +91,7 @@ impl Records {
             Event::Display { time_ps, an, seg, dp } => {
                 self.pins_now = (an, seg, dp as u8, self.pins_now.3);
                 if let Some(csv) = &mut self.pins_csv {
-                    csv.push_str(&pins_row(time_ps, self.pins_now));
+                    pins_row(csv, time_ps, self.pins_now);
                 }
                 let before = self.display.lines().len();
                 self.display.pins(time_ps, an, seg, dp);
@@ -99,10 +100,10 @@ impl Records {
             Event::Leds { time_ps, leds } => {
                 self.pins_now.3 = leds;
                 if let Some(csv) = &mut self.pins_csv {
-                    csv.push_str(&pins_row(time_ps, self.pins_now));
+                    pins_row(csv, time_ps, self.pins_now);
                 }
                 self.last_led = leds;
-                self.display_log.push_str(&format!("{:>12.3} ms  leds    {leds:016b}\n", time_ps as f64 / 1e9));
+                let _ = writeln!(self.display_log, "{:>12.3} ms  leds    {leds:016b}", time_ps as f64 / 1e9);
             }
             Event::Sample { time_ps, snapshot, motctl } => {
                 self.last_sample_ps = time_ps;
@@ -149,7 +150,7 @@ impl Records {
     /// The display's lines from `before` on into `--display`'s log.
     fn log_display_lines(&mut self, before: usize) {
         for l in &self.display.lines()[before..] {
-            self.display_log.push_str(&format!("{:>12.3} ms  display {}\n", l.time_ps as f64 / 1e9, l.text));
+            let _ = writeln!(self.display_log, "{:>12.3} ms  display {}", l.time_ps as f64 / 1e9, l.text);
         }
     }
 

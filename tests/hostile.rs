@@ -290,3 +290,31 @@ fn a_variable_with_two_drivers_is_reported_with_its_line_and_the_run_goes_on() {
     );
     assert!(took < BOUND, "{took:?}");
 }
+
+#[test]
+fn verilators_errors_reach_the_user_in_botsims_words() {
+    // A port the user's own module does not have: theirs, with the module's ports.
+    let d = design(
+        "module sub(input clk, output [15:0] y);\n  assign y = 16'h0;\nendmodule\nmodule nexys4fpga(input clk, output [15:0] led);\n  sub s (.clk(clk), .nope(1'b0), .y(led));\nendmodule\n",
+        &[],
+    );
+    let e = failure(&board(d.path(), &["."]));
+    // (Verilator's column: the port's name after its dot.)
+    assert_eq!(e, "top.v:5:22: `sub` has no port `nope` (its ports: clk, y)");
+    // A port botsim's model of a fixed part lacks: the design's, said against the part.
+    let d = design(
+        "module nexys4fpga(input clk, output [15:0] led);\n  wire [17:0] instruction;\n  kcpsm6 cpu (.clk(clk), .instruction(instruction), .turbo(1'b1));\nendmodule\n",
+        &[],
+    );
+    let e = failure(&board(d.path(), &[".", "--cpu", "rtl"]));
+    assert!(
+        e.starts_with("top.v:3:54: `kcpsm6` has no port `turbo`: botsim's `kcpsm6` has the real one's (its ports: "),
+        "{e}"
+    );
+    // A line that does not parse, as the user wrote it.
+    let d = design("module nexys4fpga(input clk, output [15:0] led);\n  assign led = 16'h00 +;\nendmodule\n", &[]);
+    let e = failure(&board(d.path(), &["."]));
+    assert!(e.starts_with("top.v:2:") && e.contains("this does not parse (syntax error"), "{e}");
+    // No Verilator words of its own asides.
+    assert!(!e.contains("%Error") && !e.contains("verilator.org"), "{e}");
+}

@@ -46,7 +46,7 @@ fn a_repository_with_the_release_folder_stale_copies_and_a_testbench_runs_as_com
     shows_the_bot(&s);
     // The live copies, each said once, the stale ones named.
     for (module, taken, other, why) in [
-        ("nexys4fpga", "src/nexys4fpga.v", "old/nexys4fpga.v", "the newest"),
+        ("nexys4fpga", "src/nexys4fpga.v", "old/nexys4fpga.v", "the last committed"),
         ("proj2_system", "src/proj2_system.v", "old/proj2_system.v", "beside src/nexys4fpga.v"),
         ("debounce", "src/debounce.v", "old/debounce.v", "beside src/proj2_system.v"),
         ("proj2demo", "src/proj2demo.v", "old/proj2demo.v", "beside src/proj2_system.v"),
@@ -299,4 +299,120 @@ fn a_bot_that_is_not_botsim_20s_is_one_line_naming_its_port() {
         ),
         "{e}"
     );
+}
+
+/// A run that must fail: its one line.
+fn refused(dir: &Path, args: &[&str]) -> String {
+    let o = board_in(dir, args);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    stderr(&o)
+}
+
+#[test]
+fn a_bot_instance_without_a_name_is_named_said_and_runs() {
+    let clone = clone_of("unnamed_bot");
+    let c = clone.path();
+    let (s, said) = run(c, &[".", "--param", "SIMULATE=1", "--timing", "fast", "--seconds", "0.03"]);
+    let line = said.lines().find(|l| l.contains("has no name")).unwrap_or_else(|| panic!("{said}"));
+    assert!(
+        line.starts_with("note: src/proj2_system.v:")
+            && line.contains("this `bot` instance has no name")
+            && line.contains("Vivado"),
+        "{line}"
+    );
+    let named = line.rsplit('`').nth(1).unwrap();
+    assert!(said.contains(&format!("bot at `nexys4fpga.SYS.{named}`")), "{said}");
+    shows_the_bot(&s);
+}
+
+#[test]
+fn a_memory_core_from_its_wrappers_parameters_keeps_the_wrappers_ports() {
+    // Vivado's wrapper: attributes before a non-ANSI port list (clka, addra, douta).
+    let clone = clone_of("ip_wrapper");
+    let c = clone.path();
+    let frames = c.join("frames");
+    let f = frames.to_str().unwrap();
+    let (s, said) = run(c, &[".", "--param", "SIMULATE=1", "--timing", "fast", "--seconds", "0.04", "--frames", f]);
+    assert!(said.contains("replaced Icon_Rom"), "{said}");
+    assert!(s["vga_frames"].as_u64().unwrap() >= 1, "{s}");
+}
+
+#[test]
+fn of_two_tops_of_one_name_the_one_whose_design_has_the_bot_runs() {
+    // Project 1's top was committed last: the newest is not the design.
+    let clone = clone_of("two_tops");
+    let c = clone.path();
+    let (s, said) = run(c, &[".", "--param", "SIMULATE=1", "--timing", "fast", "--seconds", "0.03"]);
+    assert!(
+        said.contains("note: the top `nexys4fpga` has 2 definitions: took proj2/nexys4fpga.v:5, whose design has the bot, over proj1/nexys4fpga.v:4"),
+        "{said}"
+    );
+    shows_the_bot(&s);
+}
+
+#[test]
+fn missing_cores_under_one_team_module_offer_to_stub_it_and_the_stub_runs() {
+    let clone = clone_of("many_cores");
+    let c = clone.path();
+    let e = refused(c, &[".", "--param", "SIMULATE=1"]);
+    assert!(e.starts_with("20 modules of the design are missing:"), "{e}");
+    for k in 0..20 {
+        assert!(e.contains(&format!("`icon_rom_{k:02}` (instance `R{k:02}` in `icon`)")), "{e}");
+    }
+    assert!(
+        e.lines()
+            .last()
+            .unwrap()
+            .contains("all 20 are instantiated in `icon` (icon.v:4): --stub icon ties off that module"),
+        "{e}"
+    );
+    // The stub of the team's own module: the design runs, the icon blank.
+    let (s, said) = run(c, &[".", "--param", "SIMULATE=1", "--stub", "icon", "--timing", "fast", "--seconds", "0.03"]);
+    assert!(said.contains("replaced icon with a stub"), "{said}");
+    shows_the_bot(&s);
+}
+
+#[test]
+fn an_archive_with_two_copies_nothing_orders_asks_which_and_runs_with_it() {
+    let clone = clone_of("archive");
+    let c = clone.path();
+    assert!(!c.join(".git").exists());
+    let e = refused(c, &[".", "--param", "SIMULATE=1"]);
+    assert_eq!(e.lines().count(), 1, "{e}");
+    assert!(e.contains("`nexys4_bot_if` has 2 different definitions and nothing tells which the design uses"), "{e}");
+    assert!(e.contains("hdl/nexys4_bot_if.v:5") && e.contains("hdl_backup/nexys4_bot_if.v:5"), "{e}");
+    assert!(e.contains("--file"), "{e}");
+    let (s, _) = run(
+        c,
+        &[".", "--param", "SIMULATE=1", "--file", "hdl/nexys4_bot_if.v", "--timing", "fast", "--seconds", "0.03"],
+    );
+    shows_the_bot(&s);
+}
+
+#[test]
+fn a_file_cut_short_is_reported_where_its_module_begins() {
+    let clone = clone_of("truncated");
+    let c = clone.path();
+    let e = refused(c, &[".", "--param", "SIMULATE=1"]);
+    assert_eq!(e.lines().count(), 1, "{e}");
+    let line = std::fs::read_to_string(c.join("src/sevensegment.v"))
+        .unwrap()
+        .lines()
+        .position(|l| l.starts_with("module sevensegment"))
+        .unwrap()
+        + 1;
+    assert!(
+        e.starts_with(&format!("src/sevensegment.v:{line}:8: the module `sevensegment` does not end (no `endmodule`)")),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_program_that_does_not_assemble_shows_its_errors_and_counts_its_warnings() {
+    let clone = clone_of("bad_psm");
+    let c = clone.path();
+    let e = refused(c, &[".", "--param", "SIMULATE=1"]);
+    assert!(e.contains("does not assemble:") && e.contains("error:") && e.contains("wiat"), "{e}");
+    assert!(!e.contains("warning:"), "{e}");
+    assert!(e.contains("warnings)") || e.contains("warning)"), "{e}");
 }

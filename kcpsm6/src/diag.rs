@@ -95,6 +95,26 @@ impl Diagnostics {
     pub fn without_warnings(&self) -> Diagnostics {
         Diagnostics(self.errors().cloned().collect())
     }
+
+    /// The errors, a line each, and how many warnings came with them: what an error message
+    /// of another tool quotes (the warnings are `botsim asm`'s to show).
+    ///
+    /// ```
+    /// use kcpsm6::asm::assemble_str;
+    /// let d = assemble_str("CONSTANT unused, 01\nCONSTANT other, 02\n  LOAD s0, nowhere\n").unwrap_err();
+    /// let text = d.errors_text();
+    /// assert!(text.contains("error:") && !text.contains("warning:"), "{text}");
+    /// assert!(text.ends_with("(and 2 warnings)"), "{text}");
+    /// ```
+    pub fn errors_text(&self) -> String {
+        let mut text: Vec<String> = self.errors().map(|d| d.to_string()).collect::<Vec<_>>();
+        let warnings = self.0.len() - text.len();
+        if warnings > 0 {
+            let last = text.pop().unwrap_or_default();
+            text.push(format!("{last} (and {warnings} warning{})", if warnings == 1 { "" } else { "s" }));
+        }
+        text.join("\n")
+    }
 }
 
 impl fmt::Display for Diagnostics {

@@ -10,9 +10,11 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use botsim_core::board::plan::{Plan, OWN_MODULES};
+use botsim_core::board::plan::{Plan, OWN_MODULES, PRIMITIVES};
 use botsim_core::board::wrapper;
 use botsim_core::board::BoardError;
+
+use super::explain;
 
 use crate::interrupt::interrupted;
 
@@ -152,6 +154,8 @@ struct Files {
     generated: Vec<(String, String)>,
     /// (path to pass to Verilator, the user's path) — filtered copies live in the build folder.
     user: Vec<(String, Option<String>, PathBuf)>,
+    /// Which of `user` botsim wrote (cores, stand-ins, stubs, conversions).
+    made: Vec<bool>,
     defines: Vec<String>,
 }
 
@@ -178,6 +182,7 @@ fn files(plan: &Plan, params: &[(String, String)], cpu: CpuModel, bot: BotKind) 
         generated.push((format!("botsim_rom_{module}.sv"), text));
     }
     let mut user = Vec::new();
+    let made = plan.files.iter().map(|f| f.generated).collect();
     for (k, f) in plan.files.iter().enumerate() {
         match &f.filtered {
             Some(text) => {
@@ -194,7 +199,7 @@ fn files(plan: &Plan, params: &[(String, String)], cpu: CpuModel, bot: BotKind) 
     for (prim, mask) in &plan.used_outputs {
         defines.push(format!("BOTSIM_USED_{prim}=8'h{mask:02X}"));
     }
-    Files { generated, user, defines }
+    Files { generated, user, made, defines }
 }
 
 /// Build (or find in the cache) the library for `plan` with `cpu` for its KCPSM6s; `debug`:
@@ -355,7 +360,7 @@ pub fn build(
     let mut stderr = String::from_utf8_lossy(&out.stderr).into_owned();
     let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
     if !out.status.success() {
-        return Err(fail(first_error(&stderr, &stdout, &f)));
+        return Err(fail(first_error(&stderr, &stdout, &f, plan)));
     }
     // What the harness may assume of the design (BoardModel::load reads the verdicts; the
     // harness compiles in which variables a run observes), then the C++.
@@ -387,7 +392,7 @@ pub fn build(
     stderr.push_str(&String::from_utf8_lossy(&out.stderr));
     let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
     if !out.status.success() || !tmp.join("obj/libboard.so").exists() {
-        return Err(fail(first_error(&stderr, &stdout, &f)));
+        return Err(fail(first_error(&stderr, &stdout, &f, plan)));
     }
     let verdicts = checked.verdicts;
     std::fs::rename(tmp.join("obj/libboard.so"), tmp.join("libboard.so"))
@@ -543,6 +548,40 @@ fn names(f: &Files) -> Vec<(String, String)> {
     names
 }
 
+/// The build's files as [`explain`] reads Verilator's errors about them.
+fn explained(f: &Files) -> Vec<explain::File> {
+    let mut out: Vec<explain::File> = f
+        .generated
+        .iter()
+        .map(|(name, text)| explain::File {
+            given: name.clone(),
+            shown: format!("botsim's {name}"),
+            origin: explain::Origin::Own,
+            text: text.clone(),
+            original: None,
+        })
+        .collect();
+    for ((name, text, path), made) in f.user.iter().zip(&f.made) {
+        let on_disk = || std::fs::read_to_string(path).ok();
+        let (given, text, original) = match text {
+            Some(t) => (name.clone(), t.clone(), if *made { None } else { on_disk() }),
+            None => (absolute(path).display().to_string(), on_disk().unwrap_or_default(), None),
+        };
+        let origin = if *made { explain::Origin::Generated } else { explain::Origin::User };
+        out.push(explain::File { given, shown: path.display().to_string(), origin, text, original });
+    }
+    out
+}
+
+/// What of botsim's stands for the design's module `module`, if anything does.
+fn stands_for(plan: &Plan, module: &str) -> Option<explain::Stand> {
+    let own = OWN_MODULES.iter().any(|(m, _)| *m == module) || PRIMITIVES.iter().any(|(m, _)| *m == module);
+    if own {
+        return Some(explain::Stand::Model(format!("botsim's `{module}`")));
+    }
+    plan.replaced.iter().find(|r| r.module == module).map(|r| explain::Stand::Built(r.with.clone()))
+}
+
 /// Replace the build folder's copies of the user's files by the user's paths.
 fn user_paths(msg: &str, f: &Files) -> String {
     let mut m = msg.to_string();
@@ -569,15 +608,9 @@ fn parse_warnings(stderr: &str, f: &Files) -> Vec<(String, usize, String)> {
 }
 
 /// The first error of a failed build, with the user's file:line:col.
-fn first_error(stderr: &str, stdout: &str, f: &Files) -> BoardError {
-    for line in stderr.lines() {
-        if let Some(rest) = line.strip_prefix("%Error: ").or_else(|| line.strip_prefix("%Error-")) {
-            let rest = rest
-                .split_once(": ")
-                .filter(|(code, _)| code.chars().all(|c| c.is_ascii_uppercase()))
-                .map_or(rest, |(_, r)| r);
-            return BoardError::plain(user_paths(rest, f));
-        }
+fn first_error(stderr: &str, stdout: &str, f: &Files, plan: &Plan) -> BoardError {
+    if let Some(line) = explain::explain(stderr, &explained(f), &|m| stands_for(plan, m)) {
+        return BoardError::plain(line);
     }
     for line in stderr.lines().chain(stdout.lines()) {
         if line.contains("error:") {

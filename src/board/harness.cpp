@@ -154,7 +154,7 @@ constexpr size_t kMaxPhases = 64;
 // The most records a period may show (the display's pins multiplexed every few clocks, an LED
 // dimmed): more, and the mark is taken again. A skip writes one period's and a phase's; the
 // caller's buffer (model.rs's RECORDS) has room for both.
-constexpr size_t kMaxShown = 1 << 15;
+constexpr size_t kMaxShown = 1 << 16;
 
 // The fast-forward (a one-clock board whose KCPSM6s are models and whose bot is a model):
 // after a rising edge, when the whole model (every byte of Verilator's state, every KCPSM6

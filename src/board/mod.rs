@@ -8,6 +8,7 @@ pub mod counters;
 pub mod cpp;
 pub mod demand;
 pub mod dialect;
+pub mod explain;
 pub mod iss;
 pub mod lockstep;
 pub mod model;

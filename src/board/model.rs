@@ -135,8 +135,8 @@ pub fn expand(events: &[Event]) -> Vec<Event> {
 }
 
 /// The records a run's buffer holds: room for a skip over periods that show many changes
-/// (harness.cpp keeps up to 2^15 of a period, and writes one period's and a phase's).
-pub const RECORDS: usize = 1 << 17;
+/// (harness.cpp keeps up to 2^16 of a period, and writes one period's and a phase's).
+pub const RECORDS: usize = 1 << 18;
 
 /// `RTLD_DEEPBIND` (glibc): the library resolves its symbols in itself first.
 #[cfg(target_os = "linux")]

@@ -167,7 +167,6 @@ struct Part {
     fast: bool,
 }
 
-
 /// The design for `seed`.
 pub fn generate(seed: u64) -> Design {
     let mut r = Rng::new(seed);
@@ -176,7 +175,8 @@ pub fn generate(seed: u64) -> Design {
     // short or long, short LFSRs, short delays), so that many repeat within reach; whether
     // one does is still worked out from its parts (`reach`), whatever the draw.
     let tame = r.chance(50);
-    let mut parts_text = vec![format!("seed {seed}, SIMULATE = {}{}", simulate as u8, if tame { ", tame" } else { "" })];
+    let mut parts_text =
+        vec![format!("seed {seed}, SIMULATE = {}{}", simulate as u8, if tame { ", tame" } else { "" })];
 
     // Clocks: the oscillator, and maybe an MMCM or a DCM_SP.
     let osc = Ps::new(10_000, 1);
@@ -217,8 +217,11 @@ pub fn generate(seed: u64) -> Design {
         }
         2 => {
             let dv = *r.pick(&[2u64, 4, 5, 8, 10, 16]);
-            let ratios: &[(u64, u64)] =
-                if tame { &[(2, 1), (2, 4), (4, 8)] } else { &[(2, 1), (3, 2), (4, 3), (5, 4), (3, 4), (2, 3), (7, 5), (5, 2)] };
+            let ratios: &[(u64, u64)] = if tame {
+                &[(2, 1), (2, 4), (4, 8)]
+            } else {
+                &[(2, 1), (3, 2), (4, 3), (5, 4), (3, 4), (2, 3), (7, 5), (5, 2)]
+            };
             let (m, d) = *r.pick(ratios);
             writeln!(
                 clocking,
@@ -632,7 +635,11 @@ fn make_part(r: &mut Rng, i: usize, clock: usize, enable: Option<&Part>, simulat
             let width = width.min(32);
             let by_bit = r.chance(40);
             let bits = 64 - top.leading_zeros();
-            let k = if tame && !short { r.range(17.min(bits as u64 - 1), bits as u64 - 1) } else { r.range(0, bits as u64 - 1) } as u32;
+            let k = if tame && !short {
+                r.range(17.min(bits as u64 - 1), bits as u64 - 1)
+            } else {
+                r.range(0, bits as u64 - 1)
+            } as u32;
             let body = format!("p{i} <= (p{i} == {width}'d{top}) ? {width}'d0 : p{i} + {width}'d1;");
             let verilog = format!(
                 "    reg [{w1}:0] p{i} = {width}'d0;\n    always @(posedge {clk}) begin {} end\n    wire p{i}_tick = p{i} == {width}'d{top};\n",
@@ -743,8 +750,7 @@ fn make_part(r: &mut Rng, i: usize, clock: usize, enable: Option<&Part>, simulat
         }
         5 => {
             // An LFSR (a game's random source): short ones repeat, long ones never within a run.
-            let (width, taps): (u32, &[u32]) =
-                *r.pick(&LFSRS[..if tame { 3 } else { LFSRS.len() }]);
+            let (width, taps): (u32, &[u32]) = *r.pick(&LFSRS[..if tame { 3 } else { LFSRS.len() }]);
             let fb: Vec<String> = taps.iter().map(|t| format!("p{i}[{t}]")).collect();
             let body = format!("p{i} <= {{p{i}[{}:0], {}}};", width - 2, fb.join(" ^ "));
             let verilog = format!(
@@ -833,7 +839,7 @@ fn reach(parts: &[Part], clocks: &[Clock], simulate: bool, kind: Program, vga_ob
     let clocks_in_period = period.clocks();
     // A skip needs the period proved twice and a settle after each counter boundary: with
     // boundaries 50 x that far apart, under 5 % of the time is simulated.
-    if clocks_in_period > 4096 {
+    if clocks_in_period > 16_384 {
         return Err(format!("its period is {clocks_in_period} clocks"));
     }
     if shortest < 50 * (256 + 3 * clocks_in_period) {

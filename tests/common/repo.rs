@@ -6,11 +6,13 @@
 //! - its `tree.txt`: one line each,
 //!   - `copy FROM TO`: a file of this repository (the examples) placed at TO, optionally
 //!     followed by edits `| replace "OLD" "NEW"` (each must match: a stale copy differs from
-//!     the live one by them);
+//!     the live one by them) or `| cut "TEXT"` (the file ends right before TEXT: a file
+//!     committed cut short);
 //!   - `rom PSM TO`: the program ROM the KCPSM6 assembler writes for PSM in its development
 //!     template (a block RAM's INIT strings and the JTAG loader module), at TO;
 //!   - `older PATH...`: these paths (files or folders) are committed first, a month before
 //!     the rest, as a team's stale copies are;
+//!   - `archive`: no git at all, every file the same date (a downloaded archive);
 //!   - `#` comments.
 
 use std::path::Path;
@@ -45,6 +47,7 @@ pub fn clone_renamed(name: &str, renames: &[(&str, &str)]) -> tempfile::TempDir 
     }
     let manifest = std::fs::read_to_string(src.join("tree.txt")).unwrap_or_default();
     let mut older = Vec::new();
+    let mut archive = false;
     for (n, line) in manifest.lines().enumerate() {
         let line = line.trim();
         if line.is_empty() || line.starts_with('#') {
@@ -59,6 +62,12 @@ pub fn clone_renamed(name: &str, renames: &[(&str, &str)]) -> tempfile::TempDir 
                 let mut text = std::fs::read_to_string(root().join(files[0])).unwrap_or_else(|e| panic!("{at}: {e}"));
                 for edit in parts {
                     let q: Vec<&str> = edit.split('"').collect();
+                    if q.len() == 3 && q[0].trim() == "cut" {
+                        let cut = unescape(q[1]);
+                        let end = text.find(&cut).unwrap_or_else(|| panic!("{at}: `{cut}` is not in {}", files[0]));
+                        text.truncate(end);
+                        continue;
+                    }
                     assert!(q.len() == 5 && q[0].trim() == "replace", "{at}: expected | replace \"OLD\" \"NEW\"");
                     let (old, new) = (unescape(q[1]), unescape(q[3]));
                     assert!(text.contains(&old), "{at}: `{old}` is not in {}", files[0]);
@@ -74,8 +83,13 @@ pub fn clone_renamed(name: &str, renames: &[(&str, &str)]) -> tempfile::TempDir 
                 write(&dir.path().join(place(files[1])), &template_rom(&program.image, &module));
             }
             "older" => older.extend(rest.split_whitespace().map(place)),
+            "archive" => archive = true,
             _ => panic!("{at}: unknown line"),
         }
+    }
+    if archive {
+        same_date(dir.path());
+        return dir;
     }
     git(dir.path(), &["init", "-q"], None);
     if !older.is_empty() {
@@ -87,6 +101,18 @@ pub fn clone_renamed(name: &str, renames: &[(&str, &str)]) -> tempfile::TempDir 
     git(dir.path(), &["add", "-A", "-f"], None);
     git(dir.path(), &["commit", "-q", "-m", "the design", "--allow-empty"], Some("2014-11-01T12:00:00"));
     dir
+}
+
+/// Every file under `dir` modified at one moment, as an archive's files are once unpacked.
+fn same_date(dir: &Path) {
+    let when = std::time::UNIX_EPOCH + std::time::Duration::from_secs(1_414_843_200);
+    for e in std::fs::read_dir(dir).unwrap().flatten() {
+        if e.path().is_dir() {
+            same_date(&e.path());
+        } else {
+            std::fs::File::options().write(true).open(e.path()).unwrap().set_modified(when).unwrap();
+        }
+    }
 }
 
 fn unescape(s: &str) -> String {

@@ -177,8 +177,8 @@ impl Display {
     ///         slow.pins(t + j * 8 * MS, an, seg, dp);
     ///     }
     /// }
-    /// fast.settle(900_000 * MS);
-    /// slow.settle(900_000 * MS);
+    /// fast.settle(800_005 * MS);
+    /// slow.settle(800_005 * MS);
     /// assert_eq!(fast.lines(), slow.lines());
     /// assert_eq!(fast.lines().last().unwrap().text, "       1");
     /// ```

@@ -120,11 +120,14 @@ pub struct Plan {
     pub cpus: Vec<CpuSite>,
 }
 
-/// A user file in the build: its path, and its text when modules were blanked out of it.
+/// A user file in the build: its path, and its text when modules were blanked out of it
+/// (or botsim edited it, or wrote it).
 #[derive(Clone, Debug)]
 pub struct UserFile {
     pub path: PathBuf,
     pub filtered: Option<String>,
+    /// botsim wrote it (a core, a stand-in, a stub, a conversion): `path` says for what.
+    pub generated: bool,
 }
 
 /// The ROM interface of a kcpsm6 program ROM (spec kcpsm6.md 3).
@@ -352,13 +355,17 @@ impl Plan {
             let drop: Vec<std::ops::Range<usize>> =
                 s.modules.iter().filter(|m| replaced_names.contains(&m.name)).map(|m| m.span.clone()).collect();
             if drop.is_empty() && s.dropped.is_empty() && !s.edited {
-                files.push(UserFile { path: s.path.clone(), filtered: None });
+                files.push(UserFile { path: s.path.clone(), filtered: None, generated: false });
                 continue;
             }
             if drop.len() == s.modules.len() && !s.text.contains("`define") {
                 continue; // nothing of the user's is left in it
             }
-            files.push(UserFile { path: s.path.clone(), filtered: Some(s.compiled_text(&drop)) });
+            files.push(UserFile {
+                path: s.path.clone(),
+                filtered: Some(s.compiled_text(&drop)),
+                generated: s.generated,
+            });
         }
 
         let top_module = defined[top.as_str()].1;

@@ -176,6 +176,11 @@ impl Ages {
         Ages { committed }
     }
 
+    /// When `path` was last committed, if git knows it.
+    pub fn committed(&self, path: &Path) -> Option<i64> {
+        self.committed.get(&canonical(path)).copied()
+    }
+
     /// When `path` was last committed, or else last modified.
     pub fn of_file(&self, path: &Path) -> i64 {
         if let Some(t) = self.committed.get(&canonical(path)) {

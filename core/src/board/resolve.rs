@@ -259,6 +259,24 @@ impl Pool {
         format!("{}:{}", self.path(d).display(), self.module(d).line)
     }
 
+    /// The error for a definition with no `endmodule` (a file cut short), if `d` is one:
+    /// nothing else said of the design can be trusted while it stands.
+    fn unterminated(&self, d: Def) -> Result<(), BoardError> {
+        let m = self.module(d);
+        if !m.unterminated {
+            return Ok(());
+        }
+        Err(BoardError::at(
+            self.path(d),
+            m.line,
+            m.col,
+            format!(
+                "the module `{}` does not end (no `endmodule`): the file was cut short? (--exclude it if it is not the design's)",
+                m.name
+            ),
+        ))
+    }
+
     /// The definitions of `name`, but for black boxes in Vivado's synthesis stubs
     /// (`<ip>_stub.v`: the core's ports and nothing else).
     fn definitions(&self, name: &str) -> Vec<Def> {
@@ -266,6 +284,11 @@ impl Pool {
             self.module(*d).empty && self.path(*d).to_string_lossy().to_ascii_lowercase().ends_with("_stub.v")
         };
         self.defs.get(name).map(|v| v.iter().copied().filter(|d| !stub(d)).collect()).unwrap_or_default()
+    }
+
+    /// Does the definition `d` reach a `bot` instance?
+    fn def_reaches_bot(&self, d: Def) -> bool {
+        self.module(d).instances.iter().any(|i| self.reaches_bot(&i.module))
     }
 
     /// Does any definition of `name` reach a `bot` instance?
@@ -352,6 +375,12 @@ impl Pool {
         if candidates.is_empty() {
             candidates = pick(&boards);
         }
+        // A top cut short may be why there are several, or none with the bot.
+        for n in pick(&boards) {
+            for d in self.definitions(&n) {
+                self.unterminated(d)?;
+            }
+        }
         match candidates.as_slice() {
             [one] => Ok(one.clone()),
             [] => Err(BoardError::plain(
@@ -368,7 +397,9 @@ impl Pool {
     }
 
     /// The definition of `name` to use, from `defs`, and the note that says why when there
-    /// was a choice. `parent`: the file of the module that instantiates it.
+    /// was a choice; an error naming them when nothing decides (no file date does: in a
+    /// downloaded archive every file has the same, and a backup copy written last would
+    /// win). `parent`: the file of the module that instantiates it.
     fn choose(
         &self,
         name: &str,
@@ -376,15 +407,15 @@ impl Pool {
         parent: Option<&Path>,
         listed: &BTreeSet<PathBuf>,
         opts: &Options,
-    ) -> (Def, Option<String>) {
+    ) -> Result<(Def, Option<String>), BoardError> {
         if defs.len() == 1 {
-            return (defs[0], None);
+            return Ok((defs[0], None));
         }
         // Copies that differ in nothing but comments and layout are one definition.
         let text = |d: Def| scan::normalized(&self.sources[d.src].text, self.module(d).span.clone());
         let first = text(defs[0]);
         if defs[1..].iter().all(|d| text(*d) == first) {
-            return (self.order_by_age(defs)[0], None);
+            return Ok((self.order_by_age(defs)[0], None));
         }
         let canon = |p: &Path| std::fs::canonicalize(p).unwrap_or(p.to_path_buf());
         let mut cands = defs.to_vec();
@@ -417,13 +448,25 @@ impl Pool {
         let ordered = self.order_by_age(&cands);
         let taken = ordered[0];
         if cands.len() > 1 {
+            // Git's history decides when it tells the last committed; nothing else does.
             let ages = self.ages();
-            let newest = ages.of_file(self.path(taken));
-            why = if cands.iter().all(|d| ages.of_file(self.path(*d)) == newest) {
-                "the one nearest the repository's root".into()
-            } else {
-                "the newest".into()
-            };
+            let times: Vec<Option<i64>> = ordered.iter().map(|d| ages.committed(self.path(*d))).collect();
+            let newest =
+                times[0].filter(|t| times.iter().all(|o| o.is_some()) && times[1..].iter().all(|o| *o < Some(*t)));
+            if newest.is_none() {
+                let all: Vec<String> = cands.iter().map(|d| self.at(*d)).collect();
+                let nothing = if times.iter().any(Option::is_none) {
+                    "no project lists one, none is beside the module that instantiates it, and there is no git history to tell the last committed"
+                } else {
+                    "no project lists one, none is beside the module that instantiates it, and git committed them together"
+                };
+                return Err(BoardError::plain(format!(
+                    "`{name}` has {} different definitions and nothing tells which the design uses ({nothing}): {}; name one with --file FILE (or --exclude the others)",
+                    cands.len(),
+                    all.join(", ")
+                )));
+            }
+            why = "the last committed".into();
         }
         let others: Vec<String> = defs.iter().filter(|d| **d != taken).map(|d| self.at(*d)).collect();
         let note = format!(
@@ -432,7 +475,7 @@ impl Pool {
             self.at(taken),
             others.join(", ")
         );
-        (taken, Some(note))
+        Ok((taken, Some(note)))
     }
 
     /// Newest first (last committed, else modified), then nearest the root, then by path.
@@ -522,6 +565,8 @@ struct Walk<'a> {
     notes: Vec<String>,
     /// Every instance of a stubbed or `--clock` module, for their ports.
     instances: BTreeMap<String, Vec<Instance>>,
+    /// A choice that cannot be made (two definitions nothing orders): ends the walk.
+    error: Option<BoardError>,
 }
 
 impl<'a> Walk<'a> {
@@ -536,12 +581,33 @@ impl<'a> Walk<'a> {
             missing: Vec::new(),
             notes: Vec::new(),
             instances: BTreeMap::new(),
+            error: None,
         }
     }
 
     fn run(&mut self, top: &str) -> Result<(), BoardError> {
         let defs = self.pool.definitions(top);
-        let (d, note) = self.pool.choose(top, &defs, None, self.listed, self.opts);
+        // Two definitions of the top (Project 1's and Project 2's): the one whose design has
+        // the bot.
+        let mut defs = defs;
+        if defs.len() > 1 {
+            let with_bot: Vec<Def> = defs.iter().copied().filter(|d| self.pool.def_reaches_bot(*d)).collect();
+            if !with_bot.is_empty() && with_bot.len() < defs.len() {
+                let others: Vec<String> =
+                    defs.iter().filter(|d| !with_bot.contains(d)).map(|d| self.pool.at(*d)).collect();
+                if let [one] = with_bot[..] {
+                    self.notes.push(format!(
+                        "the top `{top}` has {} definitions: took {}, whose design has the bot, over {}",
+                        defs.len(),
+                        self.pool.at(one),
+                        others.join(", ")
+                    ));
+                }
+                defs = with_bot;
+            }
+        }
+        let (d, note) = self.pool.choose(top, &defs, None, self.listed, self.opts)?;
+        self.pool.unterminated(d)?;
         self.notes.extend(note);
         self.chosen.insert(top.to_string(), Choice::User(d));
         self.order.push(top.to_string());
@@ -575,7 +641,14 @@ impl<'a> Walk<'a> {
                 if self.chosen.contains_key(&inst.module) {
                     continue;
                 }
-                if let Some(child) = self.choose_for(inst, &m.name, &file) {
+                let chosen = self.choose_for(inst, &m.name, &file);
+                if let Some(e) = self.error.take() {
+                    return Err(e);
+                }
+                if let Some(child) = chosen {
+                    if let Choice::User(d) = &child {
+                        self.pool.unterminated(*d)?;
+                    }
                     // botsim's own modules replace the user's copies: not walked into.
                     let own = OWN_MODULES.iter().any(|(o, _)| *o == inst.module);
                     if let (Choice::User(d), false) = (&child, own) {
@@ -588,7 +661,7 @@ impl<'a> Walk<'a> {
                     // botsim's bot runs the user's bot_pgm, if there is one.
                     let defs = self.pool.definitions("bot_pgm");
                     if !defs.is_empty() {
-                        let (d, note) = self.pool.choose("bot_pgm", &defs, Some(&file), self.listed, self.opts);
+                        let (d, note) = self.pool.choose("bot_pgm", &defs, Some(&file), self.listed, self.opts)?;
                         self.notes.extend(note);
                         self.chosen.insert("bot_pgm".into(), Choice::User(d));
                         self.order.push("bot_pgm".into());
@@ -616,7 +689,13 @@ impl<'a> Walk<'a> {
             return Some(if defs.is_empty() {
                 Choice::Own
             } else {
-                let (d, _) = pool.choose(name, &defs, Some(file), self.listed, self.opts);
+                let d = match pool.choose(name, &defs, Some(file), self.listed, self.opts) {
+                    Ok((d, _)) => d,
+                    Err(e) => {
+                        self.error.get_or_insert(e);
+                        return None;
+                    }
+                };
                 Choice::User(d)
             });
         }
@@ -665,7 +744,7 @@ impl<'a> Walk<'a> {
                             inst,
                             parent,
                             file,
-                            format!("its program {} does not assemble: {e}", psm.display()),
+                            format!("its program {} does not assemble: {}", psm.display(), e.errors_text()),
                         );
                         return None;
                     }
@@ -767,7 +846,13 @@ impl<'a> Walk<'a> {
     }
 
     fn user(&mut self, name: &str, defs: &[Def], file: &Path) -> Choice {
-        let (d, note) = self.pool.choose(name, defs, Some(file), self.listed, self.opts);
+        let (d, note) = match self.pool.choose(name, defs, Some(file), self.listed, self.opts) {
+            Ok(c) => c,
+            Err(e) => {
+                self.error.get_or_insert(e);
+                return Choice::User(defs[0]);
+            }
+        };
         self.notes.extend(note);
         // A generated wrapper of Xilinx's memory library model: the core from its
         // configuration, else from the parameters the wrapper gives the model.
@@ -908,6 +993,18 @@ impl<'a> Walk<'a> {
                 };
                 msg.push_str(&format!("\n  {}: `{}`{place}: {}", m.at, m.module, m.hint));
             }
+            // Every one inside one module of the team's (an icon module holding its ROM
+            // cores): tying that module off is the one option that gets past them all.
+            let parents: BTreeSet<&str> = self.missing.iter().map(|m| m.parent.as_str()).collect();
+            if let (true, Some(&parent), 1) = (n > 1, parents.first(), parents.len()) {
+                let defs = self.pool.definitions(parent);
+                if parent != top && !defs.is_empty() {
+                    let at = defs.iter().map(|d| self.pool.at(*d)).next().unwrap_or_default();
+                    msg.push_str(&format!(
+                        "\n  all {n} are instantiated in `{parent}` ({at}): --stub {parent} ties off that module (its outputs 0) instead"
+                    ));
+                }
+            }
             return Err(BoardError::plain(msg));
         }
         // The user's files: each with the modules chosen from it, the rest blanked.
@@ -947,6 +1044,25 @@ impl<'a> Walk<'a> {
     /// Rewrite what Vivado accepts and Verilator refuses in the compiled parts of `s`, and
     /// say so.
     fn lenient(&mut self, s: &mut Source) {
+        // Instances without a name get the one the scan gave them (after the text's other
+        // edits: each insertion shifts what follows it on its line).
+        let mut unnamed: Vec<(usize, String, String, u32, u32)> = s
+            .modules
+            .iter()
+            .flat_map(|m| &m.instances)
+            .filter_map(|i| i.unnamed_at.map(|at| (at, i.name.clone(), i.module.clone(), i.line, i.col)))
+            .filter(|(at, ..)| !s.dropped.iter().any(|d| d.start <= *at && *at < d.end))
+            .collect();
+        unnamed.sort_by_key(|u| std::cmp::Reverse(u.0));
+        for (_, name, module, line, col) in unnamed.iter().rev() {
+            self.notes.push(format!(
+                "{}:{line}:{col}: this `{module}` instance has no name (Verilog needs one; Vivado names it itself): botsim calls it `{name}`",
+                s.path.display()
+            ));
+        }
+        for (at, name, ..) in &unnamed {
+            s.replace(*at..*at, &format!("{name} "));
+        }
         let kept = |at: &std::ops::Range<usize>| !s.dropped.iter().any(|d| d.start <= at.start && at.end <= d.end);
         let fixes: Vec<scan::Oversized> =
             scan::oversized_literals(&s.text).into_iter().filter(|o| kept(&o.at)).collect();
@@ -1118,11 +1234,14 @@ mod tests {
         let opts = Options { prefer: vec![t.path().join("old/sys.v")], ..Options::default() };
         let d = resolve(&[t.path().to_path_buf()], &opts).unwrap();
         assert!(d.sources.iter().any(|s| s.module("sys").is_some() && s.path.ends_with("old/sys.v")));
-        // --exclude leaves a folder out: the other two copies are the choice.
+        // --exclude leaves a folder out: the other two copies remain, and nothing orders them
+        // (no project, neither beside the top, no git history; their files' dates are no
+        // reason): one error naming both and the option.
         let opts = Options { exclude: vec![t.path().join("src")], ..Options::default() };
-        let d = resolve(&[t.path().to_path_buf(), t.path().join("src/top.v")], &opts).unwrap();
-        let note = d.notes.iter().find(|n| n.contains("`sys` has 2 different definitions")).unwrap();
-        assert!(!note.contains("src/sys.v"), "{note}");
+        let e = resolve(&[t.path().to_path_buf(), t.path().join("src/top.v")], &opts).unwrap_err().to_string();
+        assert!(e.contains("`sys` has 2 different definitions and nothing tells which"), "{e}");
+        assert!(e.contains("old/sys.v:1") && e.contains("copy/sys.v:2") && e.contains("--file"), "{e}");
+        assert!(!e.contains("src/sys.v"), "{e}");
     }
 
     #[test]

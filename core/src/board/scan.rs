@@ -50,6 +50,9 @@ pub struct Instance {
     pub connections: Vec<(String, String)>,
     /// Parameter overrides `(name, value)`; positional ones are named `#0`...
     pub params: Vec<(String, String)>,
+    /// The instance has no name in the source (`bot (.clk(clk), ...);`, which Vivado
+    /// accepts and names itself): `name` is botsim's, to be written at this byte of the text.
+    pub unnamed_at: Option<usize>,
 }
 
 /// One module of a source file.
@@ -67,6 +70,9 @@ pub struct Module {
     /// Nothing but port and parameter declarations: a black box (a synthesis stub such as
     /// Vivado's `<ip>_stub.v`), which declares a module without defining it.
     pub empty: bool,
+    /// It has no `endmodule`: the file ends, or another module begins, before it does (a
+    /// file cut short). Its span and instances end there.
+    pub unterminated: bool,
 }
 
 impl Module {
@@ -280,6 +286,23 @@ fn tokenize(src: &str) -> (Vec<Token>, Vec<FileRef>) {
             i = (i + 2).min(b.len());
             continue;
         }
+        // An attribute, `(* X_INTERFACE_INFO = "..." *)` (Vivado's IP wrappers put them before
+        // their port declarations): as a comment. `@(*)` is no attribute.
+        let attribute = c == b'('
+            && b.get(i + 1) == Some(&b'*')
+            && src[i + 2..].find("*)").is_some_and(|end| !src[i + 2..i + 2 + end].trim().is_empty());
+        if attribute {
+            i += 2;
+            while i < b.len() && !(b[i] == b'*' && b.get(i + 1) == Some(&b')')) {
+                if b[i] == b'\n' {
+                    line += 1;
+                    line_start = i + 1;
+                }
+                i += 1;
+            }
+            i = (i + 2).min(b.len());
+            continue;
+        }
         let was_line_start = at_line_start;
         at_line_start = false;
         if c == b'`' {
@@ -463,11 +486,21 @@ fn module(p: &mut Parser) -> Option<Module> {
     let mut instances = Vec::new();
     let body_start = p.i;
     let mut j = body_start;
-    while j < p.t.len() && p.t[j].tok != Tok::Ident("endmodule".into()) {
+    // A module ends at its `endmodule`; a file cut short ends it at the next `module` or the
+    // end of the file.
+    while j < p.t.len()
+        && p.t[j].tok != Tok::Ident("endmodule".into())
+        && !matches!(&p.t[j].tok, Tok::Ident(w) if w == "module" || w == "macromodule")
+    {
         j += 1;
     }
     let body_end = j;
-    let end = p.t.get(body_end).map_or(p.src.len(), |t| t.at + "endmodule".len());
+    let unterminated = p.t.get(j).map(|t| &t.tok) != Some(&Tok::Ident("endmodule".into()));
+    let end = match p.t.get(body_end) {
+        Some(t) if unterminated => t.at,
+        Some(t) => t.at + "endmodule".len(),
+        None => p.src.len(),
+    };
     p.i = body_start;
     let mut stmt_start = true;
     let mut logic = false;
@@ -498,7 +531,7 @@ fn module(p: &mut Parser) -> Option<Module> {
                     && !KEYWORDS.contains(&w.as_str())
                     && !w.starts_with('$')
                     && !w.starts_with('`')
-                    && (p.is(1, '#') || (p.ident(1).is_some() && (p.is(2, '(') || p.is(2, '[')))) =>
+                    && (p.is(1, '#') || p.is(1, '(') || (p.ident(1).is_some() && (p.is(2, '(') || p.is(2, '[')))) =>
             {
                 let semi = instance_statement(p, body_end, &mut instances);
                 p.i = semi;
@@ -554,14 +587,24 @@ fn module(p: &mut Parser) -> Option<Module> {
         stmt_start = false;
         p.i += 1;
     }
-    p.i = body_end + 1;
+    p.i = if unterminated { body_end } else { body_end + 1 };
     // Keep the declared order of a non-ANSI port list.
     if !port_order.is_empty() {
         ports.sort_by_key(|pt: &Port| port_order.iter().position(|n| *n == pt.name).unwrap_or(usize::MAX));
         ports.retain(|pt| port_order.contains(&pt.name));
     }
     let empty = !logic && instances.is_empty();
-    Some(Module { name, line: name_tok.line, col: name_tok.col, span: start..end, params, ports, instances, empty })
+    Some(Module {
+        name,
+        line: name_tok.line,
+        col: name_tok.col,
+        span: start..end,
+        params,
+        ports,
+        instances,
+        empty,
+        unterminated,
+    })
 }
 
 fn direction(w: &str) -> Dir {
@@ -700,6 +743,20 @@ fn instance_statement(p: &mut Parser, body_end: usize, out: &mut Vec<Instance>) 
             k += 2; // #5 delay or #N
         }
     }
+    // An instance without a name: botsim names it after the module and its line.
+    if p.t.get(k).map(|t| &t.tok) == Some(&Tok::Punct('(')) {
+        let end = p.skip_group(k);
+        out.push(Instance {
+            module: module.clone(),
+            name: format!("{module}_{}", mtok.line),
+            line: mtok.line,
+            col: mtok.col,
+            connections: connections(p, k + 1, end - 1),
+            params,
+            unnamed_at: Some(p.t[k].at),
+        });
+        return (end..body_end).find(|&j| p.t[j].tok == Tok::Punct(';')).unwrap_or(body_end);
+    }
     while let Some(Tok::Ident(name)) = p.t.get(k).map(|t| t.tok.clone()) {
         k += 1;
         if p.t.get(k).map(|t| &t.tok) == Some(&Tok::Punct('[')) {
@@ -717,6 +774,7 @@ fn instance_statement(p: &mut Parser, body_end: usize, out: &mut Vec<Instance>) 
             col: mtok.col,
             connections: conns,
             params: params.clone(),
+            unnamed_at: None,
         });
         k = end;
         if p.t.get(k).map(|t| &t.tok) == Some(&Tok::Punct(',')) {

@@ -20,6 +20,8 @@ pub struct Source {
     /// The text is not the file's as it is on disk: botsim generated it (a core from its
     /// configuration, a stand-in) or rewrote a construct in it.
     pub edited: bool,
+    /// botsim wrote all of it (a core, a stand-in, a stub, a conversion).
+    pub generated: bool,
 }
 
 impl Source {
@@ -27,12 +29,12 @@ impl Source {
     pub fn new(path: impl Into<PathBuf>, text: impl Into<String>) -> Source {
         let text = text.into();
         let modules = scan::scan(&text);
-        Source { path: path.into(), text, modules, dropped: Vec::new(), edited: false }
+        Source { path: path.into(), text, modules, dropped: Vec::new(), edited: false, generated: false }
     }
 
     /// A source botsim wrote (`path` says where it comes from and ends in `.v`).
     pub fn generated(path: impl Into<PathBuf>, text: impl Into<String>) -> Source {
-        Source { edited: true, ..Source::new(path, text) }
+        Source { edited: true, generated: true, ..Source::new(path, text) }
     }
 
     /// Read and scan a file (a UTF-8 byte-order mark, as Windows editors write, is skipped).

@@ -273,9 +273,8 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
                 (frames.len() - 1) as f64 / frames[frames.len() - 1].duration_since(frames[0]).as_secs_f64().max(1e-3)
             };
             let now_rate = rate.at(t);
-            let behind = lag.behind(running.then_some(pace.speed()).flatten(), now_rate, || {
-                why_behind(a, p, &b.model, skip_mode)
-            });
+            let behind = lag
+                .behind(running.then_some(pace.speed()).flatten(), now_rate, || why_behind(a, p, &b.model, skip_mode));
             let mut view = b.view(running, pace.speed(), now_rate, frame_rate);
             view.behind = behind;
             server.state(view);

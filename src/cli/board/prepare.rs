@@ -140,7 +140,7 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
     let bot_firmware = fw.assemble().map_err(|d| d.to_string())?;
     let mut programs = Vec::new();
     for p in &a.program {
-        let img = loader::load(p, &botsim::kcpsm6::asm::Options::default()).map_err(|d| d.to_string())?;
+        let img = loader::load(p, &botsim::kcpsm6::asm::Options::default()).map_err(|d| d.errors_text())?;
         programs.push((p.clone(), img));
     }
     for p in [&a.trace_csv, &a.trace_json, &a.png, &a.display, &a.pins, &a.vcd, &a.design_log].into_iter().flatten() {

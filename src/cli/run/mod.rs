@@ -277,7 +277,7 @@ fn source_map(args: &Args) -> Result<Option<SourceMap>, String> {
         }
         Some(p) if Format::of(p) == Some(Format::Psm) => {
             let opts = botsim::kcpsm6::asm::Options { defines: fw.defines(), ..Default::default() };
-            let prog = botsim::kcpsm6::asm::assemble_file(p, &opts).map_err(|d| d.to_string())?;
+            let prog = botsim::kcpsm6::asm::assemble_file(p, &opts).map_err(|d| d.errors_text())?;
             Ok(Some(SourceMap::of(&prog)))
         }
         Some(_) => Ok(None),

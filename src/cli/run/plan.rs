@@ -61,7 +61,7 @@ impl Plan {
                 }
                 // bot_pgm is a 1K ROM: a .psm that runs past it fails at the line that does.
                 let opts = Options { defines: firmware.defines(), rom_size: Some(RomSize::K1), ..Options::default() };
-                let image = botsim::kcpsm6::loader::load(p, &opts).map_err(|d| d.to_string())?;
+                let image = botsim::kcpsm6::loader::load(p, &opts).map_err(|d| d.errors_text())?;
                 check_program_size(&image.words[..]).map_err(|e| format!("{}: error: {e}", p.display()))?;
                 image
             }

@@ -10,7 +10,8 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use botsim_core::board::plan::{Plan, OWN_MODULES, PRIMITIVES};
+use botsim_core::board::parts::{OWN_MODULES, PRIMITIVES};
+use botsim_core::board::plan::Plan;
 use botsim_core::board::wrapper;
 use botsim_core::board::BoardError;
 

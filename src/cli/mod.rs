@@ -10,7 +10,9 @@ mod firmware;
 mod frame;
 mod live;
 mod map;
+mod rows;
 mod run;
+mod size;
 mod suite;
 
 use clap::{Parser, Subcommand};

@@ -10,6 +10,7 @@ pub mod gtkw;
 pub mod ip;
 pub mod locate;
 pub mod memcore;
+pub mod parts;
 pub mod pins;
 pub mod plan;
 pub mod project;

@@ -11,39 +11,12 @@ use std::path::{Path, PathBuf};
 
 use kcpsm6::image::Image;
 
+use super::parts::{is_program_rom, Replacement, HELPERS, OWN_MODULES, PRIMITIVES};
 use super::pins::{self, Role};
 use super::resolve::Design;
 use super::scan::{Dir, Instance, Module};
 pub use super::source::Source;
 use super::BoardError;
-
-/// botsim's own modules that replace the user's, with the file each comes from.
-pub const OWN_MODULES: [(&str, &str); 5] = [
-    ("kcpsm6", "kcpsm6.v"),
-    ("bot", "bot.v"),
-    ("world_if", "world_if.v"),
-    ("map", "map.v"),
-    ("world_map", "world_map.v"),
-];
-
-/// The Xilinx primitives rtl/board/xilinx.v models, with the output ports of each in the
-/// bit order of its `BOTSIM_USED_<NAME>` mask (empty: not a clock manager).
-pub const PRIMITIVES: [(&str, &[&str]); 10] = [
-    ("BUFG", &[]),
-    ("BUFH", &[]),
-    ("IBUF", &[]),
-    ("IBUFG", &[]),
-    ("BUFGCE", &[]),
-    ("MMCME2_ADV", &["CLKOUT0", "CLKOUT1", "CLKOUT2", "CLKOUT3", "CLKOUT4", "CLKOUT5", "CLKOUT6", "CLKFBOUT"]),
-    ("MMCME2_BASE", &["CLKOUT0", "CLKOUT1", "CLKOUT2", "CLKOUT3", "CLKOUT4", "CLKOUT5", "CLKOUT6", "CLKFBOUT"]),
-    ("PLLE2_ADV", &["CLKOUT0", "CLKOUT1", "CLKOUT2", "CLKOUT3", "CLKOUT4", "CLKOUT5", "CLKOUT6", "CLKFBOUT"]),
-    ("PLLE2_BASE", &["CLKOUT0", "CLKOUT1", "CLKOUT2", "CLKOUT3", "CLKOUT4", "CLKOUT5", "CLKOUT6", "CLKFBOUT"]),
-    ("DCM_SP", &["CLK0", "CLK90", "CLK180", "CLK270", "CLK2X", "CLK2X180", "CLKDV", "CLKFX"]),
-];
-
-/// botsim's own building blocks (rtl/board/xilinx.v, botsim_clkgen.v) that the Verilog it
-/// generates for a design (clock cores) instantiates.
-pub const HELPERS: [&str; 3] = ["botsim_clkgen", "botsim_lock", "botsim_mmcm"];
 
 /// What the user asked for on the command line that the plan needs.
 #[derive(Clone, Debug)]
@@ -55,15 +28,6 @@ pub struct Request {
     pub bot_firmware: Image,
     /// True when the request selects botsim's firmware even if the user has a `bot_pgm`.
     pub force_own_firmware: bool,
-}
-
-/// One line of the substitution report.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct Replacement {
-    pub module: String,
-    /// Where the user's copy is (empty when they have none).
-    pub from: String,
-    pub with: String,
 }
 
 /// A ROM to generate: the module name, its program, and where the program came from.
@@ -128,12 +92,6 @@ pub struct UserFile {
     pub filtered: Option<String>,
     /// botsim wrote it (a core, a stand-in, a stub, a conversion): `path` says for what.
     pub generated: bool,
-}
-
-/// The ROM interface of a kcpsm6 program ROM (spec kcpsm6.md 3).
-pub fn is_program_rom(m: &Module) -> bool {
-    ["address", "instruction", "enable", "clk"].iter().all(|p| m.port(p).is_some())
-        && m.port("instruction").is_some_and(|p| p.dir == Dir::Output && (p.width == 18 || p.width == 0))
 }
 
 impl Plan {

@@ -25,8 +25,8 @@ use std::path::{Path, PathBuf};
 use super::course;
 use super::ip::{ClockCore, ClockSpec, IpConfig, CLOCK_CORES};
 use super::memcore::{library_model, MemCore, MEMORY_CORES};
+use super::parts::{is_program_rom, Replacement, HELPERS, OWN_MODULES, PRIMITIVES};
 use super::pins::{self, Role};
-use super::plan::{is_program_rom, Replacement, HELPERS, OWN_MODULES, PRIMITIVES};
 use super::project::Project;
 use super::repo::{tidy, Ages, FileKind, Repo};
 use super::scan::{self, Instance, Module};
@@ -964,7 +964,7 @@ impl<'a> Walk<'a> {
                 let params: Vec<String> = params.into_iter().collect();
                 sources.push(Source::generated(
                     format!("botsim/stubs/{module}.v"),
-                    super::wrapper::stub(&module, &ports, &params),
+                    super::parts::stub(&module, &ports, &params),
                 ));
                 generated.push(Replacement {
                     module: module.clone(),

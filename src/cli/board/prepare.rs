@@ -19,7 +19,8 @@ use botsim_core::board::stimulus::{parse_press, parse_time, Stimulus};
 use botsim_core::debug::{BreakSpec, Breaks};
 
 use super::breaks::{breakpoints, parse_mark, Mark};
-use super::{parse_size, Args, BotArg, CpuArg, LONG_RUN_S};
+use super::{Args, BotArg, CpuArg, LONG_RUN_S};
+use crate::cli::size::parse_size;
 
 /// A design ready to run, with what the arguments asked for.
 pub struct Prepared {

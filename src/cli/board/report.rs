@@ -7,7 +7,7 @@ use super::breaks::Stopped;
 use super::prepare::Prepared;
 use super::session::{at_line_end, Outcome};
 use super::Args;
-use crate::cli::run::{csv_row, CSV_HEADER};
+use crate::cli::rows::{csv_row, CSV_HEADER};
 
 /// Below this fraction of its time skipped, a run says what kept it busy.
 const BUSY_SAID: f64 = 0.9;

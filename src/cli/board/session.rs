@@ -22,8 +22,9 @@ use botsim_core::debug::{describe_pc, sample_state};
 use super::breaks::{save_file_view, write_save_file, BreakStop, Mark};
 use super::prepare::Prepared;
 use super::progress::Progress;
-use super::{parse_size, Args, VCD_MAX};
-use crate::cli::run::json_row;
+use super::Args;
+use crate::cli::rows::json_row;
+use crate::cli::size::{parse_size, VCD_MAX};
 
 /// How many lines of the design's own printing standard error shows.
 const DESIGN_LINES: u64 = 200;
@@ -191,160 +192,248 @@ pub struct Outcome {
     pub busy: Option<(String, u64)>,
 }
 
-/// Run the prepared board as the arguments say.
+/// Run the prepared board as the arguments say: the session opens (models loaded, the
+/// fast-forward chosen, the first inputs set), runs chunk by chunk until something stops it,
+/// and closes (traces, breakpoints, the design's own end, the waveform).
 pub fn simulate(a: &Args, p: &Prepared) -> Result<Outcome, String> {
-    let printing = Printing { log: a.design_log.clone(), lines: if a.quiet { 0 } else { DESIGN_LINES } };
-    let mut first = load(&p.built.library, &p.world, &p.plan.roms, p.main_host()?, &printing)?;
-    if a.every_edge {
-        first.every_edge();
-    }
-    let mut model = match &p.twin {
-        Some(b) => {
-            let mut iss = load(&b.library, &p.world, &p.plan.roms, p.host(CpuModel::Iss, p.bot)?, &Printing::SILENT)?;
-            if a.every_edge {
-                iss.every_edge();
-            }
-            Sim::Pair(Box::new(Lockstep::new(first, iss)))
-        }
-        None => Sim::One(Box::new(first)),
-    };
-    // The waveform: open from the start, or at its --trace-from mark.
-    let (mut vcd_open, mut vcd_done, mut vcd_close_at) = (false, a.vcd.is_none(), None);
-    if let (Some(v), Mark::Time(0) | Mark::Sample(0)) = (&a.vcd, p.vcd_from) {
-        model.main().open_vcd(v).map_err(|e| e.to_string())?;
-        vcd_open = true;
-    }
-    model.record_vga(a.frames.is_some());
-    // The fast-forward: every KCPSM6 and the bot are models, and nothing needs every edge
-    // (a waveform turns it off while it is written).
-    let fast_forward = !a.no_fast_forward
-        && p.cpu == CpuModel::Iss
-        && p.main_bot == BotKind::Model
-        && a.frames.is_none()
-        && a.cpu_trace.is_none()
-        && p.cpu_breaks.is_empty();
-    // Why a run that could fast-forward does not (the design, not the options).
-    let mut fast_forward_off: Option<String> = None;
-    if let Sim::One(m) = &mut model {
-        if fast_forward {
-            // A waveform window later shows every variable: compare them all until then. A
-            // board with another clock cannot; unless asked to, it skips as without a
-            // waveform, which then shows what the run did not simulate as x.
-            let mut mode = if a.vcd.is_some() { FastForward::Whole } else { FastForward::Recorded };
-            fast_forward_off = m.fast_forward_blocker().map(str::to_string);
-            let mut on = fast_forward_off.is_none() && m.fast_forward(mode);
-            if !on
-                && fast_forward_off.is_none()
-                && mode == FastForward::Whole
-                && !vcd_open
-                && !a.vcd_all_signals
-                && m.unshown_unknown().is_none()
-            {
-                mode = FastForward::Recorded;
-                on = m.fast_forward(mode);
-                if on {
-                    a.say("note: the waveform shows x for the parts of the design the run does not record (another clock drives them, and they are not simulated before it); --vcd-all-signals simulates every edge to show them".into());
-                }
-            }
-            if fast_forward_off.is_none() && !on {
-                let why = match (mode, m.observed_unknown()) {
-                    (FastForward::Whole, _) => "a waveform later shows every variable".to_string(),
-                    (_, Some(unknown)) => format!("what a run observes of it is not known: {unknown}"),
-                    _ => "one besides the oscillator drives what the run records".to_string(),
-                };
-                fast_forward_off = Some(format!(
-                    "the board has {} clocks, and {why} (the fast-forward needs one clock, or others that drive only what the run does not record)",
-                    m.clocks().len()
-                ));
-            }
-            if let Some(why) = &fast_forward_off {
-                a.say(format!("note: no fast-forward: {why}; every clock edge is simulated"));
-            }
-        } else {
-            m.fast_forward(FastForward::Off);
-        }
-    }
-    let end_ps = match (a.seconds, a.samples) {
-        (Some(s), _) => (s * 1e12) as u64,
-        (None, Some(_)) => u64::MAX,
-        (None, None) => 1_000_000_000_000,
-    };
-    // As botsim run: sample 0 is the dump after reset, --samples N stops after sample N.
-    let sample_limit = a.samples.map_or(u64::MAX, |n| n.saturating_add(1));
-    // Times at which the run stops to change something: the inputs, the waveform window.
-    let mut stops: BTreeSet<u64> = p.stimulus.change_times().into_iter().collect();
-    if a.vcd.is_some() {
-        for m in [Some(p.vcd_from), p.vcd_to].into_iter().flatten() {
-            if let Mark::Time(t) = m {
-                stops.insert(t);
-            }
-        }
-    }
-    let (r, b, sw) = p.stimulus.inputs_at(0);
-    model.set_inputs(r, b, sw);
-
+    let mut session = Session::open(a, p)?;
     let t0 = Instant::now();
-    let vcd_max = a.vcd_max.as_deref().map_or(Ok(VCD_MAX), parse_size)?;
-    let mut progress = Progress::new(!a.quiet && !a.json && !a.finding, end_ps, sample_limit);
-    let mut rec = Records::new(a.frames.clone(), a.frame_every, a.pins.is_some());
-    let mut buf = vec![RawEvent::default(); RECORDS];
-    let mut at_end = false;
-    let mut blocked_now = false;
-    let mut bot_stop: Option<BreakStop> = None;
-    let counted_in_samples = a.seconds.is_none();
-    // A run repeated to a stop writes its other outputs up to the stop only.
-    let past_stop = |t: u64| a.stopped_at.as_ref().is_some_and(|s| t > s.time_ps);
-    let finished = loop {
+    let stopped_by = loop {
         if crate::cli::interrupted() {
             break None;
         }
-        let now = model.main().time_ps();
-        let mut until = stops.range(now + 1..).next().copied().unwrap_or(end_ps).min(end_ps);
-        // A waveform grows fast: its size is looked at more often.
-        until = until.min(now.saturating_add(if vcd_open { CHUNK_PS / 10 } else { CHUNK_PS }));
-        progress.show(now, rec.snapshots.len() as u64);
-        if let (Some(v), true) = (&a.vcd, vcd_open) {
-            let size = std::fs::metadata(v).map_or(0, |m| m.len());
-            if size > vcd_max {
-                drop(model);
-                let _ = std::fs::remove_file(v);
-                return Err(format!(
-                    "{}: the waveform passed {} MB at {:.3} ms of board time and was removed: ask for a window (--trace-from/--trace-to) or allow more (--vcd-max)",
-                    v.display(),
-                    vcd_max >> 20,
-                    now as f64 / 1e9
-                ));
+        if let Some(why) = session.step()? {
+            break Some(why);
+        }
+    };
+    session.close(stopped_by, t0.elapsed().as_secs_f64())
+}
+
+/// The waveform's window: open or not, done, and the time it closes at when its end is
+/// given in samples.
+struct Window {
+    open: bool,
+    done: bool,
+    close_at: Option<u64>,
+}
+
+/// A run of the board, phase by phase.
+struct Session<'a> {
+    a: &'a Args,
+    p: &'a Prepared,
+    model: Sim,
+    rec: Records,
+    vcd: Window,
+    /// Why a run that could fast-forward does not (the design, not the options).
+    fast_forward_off: Option<String>,
+    end_ps: u64,
+    /// As botsim run: sample 0 is the dump after reset, --samples N stops after sample N.
+    sample_limit: u64,
+    /// Times at which the run stops to change something: the inputs, the waveform window.
+    stops: BTreeSet<u64>,
+    vcd_max: u64,
+    progress: Progress,
+    buf: Vec<RawEvent>,
+    at_end: bool,
+    blocked_now: bool,
+    bot_stop: Option<BreakStop>,
+}
+
+impl<'a> Session<'a> {
+    /// Load the models, open a waveform that starts at once, choose the fast-forward, and
+    /// set the first inputs.
+    fn open(a: &'a Args, p: &'a Prepared) -> Result<Session<'a>, String> {
+        let printing = Printing { log: a.design_log.clone(), lines: if a.quiet { 0 } else { DESIGN_LINES } };
+        let mut first = load(&p.built.library, &p.world, &p.plan.roms, p.main_host()?, &printing)?;
+        if a.every_edge {
+            first.every_edge();
+        }
+        let mut model = match &p.twin {
+            Some(b) => {
+                let mut iss =
+                    load(&b.library, &p.world, &p.plan.roms, p.host(CpuModel::Iss, p.bot)?, &Printing::SILENT)?;
+                if a.every_edge {
+                    iss.every_edge();
+                }
+                Sim::Pair(Box::new(Lockstep::new(first, iss)))
+            }
+            None => Sim::One(Box::new(first)),
+        };
+        // The waveform: open from the start, or at its --trace-from mark.
+        let mut vcd = Window { open: false, done: a.vcd.is_none(), close_at: None };
+        if let (Some(v), Mark::Time(0) | Mark::Sample(0)) = (&a.vcd, p.vcd_from) {
+            model.main().open_vcd(v).map_err(|e| e.to_string())?;
+            vcd.open = true;
+        }
+        model.record_vga(a.frames.is_some());
+        let fast_forward_off = choose_fast_forward(a, p, &mut model, vcd.open);
+        let end_ps = match (a.seconds, a.samples) {
+            (Some(s), _) => (s * 1e12) as u64,
+            (None, Some(_)) => u64::MAX,
+            (None, None) => 1_000_000_000_000,
+        };
+        let sample_limit = a.samples.map_or(u64::MAX, |n| n.saturating_add(1));
+        let mut stops: BTreeSet<u64> = p.stimulus.change_times().into_iter().collect();
+        if a.vcd.is_some() {
+            for m in [Some(p.vcd_from), p.vcd_to].into_iter().flatten() {
+                if let Mark::Time(t) = m {
+                    stops.insert(t);
+                }
             }
         }
+        let (r, b, sw) = p.stimulus.inputs_at(0);
+        model.set_inputs(r, b, sw);
+        Ok(Session {
+            a,
+            p,
+            model,
+            rec: Records::new(a.frames.clone(), a.frame_every, a.pins.is_some()),
+            vcd,
+            fast_forward_off,
+            end_ps,
+            sample_limit,
+            stops,
+            vcd_max: a.vcd_max.as_deref().map_or(Ok(VCD_MAX), parse_size)?,
+            progress: Progress::new(!a.quiet && !a.json && !a.finding, end_ps, sample_limit),
+            buf: vec![RawEvent::default(); RECORDS],
+            at_end: false,
+            blocked_now: false,
+            bot_stop: None,
+        })
+    }
+
+    /// Run one chunk: to the next stop, within a chunk's time, and take what the board
+    /// showed. Returns what ended the run, if it ended.
+    fn step(&mut self) -> Result<Option<&'static str>, String> {
+        let (a, p) = (self.a, self.p);
+        let now = self.model.main().time_ps();
+        let mut until = self.stops.range(now + 1..).next().copied().unwrap_or(self.end_ps).min(self.end_ps);
+        // A waveform grows fast: its size is looked at more often.
+        until = until.min(now.saturating_add(if self.vcd.open { CHUNK_PS / 10 } else { CHUNK_PS }));
+        self.progress.show(now, self.rec.snapshots.len() as u64);
+        self.check_waveform_size(now)?;
         // A run counted in samples waits for the next one a bounded time.
+        let counted_in_samples = a.seconds.is_none();
         if counted_in_samples {
-            until = until.min(rec.last_sample_ps.saturating_add(NO_SAMPLE_PS));
+            until = until.min(self.rec.last_sample_ps.saturating_add(NO_SAMPLE_PS));
         }
         // A window given in samples: stop after sample s - 1 to open, after sample s to close.
-        let window_limit = match (vcd_done, vcd_open, p.vcd_from, p.vcd_to) {
+        let window_limit = match (self.vcd.done, self.vcd.open, p.vcd_from, p.vcd_to) {
             (false, false, Mark::Sample(s), _) => Some(s),
-            (false, true, _, Some(Mark::Sample(s))) if vcd_close_at.is_none() => Some(s + 1),
+            (false, true, _, Some(Mark::Sample(s))) if self.vcd.close_at.is_none() => Some(s + 1),
             _ => None,
         };
-        let mut limit = window_limit.map_or(sample_limit, |w| w.min(sample_limit));
+        let mut limit = window_limit.map_or(self.sample_limit, |w| w.min(self.sample_limit));
         if a.stop_at_line_end || a.stop_when_blocked || !p.bot_breaks.is_empty() {
-            limit = limit.min(rec.snapshots.len() as u64 + 1);
+            limit = limit.min(self.rec.snapshots.len() as u64 + 1);
         }
-        let (stop, n) = model.run(until, limit, &mut buf)?;
-        let events: Vec<Event> = buf[..n].iter().filter_map(Event::of).collect();
+        let (stop, n) = self.model.run(until, limit, &mut self.buf)?;
+        let events: Vec<Event> = self.buf[..n].iter().filter_map(Event::of).collect();
+        self.take(&events);
+        self.rec.write_frames()?;
+        if self.at_end {
+            return Ok(Some("line-end"));
+        }
+        if self.blocked_now {
+            return Ok(Some("blocked"));
+        }
+        if self.bot_stop.is_some() {
+            return Ok(Some("break"));
+        }
+        match stop {
+            Stop::BufferFull => Ok(None),
+            Stop::Samples if self.rec.snapshots.len() as u64 >= self.sample_limit => Ok(Some("samples")),
+            // A stop after one more sample, to look for the end of the line.
+            Stop::Samples if !window_limit.is_some_and(|w| self.rec.snapshots.len() as u64 >= w) => Ok(None),
+            Stop::Samples => {
+                // A window mark in samples.
+                if let (false, Some(v)) = (self.vcd.open, &a.vcd) {
+                    self.model.main().open_vcd(v).map_err(|e| e.to_string())?;
+                    self.vcd.open = true;
+                } else {
+                    // Close with the whole 2-clock pulse in the window (3 clocks of 100 MHz).
+                    let t = self.model.main().time_ps() + 30_000;
+                    self.stops.insert(t);
+                    self.vcd.close_at = Some(t);
+                }
+                Ok(None)
+            }
+            Stop::Finished => Ok(Some("finish")),
+            Stop::Until => self.at_stop(counted_in_samples),
+        }
+    }
+
+    /// The run reached the time it ran to: its end, a wait for a sample that does not come,
+    /// or a stop where the inputs or the waveform window change.
+    fn at_stop(&mut self, counted_in_samples: bool) -> Result<Option<&'static str>, String> {
+        let (a, p) = (self.a, self.p);
+        // A CPU the ISS cannot stand for stops the run here, not at its end.
+        self.model.check()?;
+        let t = self.model.main().time_ps();
+        if t >= self.end_ps {
+            return Ok(Some("time"));
+        }
+        let last = self.rec.last_sample_ps;
+        if counted_in_samples && t >= last.saturating_add(NO_SAMPLE_PS) {
+            let after = match self.rec.snapshots.last() {
+                None => "from the start".to_string(),
+                Some(s) => format!("after sample {} at {:.3} ms", s.sample, last as f64 / 1e9),
+            };
+            return Err(format!(
+                "no bot sample in {} s of board time {after} (upd_sysregs never pulsed: is the bot held in reset, or its clock stopped?)",
+                NO_SAMPLE_PS / 1_000_000_000_000
+            ));
+        }
+        if self.stops.contains(&t) {
+            let (r, b, sw) = p.stimulus.inputs_at(t);
+            self.model.set_inputs(r, b, sw);
+            if let Some(v) = &a.vcd {
+                if !self.vcd.open && !self.vcd.done && p.vcd_from == Mark::Time(t) {
+                    self.model.main().open_vcd(v).map_err(|e| e.to_string())?;
+                    self.vcd.open = true;
+                } else if self.vcd.open && (p.vcd_to == Some(Mark::Time(t)) || self.vcd.close_at == Some(t)) {
+                    self.model.main().close_vcd().map_err(|e| e.to_string())?;
+                    (self.vcd.open, self.vcd.done) = (false, true);
+                }
+            }
+        }
+        Ok(None)
+    }
+
+    /// A waveform past its budget is removed, and the run asks for a window.
+    fn check_waveform_size(&mut self, now: u64) -> Result<(), String> {
+        let (Some(v), true) = (&self.a.vcd, self.vcd.open) else { return Ok(()) };
+        let size = std::fs::metadata(v).map_or(0, |m| m.len());
+        if size <= self.vcd_max {
+            return Ok(());
+        }
+        // (The model, dropped with the session, closes the file it writes to.)
+        let _ = std::fs::remove_file(v);
+        Err(format!(
+            "{}: the waveform passed {} MB at {:.3} ms of board time and was removed: ask for a window (--trace-from/--trace-to) or allow more (--vcd-max)",
+            v.display(),
+            self.vcd_max >> 20,
+            now as f64 / 1e9
+        ))
+    }
+
+    /// Take a chunk's events into the records: the samples checked for the stops asked for,
+    /// a skip's repeated periods taken whole; a run repeated to a stop records up to it.
+    fn take(&mut self, events: &[Event]) {
+        let (a, p) = (self.a, self.p);
+        let past_stop = |t: u64| a.stopped_at.as_ref().is_some_and(|s| t > s.time_ps);
         for (i, &e) in events.iter().enumerate() {
             if let Event::Repeat { events: per, period_ps, count, .. } = e {
-                // A run repeated to a stop records the copies up to it only.
                 let period = &events[i - per..i];
                 let end = period.last().map_or(0, Event::time_ps);
                 let whole = match &a.stopped_at {
                     Some(s) => (1..=count).take_while(|j| end + j * period_ps <= s.time_ps).count() as u64,
                     None => count,
                 };
-                rec.repeat(period, period_ps, whole);
+                self.rec.repeat(period, period_ps, whole);
                 if whole < count {
                     let next = period.iter().map(|p| p.later((whole + 1) * period_ps));
-                    next.filter(|p| !past_stop(p.time_ps())).for_each(|p| rec.event(p));
+                    next.filter(|p| !past_stop(p.time_ps())).for_each(|p| self.rec.event(p));
                 }
                 continue;
             }
@@ -352,15 +441,15 @@ pub fn simulate(a: &Args, p: &Prepared) -> Result<Outcome, String> {
                 continue;
             }
             if let Event::Sample { time_ps, snapshot, .. } = &e {
-                let before = rec.snapshots.last();
-                at_end = at_end || (a.stop_at_line_end && at_line_end(snapshot));
-                blocked_now = blocked_now
+                let before = self.rec.snapshots.last();
+                self.at_end = self.at_end || (a.stop_at_line_end && at_line_end(snapshot));
+                self.blocked_now = self.blocked_now
                     || (a.stop_when_blocked && before.is_some_and(|b| b.move_refused(snapshot, p.fw.threshold)));
-                if bot_stop.is_none() {
+                if self.bot_stop.is_none() {
                     if let Some(b) = p.bot_breaks.iter().find(|b| b.hit(before, snapshot, p.fw.threshold)) {
                         let at =
                             sample_state(snapshot).replacen(',', &format!(" at {:.6} ms,", *time_ps as f64 / 1e9), 1);
-                        bot_stop = Some(BreakStop {
+                        self.bot_stop = Some(BreakStop {
                             time_ps: *time_ps,
                             bot: true,
                             message: format!("stopped by --break {}: {at}", b.text),
@@ -368,140 +457,136 @@ pub fn simulate(a: &Args, p: &Prepared) -> Result<Outcome, String> {
                     }
                 }
             }
-            rec.event(e);
+            self.rec.event(e);
         }
-        rec.write_frames()?;
-        if at_end {
-            break Some("line-end");
-        }
-        if blocked_now {
-            break Some("blocked");
-        }
-        if bot_stop.is_some() {
-            break Some("break");
-        }
-        match stop {
-            Stop::BufferFull => continue,
-            Stop::Samples if rec.snapshots.len() as u64 >= sample_limit => break Some("samples"),
-            // A stop after one more sample, to look for the end of the line.
-            Stop::Samples if !window_limit.is_some_and(|w| rec.snapshots.len() as u64 >= w) => continue,
-            Stop::Samples => {
-                // A window mark in samples.
-                if let (false, Some(v)) = (vcd_open, &a.vcd) {
-                    model.main().open_vcd(v).map_err(|e| e.to_string())?;
-                    vcd_open = true;
-                } else {
-                    // Close with the whole 2-clock pulse in the window (3 clocks of 100 MHz).
-                    let t = model.main().time_ps() + 30_000;
-                    stops.insert(t);
-                    vcd_close_at = Some(t);
-                }
+    }
+
+    /// The run has ended (`stopped_by`, or Ctrl-C): what stopped it and where, the design's
+    /// own end, the traces and the waveform written.
+    fn close(mut self, stopped_by: Option<&'static str>, wall: f64) -> Result<Outcome, String> {
+        let (a, p) = (self.a, self.p);
+        let (skips, skipped_ps) = self.model.main().fast_forwarded();
+        let sim_ps = self.model.main().time_ps();
+        self.rec.display.settle(sim_ps);
+        self.model.check()?;
+        let traces = self.model.finish_traces()?;
+        // A breakpoint in a CPU stops the model like $finish.
+        let cpu_stop = self.model.hit().map(|h| {
+            let (path, at) = (h.cpu.clone(), describe_pc(p.maps.get(&h.cpu), h.pc));
+            BreakStop {
+                time_ps: h.time_ps,
+                bot: false,
+                message: format!(
+                    "stopped by --break {}: {path} at {at} in its cycle {}, at {:.6} ms",
+                    h.what,
+                    h.cycle,
+                    h.time_ps as f64 / 1e9
+                ),
             }
-            Stop::Finished => break Some("finish"),
-            Stop::Until => {
-                // A CPU the ISS cannot stand for stops the run here, not at its end.
-                model.check()?;
-                let t = model.main().time_ps();
-                if t >= end_ps {
-                    break Some("time");
-                }
-                if counted_in_samples && t >= rec.last_sample_ps.saturating_add(NO_SAMPLE_PS) {
-                    let after = match rec.snapshots.last() {
-                        None => "from the start".to_string(),
-                        Some(s) => format!("after sample {} at {:.3} ms", s.sample, rec.last_sample_ps as f64 / 1e9),
-                    };
-                    return Err(format!(
-                        "no bot sample in {} s of board time {after} (upd_sysregs never pulsed: is the bot held in reset, or its clock stopped?)",
-                        NO_SAMPLE_PS / 1_000_000_000_000
-                    ));
-                }
-                if stops.contains(&t) {
-                    let (r, b, sw) = p.stimulus.inputs_at(t);
-                    model.set_inputs(r, b, sw);
-                    if let Some(v) = &a.vcd {
-                        if !vcd_open && !vcd_done && p.vcd_from == Mark::Time(t) {
-                            model.main().open_vcd(v).map_err(|e| e.to_string())?;
-                            vcd_open = true;
-                        } else if vcd_open && (p.vcd_to == Some(Mark::Time(t)) || vcd_close_at == Some(t)) {
-                            model.main().close_vcd().map_err(|e| e.to_string())?;
-                            (vcd_open, vcd_done) = (false, true);
-                        }
-                    }
-                }
+        });
+        self.progress.done();
+        let stopped = cpu_stop.or(self.bot_stop.take()).or(a.stopped_at.clone());
+        // The design's own printing ends here: botsim's lines start on lines of their own.
+        let (design_lines, mid_line) = self.model.main().printed();
+        if mid_line {
+            eprintln!();
+        }
+        if let Some(s) = &stopped {
+            if !a.json && !a.finding {
+                eprintln!("{}", s.message);
             }
+        } else if let Some(f) = self.model.main().fatal() {
+            let at = format!("{:.6} ms", self.model.main().time_ps() as f64 / 1e9);
+            if let (Some(v), Some(why)) = (&a.vcd, f.strip_prefix(":0: VerilatedVcd::bufferFlush: ")) {
+                drop(self.model);
+                let _ = std::fs::remove_file(v);
+                return Err(format!(
+                    "{}: the waveform could not be written ({why}) at {at}; the part written was removed",
+                    v.display()
+                ));
+            }
+            return Err(design_stopped(&p.built.user_paths(&f), &p.built, &at));
         }
-    };
-    let wall = t0.elapsed().as_secs_f64();
-    let (skips, skipped_ps) = model.main().fast_forwarded();
-    let sim_ps = model.main().time_ps();
-    rec.display.settle(sim_ps);
-    model.check()?;
-    let traces = model.finish_traces()?;
-    // A breakpoint in a CPU stops the model like $finish.
-    let cpu_stop = model.hit().map(|h| {
-        let (path, at) = (h.cpu.clone(), describe_pc(p.maps.get(&h.cpu), h.pc));
-        BreakStop {
-            time_ps: h.time_ps,
-            bot: false,
-            message: format!(
-                "stopped by --break {}: {path} at {at} in its cycle {}, at {:.6} ms",
-                h.what,
-                h.cycle,
-                h.time_ps as f64 / 1e9
-            ),
+        if let (Some(f), false) = (self.model.main().finish(), a.json || a.quiet || a.finding) {
+            eprintln!(
+                "botsim board: the design called $finish at {} ({:.6} ms)",
+                p.built.user_paths(&f),
+                self.model.main().time_ps() as f64 / 1e9
+            );
         }
-    });
-    progress.done();
-    let stopped = cpu_stop.or(bot_stop).or(a.stopped_at.clone());
-    // The design's own printing ends here: botsim's lines start on lines of their own.
-    let (design_lines, mid_line) = model.main().printed();
-    if mid_line {
-        eprintln!();
-    }
-    if let Some(s) = &stopped {
-        if !a.json && !a.finding {
-            eprintln!("{}", s.message);
+        let stopped_by = if stopped.is_some() { Some("break") } else { stopped_by };
+        self.model.main().close_vcd().map_err(|e| e.to_string())?;
+        if let (Some(v), Some((start, end))) = (&a.vcd, self.model.main().vcd_span()) {
+            let view = save_file_view(start, end, stopped.as_ref());
+            write_save_file(v, &p.plan, &p.maps, p.cpu == CpuModel::RtlProbed, p.main_bot == BotKind::Model, view)?;
         }
-    } else if let Some(f) = model.main().fatal() {
-        let at = format!("{:.6} ms", model.main().time_ps() as f64 / 1e9);
-        if let (Some(v), Some(why)) = (&a.vcd, f.strip_prefix(":0: VerilatedVcd::bufferFlush: ")) {
-            drop(model);
-            let _ = std::fs::remove_file(v);
-            return Err(format!(
-                "{}: the waveform could not be written ({why}) at {at}; the part written was removed",
-                v.display()
-            ));
+        Ok(Outcome {
+            rec: self.rec,
+            stopped_by: stopped_by.unwrap_or("interrupt"),
+            stopped,
+            wall_seconds: wall,
+            sim_ps,
+            skips,
+            skipped_ps,
+            fast_forward_off: self.fast_forward_off,
+            evaluations: self.model.main().evals(),
+            vcd_x_signals: self.model.main().vcd_unshown(),
+            traces,
+            design_lines,
+            busy: self.model.main().fast_forward_busy(),
+        })
+    }
+}
+
+/// Turn the fast-forward on where the run allows it: every KCPSM6 and the bot are models,
+/// and nothing needs every edge (a waveform turns it off while it is written). Returns why
+/// a run that could fast-forward does not (the design, not the options), and says so.
+fn choose_fast_forward(a: &Args, p: &Prepared, model: &mut Sim, vcd_open: bool) -> Option<String> {
+    let fast_forward = !a.no_fast_forward
+        && p.cpu == CpuModel::Iss
+        && p.main_bot == BotKind::Model
+        && a.frames.is_none()
+        && a.cpu_trace.is_none()
+        && p.cpu_breaks.is_empty();
+    let Sim::One(m) = model else { return None };
+    if !fast_forward {
+        m.fast_forward(FastForward::Off);
+        return None;
+    }
+    // A waveform window later shows every variable: compare them all until then. A board
+    // with another clock cannot; unless asked to, it skips as without a waveform, which then
+    // shows what the run did not simulate as x.
+    let mut mode = if a.vcd.is_some() { FastForward::Whole } else { FastForward::Recorded };
+    let mut off = m.fast_forward_blocker().map(str::to_string);
+    let mut on = off.is_none() && m.fast_forward(mode);
+    if !on
+        && off.is_none()
+        && mode == FastForward::Whole
+        && !vcd_open
+        && !a.vcd_all_signals
+        && m.unshown_unknown().is_none()
+    {
+        mode = FastForward::Recorded;
+        on = m.fast_forward(mode);
+        if on {
+            a.say("note: the waveform shows x for the parts of the design the run does not record (another clock drives them, and they are not simulated before it); --vcd-all-signals simulates every edge to show them".into());
         }
-        return Err(design_stopped(&p.built.user_paths(&f), &p.built, &at));
     }
-    if let (Some(f), false) = (model.main().finish(), a.json || a.quiet || a.finding) {
-        eprintln!(
-            "botsim board: the design called $finish at {} ({:.6} ms)",
-            p.built.user_paths(&f),
-            model.main().time_ps() as f64 / 1e9
-        );
+    if off.is_none() && !on {
+        let why = match (mode, m.observed_unknown()) {
+            (FastForward::Whole, _) => "a waveform later shows every variable".to_string(),
+            (_, Some(unknown)) => format!("what a run observes of it is not known: {unknown}"),
+            _ => "one besides the oscillator drives what the run records".to_string(),
+        };
+        off = Some(format!(
+            "the board has {} clocks, and {why} (the fast-forward needs one clock, or others that drive only what the run does not record)",
+            m.clocks().len()
+        ));
     }
-    let finished = if stopped.is_some() { Some("break") } else { finished };
-    model.main().close_vcd().map_err(|e| e.to_string())?;
-    if let (Some(v), Some((start, end))) = (&a.vcd, model.main().vcd_span()) {
-        let view = save_file_view(start, end, stopped.as_ref());
-        write_save_file(v, &p.plan, &p.maps, p.cpu == CpuModel::RtlProbed, p.main_bot == BotKind::Model, view)?;
+    if let Some(why) = &off {
+        a.say(format!("note: no fast-forward: {why}; every clock edge is simulated"));
     }
-    Ok(Outcome {
-        rec,
-        stopped_by: finished.unwrap_or("interrupt"),
-        stopped,
-        wall_seconds: wall,
-        sim_ps,
-        skips,
-        skipped_ps,
-        fast_forward_off,
-        evaluations: model.main().evals(),
-        vcd_x_signals: model.main().vcd_unshown(),
-        traces,
-        design_lines,
-        busy: model.main().fast_forward_busy(),
-    })
+    off
 }
 
 /// The board being run: one model, or the RTL and ISS boards in lock-step.

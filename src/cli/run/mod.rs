@@ -3,7 +3,7 @@
 
 mod live;
 mod outputs;
-pub(crate) use outputs::{csv_row, json_row, CSV_HEADER};
+
 mod plan;
 mod sample_loop;
 mod watch;
@@ -350,7 +350,7 @@ fn pass_to(args: &Args, end_frame: Option<PathBuf>, p: Pass, run_to: Option<u64>
     let driver = &mut plan.driver;
     let threshold = plan.firmware.threshold;
     let mut bot_stop: Option<Stop> = None;
-    let vcd_max = args.vcd_max.as_deref().map_or(Ok(crate::cli::board::VCD_MAX), crate::cli::board::parse_size)?;
+    let vcd_max = args.vcd_max.as_deref().map_or(Ok(crate::cli::size::VCD_MAX), crate::cli::size::parse_size)?;
     let vcd_path = window.as_ref().map(|w| w.path().to_path_buf());
     let vcd_part = window.as_ref().map(|w| w.part().to_path_buf());
     let looped = sample_loop::run(&mut engine, window.as_mut(), samples, |k, s| {
@@ -369,7 +369,7 @@ fn pass_to(args: &Args, end_frame: Option<PathBuf>, p: Pass, run_to: Option<u64>
             let message = format!("stopped by --break {}: {}", b.text, sample_state(s));
             bot_stop = Some(Stop { cycle: s.cycle, sample: s.sample, bot: true, message });
         }
-        taken.json.push_str(&outputs::json_row(s, m));
+        taken.json.push_str(&crate::cli::rows::json_row(s, m));
         taken.snapshots.push(*s);
         if let Some((f, video)) = frames {
             if k % f.every == 0 || k == samples || driver.finished() {

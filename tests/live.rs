@@ -387,3 +387,21 @@ fn a_1024_by_768_design_shows_its_frames_live() {
         checked.push((x, y));
     }
 }
+
+#[test]
+fn a_board_that_cannot_keep_the_pace_says_why_in_one_line() {
+    // FREE32=3: LED 15 shows an LFSR stepped every clock; nothing repeats, the board runs at
+    // every edge's pace, well under real time.
+    let live = start(&shapes(&["--param", "FREE32=3", "--speed", "1"]));
+    let mut a = live.client("/");
+    let s = a.state("a state saying the board is behind", |s| s["behind"].is_string());
+    let line = s["behind"].as_str().unwrap();
+    assert!(line.contains("x real time, not the 1 x asked"), "{line}");
+    assert!(line.contains("`lfsr` (module nexys4fpga, tests/board_designs/shapes/nexys4fpga.v:"), "{line}");
+    assert!(!line.contains('\n'), "{line}");
+    // At full speed nothing is behind.
+    let live = start(&shapes(&["--speed", "max"]));
+    let mut b = live.client("/");
+    let s = b.state("a state past a few samples", |s| s["samples"].as_u64() > Some(5));
+    assert!(s["behind"].is_null(), "{s}");
+}

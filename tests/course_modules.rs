@@ -153,6 +153,35 @@ fn icarus(tb: &str, module: &str, inputs: &[String]) -> Option<Vec<String>> {
     Some(lines)
 }
 
+/// A testbench module `tb` around `body` (the instance and its wires): each clock it takes
+/// the next word of `in.mem` into `in` (`bits` wide), raises `clk`, and 1 ns later prints
+/// `print` (a `$display` argument list). `setup` runs once before the first clock.
+fn testbench(bits: u32, body: &str, setup: &str, print: &str) -> String {
+    format!(
+        "`timescale 1ns / 1ps
+module tb;
+    reg clk = 0;
+    reg [{top}:0] in;
+    reg [{top}:0] mem [0:65535];
+    integer n, k;
+{body}
+    initial begin
+        $readmemh(\"in.mem\", mem);
+        if (!$value$plusargs(\"n=%d\", n)) n = 0;
+{setup}        for (k = 0; k < n; k = k + 1) begin
+            in = mem[k];
+            #5 clk = 1;
+            #1 $display({print});
+            #4 clk = 0;
+        end
+        $finish;
+    end
+endmodule
+",
+        top = bits - 1
+    )
+}
+
 /// Inputs that hold each value a random while (1 to `hold` clocks), changing a few bits.
 fn inputs(rng: &mut Rng, n: usize, bits: u32, hold: u64) -> Vec<u64> {
     let mut v = rng.next() & ((1u64 << bits) - 1);
@@ -172,29 +201,15 @@ fn inputs(rng: &mut Rng, n: usize, bits: u32, hold: u64) -> Vec<u64> {
 }
 
 fn debounce_case(seed: u64, params: &str, top: u64, reset_polarity_low: bool) {
-    let tb = format!(
-        "`timescale 1ns / 1ps
-module tb;
-    reg clk = 0;
-    reg [21:0] in;
-    reg [21:0] mem [0:65535];
-    wire [5:0] pbtn_db;
+    let tb = testbench(
+        22,
+        &format!(
+            "    wire [5:0] pbtn_db;
     wire [15:0] swtch_db;
-    integer n, k;
-    debounce #({params}) DUT (.clk(clk), .pbtn_in(in[5:0]), .switch_in(in[21:6]), .pbtn_db(pbtn_db), .swtch_db(swtch_db));
-    initial begin
-        $readmemh(\"in.mem\", mem);
-        if (!$value$plusargs(\"n=%d\", n)) n = 0;
-        for (k = 0; k < n; k = k + 1) begin
-            in = mem[k];
-            #5 clk = 1;
-            #1 $display(\"%h\", {{swtch_db, pbtn_db}});
-            #4 clk = 0;
-        end
-        $finish;
-    end
-endmodule
-"
+    debounce #({params}) DUT (.clk(clk), .pbtn_in(in[5:0]), .switch_in(in[21:6]), .pbtn_db(pbtn_db), .swtch_db(swtch_db));"
+        ),
+        "",
+        "\"%h\", {swtch_db, pbtn_db}",
     );
     let mut rng = Rng(seed);
     let ins = inputs(&mut rng, 6000, 22, 12 * (top + 1));
@@ -219,31 +234,17 @@ fn debounce_pins_follow_the_spec_at_every_clock() {
 }
 
 fn sevensegment_case(seed: u64, params: &str, top: u64, polarity_low: bool, digits: usize) {
-    let tb = format!(
-        "`timescale 1ns / 1ps
-module tb;
-    reg clk = 0;
-    reg [48:0] in;
-    reg [48:0] mem [0:65535];
-    wire [7:0] seg, an;
+    let tb = testbench(
+        49,
+        &format!(
+            "    wire [7:0] seg, an;
     wire [63:0] digits_out;
-    integer n, k;
     sevensegment #({params}) DUT (.clk(clk), .reset(in[48]),
         .d0(in[4:0]), .d1(in[9:5]), .d2(in[14:10]), .d3(in[19:15]), .d4(in[24:20]), .d5(in[29:25]),
-        .d6(in[34:30]), .d7(in[39:35]), .dp(in[47:40]), .seg(seg), .an(an), .digits_out(digits_out));
-    initial begin
-        $readmemh(\"in.mem\", mem);
-        if (!$value$plusargs(\"n=%d\", n)) n = 0;
-        for (k = 0; k < n; k = k + 1) begin
-            in = mem[k];
-            #5 clk = 1;
-            #1 $display(\"%h %h %h\", an, seg, digits_out);
-            #4 clk = 0;
-        end
-        $finish;
-    end
-endmodule
-"
+        .d6(in[34:30]), .d7(in[39:35]), .dp(in[47:40]), .seg(seg), .an(an), .digits_out(digits_out));"
+        ),
+        "",
+        "\"%h %h %h\", an, seg, digits_out",
     );
     let mut rng = Rng(seed);
     let mut ins = inputs(&mut rng, 4000, 48, 40 * (top + 1));
@@ -286,31 +287,16 @@ fn every_digit_code_shows_the_spec_glyph() {
     let tb_params = ".CLK_FREQUENCY_HZ(1000000), .REFRESH_FREQUENCY_HZ(1)";
     let mut m = SevenSegment::new(999_999, 8);
     let text: Vec<String> = ins.iter().map(|v| format!("{v:013x}")).collect();
-    let tb = format!(
-        "`timescale 1ns / 1ps
-module tb;
-    reg clk = 0;
-    reg [48:0] in;
-    reg [48:0] mem [0:255];
-    wire [7:0] seg, an;
-    integer n, k;
+    let tb = testbench(
+        49,
+        &format!(
+            "    wire [7:0] seg, an;
     sevensegment #({tb_params}) DUT (.clk(clk), .reset(in[48]), .d0(in[4:0]), .d1(5'd0), .d2(5'd0),
-        .d3(5'd0), .d4(5'd0), .d5(5'd0), .d6(5'd0), .d7(5'd0), .dp(in[47:40]), .seg(seg), .an(an), .digits_out());
-    initial begin
-        $readmemh(\"in.mem\", mem);
-        if (!$value$plusargs(\"n=%d\", n)) n = 0;
+        .d3(5'd0), .d4(5'd0), .d5(5'd0), .d6(5'd0), .d7(5'd0), .dp(in[47:40]), .seg(seg), .an(an), .digits_out());"
+        ),
         // Digit 0 lit: a first tick moves the anodes there.
-        DUT.clk_cnt = 999999;
-        for (k = 0; k < n; k = k + 1) begin
-            in = mem[k];
-            #5 clk = 1;
-            #1 $display(\"%h %h\", an, seg);
-            #4 clk = 0;
-        end
-        $finish;
-    end
-endmodule
-"
+        "        DUT.clk_cnt = 999999;\n",
+        "\"%h %h\", an, seg",
     );
     let Some(got) = icarus(&tb, "sevensegment.v", &text) else { return };
     m.count = 999_999;

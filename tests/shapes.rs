@@ -24,6 +24,12 @@ struct Run {
 }
 
 fn run(params: &[&str], fast_forward: bool) -> Run {
+    let params = [&["SIMULATE=1"], params].concat();
+    run_design(&["tests/board_designs/shapes", "examples/common/nexys4_bot_if.v"], &params, fast_forward)
+}
+
+/// `design` (its sources) with `params`, as [`run`] runs the shapes design.
+fn run_design(design: &[&str], params: &[&str], fast_forward: bool) -> Run {
     let dir = tempfile::tempdir().unwrap();
     let file = |n: &str| dir.path().join(n).to_str().unwrap().to_string();
     // Buttons (debounced in four ticks of 6 clocks), the switches that drive the bot, and the CPU reset.
@@ -34,11 +40,8 @@ fn run(params: &[&str], fast_forward: bool) -> Run {
     .unwrap();
     let stimulus = file("stimulus.txt");
     let (pins, trace, display) = (file("pins.csv"), file("trace.csv"), file("display.txt"));
-    let mut args = vec![
-        "tests/board_designs/shapes",
-        "examples/common/nexys4_bot_if.v",
-        "--param",
-        "SIMULATE=1",
+    let mut args = design.to_vec();
+    args.extend([
         "--seconds",
         "0.3",
         "--stimulus",
@@ -50,7 +53,7 @@ fn run(params: &[&str], fast_forward: bool) -> Run {
         "--display",
         &display,
         "--json",
-    ];
+    ]);
     for p in params {
         args.extend(["--param", p]);
     }
@@ -81,21 +84,36 @@ fn skips_and_equals_every_edge(params: &[&str]) {
 
 fn skips_and_equals_every_edge_at_least(params: &[&str], fraction: f64) {
     let (every, fast) = (run(params, false), run(params, true));
+    // The LEDs showed the buttons.
+    assert!(every.display.contains("leds    0000000000010000"), "{params:?}: {}", every.display);
+    equal_and_skipped(params, &every, &fast, fraction);
+}
+
+fn equal_and_skipped(params: &[&str], every: &Run, fast: &Run, fraction: f64) {
     let ff = &fast.summary["fast_forward"];
     let skipped = ff["skipped_seconds"].as_f64().unwrap() / fast.summary["simulated_seconds"].as_f64().unwrap();
     assert!(skipped > fraction, "{params:?}: skipped {:.1} % ({ff})", skipped * 100.0);
     assert_eq!(every.summary["fast_forward"]["skips"], 0);
-    // The run did what the stimulus asked: samples, the CPU reset blanking the display, the
-    // LEDs showing the buttons.
+    // The run did what the stimulus asked: samples, the CPU reset blanking the display.
     let rows = (every.trace.lines().count(), every.pins.lines().count());
     assert!(rows.0 > 5 && rows.1 > 50, "{params:?}: {rows:?}");
-    assert!(every.display.contains("leds    0000000000010000"), "{params:?}: {}", every.display);
     for (what, a, b) in [
         ("--pins", &every.pins, &fast.pins),
         ("--trace-csv", &every.trace, &fast.trace),
         ("--display", &every.display, &fast.display),
     ] {
         assert!(a == b, "{params:?} {what}: {}", first_difference(a, b));
+    }
+}
+
+#[test]
+fn a_nexys3_design_with_a_dcm_and_the_course_modules_at_simulate_1_and_0() {
+    // The course's debounce and four-digit sevensegment, CLK0 and CLKDV of a DCM_SP, VGA,
+    // a firmware waiting on its scratchpad (tests/board_designs/nexys3_dcm).
+    let design = ["tests/board_designs/nexys3_dcm"];
+    for simulate in ["SIMULATE=1", "SIMULATE=0"] {
+        let (every, fast) = (run_design(&design, &[simulate], false), run_design(&design, &[simulate], true));
+        equal_and_skipped(&[simulate], &every, &fast, 0.95);
     }
 }
 

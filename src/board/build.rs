@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use botsim_core::board::parts::{OWN_MODULES, PRIMITIVES};
+use botsim_core::board::parts::{OWN_MODULES, PRIMITIVES, STUB};
 use botsim_core::board::plan::Plan;
 use botsim_core::board::wrapper;
 use botsim_core::board::BoardError;
@@ -83,6 +83,8 @@ const VERILATOR_FLAGS: &[&str] = &[
     "-Wno-TIMESCALEMOD",
     // Vivado builds a variable given both blocking and non-blocking assignments; said once.
     "-Wwarn-BLKANDNBLK",
+    // Widths at the connections of what botsim built for a design (board::explain).
+    "-Wwarn-WIDTH",
     "-CFLAGS",
     "-fPIC -O2 -fvisibility-inlines-hidden -fno-semantic-interposition -DVL_USER_FINISH -DVL_USER_FATAL \
      -DVL_USER_STOP -DVL_USER_WARN -DVL_PRINTF=botsim_printf -DVL_VPRINTF=botsim_vprintf -include ../botsim_print.h -I..",
@@ -100,6 +102,9 @@ pub struct Built {
     pub library: PathBuf,
     /// Verilator's warnings about the user's files, grouped: (code, count, first message).
     pub warnings: Vec<(String, usize, String)>,
+    /// Connections of what botsim built for the design whose widths differ from the
+    /// design's, in botsim's words ([`explain::replacement_widths`]).
+    pub widths: Vec<String>,
     /// The build's duration in seconds; `None` when the cache had it.
     pub seconds: Option<f64>,
     /// Where the design's first delay is (`file:line:col`), when it has delays: the build
@@ -280,7 +285,9 @@ pub fn build(
         let warnings =
             std::fs::read_to_string(dir.join("warnings.txt")).map(|t| parse_warnings(&t, &f)).unwrap_or_default();
         let delays = std::fs::read_to_string(dir.join(DELAYS_FILE)).ok().filter(|d| !d.is_empty());
-        return Ok(Built { library, warnings, seconds: None, delays, verilator: v.version, names: names(&f) });
+        let stderr = std::fs::read_to_string(dir.join("warnings.txt")).unwrap_or_default();
+        let widths = explain::replacement_widths(&stderr, &explained(&f), &|m| stands_for(plan, m));
+        return Ok(Built { library, warnings, widths, seconds: None, delays, verilator: v.version, names: names(&f) });
     }
     let t0 = Instant::now();
     remove_stale_builds(&boards);
@@ -408,6 +415,7 @@ pub fn build(
     Ok(Built {
         library,
         warnings: parse_warnings(&stderr, &f),
+        widths: explain::replacement_widths(&stderr, &explained(&f), &|m| stands_for(plan, m)),
         seconds: Some(t0.elapsed().as_secs_f64()),
         delays,
         verilator: v.version,
@@ -580,7 +588,11 @@ fn stands_for(plan: &Plan, module: &str) -> Option<explain::Stand> {
     if own {
         return Some(explain::Stand::Model(format!("botsim's `{module}`")));
     }
-    plan.replaced.iter().find(|r| r.module == module).map(|r| explain::Stand::Built(r.with.clone()))
+    match plan.replaced.iter().find(|r| r.module == module) {
+        Some(r) if r.with == STUB => Some(explain::Stand::Model(r.with.clone())),
+        Some(r) => Some(explain::Stand::Built(r.with.clone())),
+        None => None,
+    }
 }
 
 /// Replace the build folder's copies of the user's files by the user's paths.
@@ -598,6 +610,10 @@ fn parse_warnings(stderr: &str, f: &Files) -> Vec<(String, usize, String)> {
     for line in stderr.lines() {
         let Some(rest) = line.strip_prefix("%Warning-") else { continue };
         let Some((code, msg)) = rest.split_once(": ") else { continue };
+        // Widths are asked for the connections of botsim's replacements only (`widths`).
+        if code.starts_with("WIDTH") {
+            continue;
+        }
         let own = f.generated.iter().any(|(n, _)| msg.starts_with(n.as_str()));
         if own || msg.contains("/usr/share/verilator") {
             continue;

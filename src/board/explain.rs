@@ -95,6 +95,58 @@ pub fn explain(stderr: &str, files: &[File], stands_for: &dyn Fn(&str) -> Option
     })
 }
 
+/// Verilator's width warnings at connections of what botsim built for the design (`-Wwarn-
+/// WIDTH`), in botsim's words: a replacement with another width than the design connects
+/// may be botsim's mistake (a memory core with an address too narrow reads the wrong words).
+/// The design's own widths are its own (Vivado warns as Verilator does): not said.
+///
+/// ```
+/// use botsim::board::explain::{replacement_widths, File, Origin, Stand};
+/// let files = [File {
+///     given: "/r/icon.v".into(),
+///     shown: "icon.v".into(),
+///     origin: Origin::User,
+///     text: "module icon(input clk);\n  Icon_Rom rom (.clka(clk), .addra(a12), .douta());\nendmodule\n".into(),
+///     original: None,
+/// }];
+/// let stderr = "%Warning-WIDTH: /r/icon.v:2:29: Input port connection 'addra' expects 8 bits on the pin \
+///               connection, but pin connection's VARREF 'a12' generates 12 bits.\n";
+/// let said = replacement_widths(stderr, &files, &|m| Some(Stand::Built(format!("botsim's core for `{m}`"))));
+/// assert!(said[0].starts_with("icon.v:2:29: the design connects 12 bits to `addra` of `Icon_Rom`, which botsim's core for `Icon_Rom` takes as 8"));
+/// ```
+pub fn replacement_widths(stderr: &str, files: &[File], stands_for: &dyn Fn(&str) -> Option<Stand>) -> Vec<String> {
+    let mut out = Vec::new();
+    for line in stderr.lines().filter(|l| l.starts_with("%Warning-WIDTH")) {
+        let Some((_, rest)) = line.split_once(": ") else { continue };
+        let Some((loc, msg)) = rest.split_once(": ") else { continue };
+        let mut parts = loc.rsplitn(3, ':');
+        let (Some(c), Some(l), Some(given)) = (parts.next(), parts.next(), parts.next()) else { continue };
+        let (Ok(l), Ok(_)) = (l.parse::<u32>(), c.parse::<u32>()) else { continue };
+        let Some(port) = msg.split_once("port connection '").and_then(|(_, r)| r.split_once('\'')).map(|(p, _)| p)
+        else {
+            continue;
+        };
+        let bits = |after: &str| {
+            msg.split_once(after).and_then(|(_, r)| r.split_whitespace().next()).and_then(|n| n.parse::<u32>().ok())
+        };
+        let (Some(takes), Some(given_bits)) = (bits(" expects "), bits(" generates ")) else { continue };
+        let Some(file) = files
+            .iter()
+            .find(|f| f.origin == Origin::User && (f.given == given || given.ends_with(&format!("/{}", f.given))))
+        else {
+            continue;
+        };
+        let Some(inst) = instance_at(&file.text, l) else { continue };
+        if let Some(Stand::Built(what)) = stands_for(&inst.module) {
+            out.push(format!(
+                "{}:{l}:{c}: the design connects {given_bits} bits to `{port}` of `{}`, which {what} takes as {takes}: botsim may have built it wrong; {REPORT}",
+                file.shown, inst.module
+            ));
+        }
+    }
+    out
+}
+
 /// An error Verilator found in a user's file.
 fn user_error(
     file: &File,

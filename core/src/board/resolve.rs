@@ -969,7 +969,7 @@ impl<'a> Walk<'a> {
                 generated.push(Replacement {
                     module: module.clone(),
                     from: String::new(),
-                    with: "a stub (--stub: inputs ignored, outputs 0)".into(),
+                    with: super::parts::STUB.into(),
                 });
             } else if let Some(specs) = self.clock_specs(&module, &insts[0].name) {
                 let core = ClockCore::from_specs(&module, &specs, &ports);

@@ -281,6 +281,9 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
             "note: {at}: the design has delays (#): botsim simulates them as written (Vivado's synthesis ignores them), evaluating every clock edge"
         ));
     }
+    for w in &built.widths {
+        a.say(format!("warning: {w}"));
+    }
     for (code, n, first) in &built.warnings {
         match leniency(code) {
             Some(what) => {

@@ -291,7 +291,14 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
                 let more = if *n > 1 { format!(" (and {} more)", n - 1) } else { String::new() };
                 a.say(format!("note: {at}: {what}{more}"));
             }
-            None => a.say(format!("  verilator warning {code} ({n}x), first: {first}")),
+            None => {
+                // Another finding of Verilator's that does not stop the build: where, what
+                // it says, and that the run goes on.
+                let (at, what) = first.split_once(": ").unwrap_or(("", first));
+                let more = if *n > 1 { format!("; {} places like it", n) } else { String::new() };
+                let at = if at.is_empty() { String::new() } else { format!("{at}: ") };
+                a.say(format!("note: {at}{what} (Verilator's {code} warning{more}; the run goes on)"));
+            }
         }
     }
 

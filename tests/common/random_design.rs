@@ -264,7 +264,8 @@ pub fn generate(seed: u64) -> Design {
     // The team's program.
     let kind = *r.pick(&[Program::Semaphore, Program::PollSwitches, Program::Countdown(0)]);
     let kind = match kind {
-        Program::Countdown(_) => Program::Countdown(if tame { r.range(1, 40) } else { r.range(1, 200) }),
+        // Tame: a trip of 36, 60 or 108 clocks, which the course modules' 48 divide well.
+        Program::Countdown(_) => Program::Countdown(if tame { *r.pick(&[2, 5, 11]) } else { r.range(1, 200) }),
         k => k,
     };
     parts_text.push(format!("team program: {kind:?}"));
@@ -624,7 +625,12 @@ fn make_part(r: &mut Rng, i: usize, clock: usize, enable: Option<&Part>, simulat
     // Short counts (state) or long ones (counters); SIMULATE = 1 designs favour short ones,
     // as course modules are then.
     let short = r.chance(if simulate { 60 } else { 40 });
-    let count = |r: &mut Rng| if short { r.range(1, 60) } else { r.range(100_000, 3_000_000) };
+    // Tame short counts: periods that divide 48, as the course modules' do.
+    let count = |r: &mut Rng| match (short, tame) {
+        (true, true) => *r.pick(&[1, 2, 3, 5, 7, 11, 15, 23, 47]),
+        (true, false) => r.range(1, 60),
+        _ => r.range(100_000, 3_000_000),
+    };
     let kind = r.range(0, 6);
     let mut fast = matches!(kind, 3 | 5 | 6);
     let (verilog, bit, value, shape, text) = match kind {
@@ -714,7 +720,7 @@ fn make_part(r: &mut Rng, i: usize, clock: usize, enable: Option<&Part>, simulat
         }
         3 => {
             // A rotating shift register (a ring), its last bit shown.
-            let width = r.range(2, 16) as u32;
+            let width = if tame { *r.pick(&[2u32, 3, 4, 6, 8, 12, 16]) } else { r.range(2, 16) as u32 };
             let body = format!("p{i} <= {{p{i}[{}:0], p{i}[{}]}};", width - 2, width - 1);
             let init = format!("{width}'d{}", 1 + r.range(0, (1 << (width - 1)) - 1));
             let verilog = format!(
@@ -750,7 +756,7 @@ fn make_part(r: &mut Rng, i: usize, clock: usize, enable: Option<&Part>, simulat
         }
         5 => {
             // An LFSR (a game's random source): short ones repeat, long ones never within a run.
-            let (width, taps): (u32, &[u32]) = *r.pick(&LFSRS[..if tame { 3 } else { LFSRS.len() }]);
+            let (width, taps): (u32, &[u32]) = *r.pick(&LFSRS[..if tame { 1 } else { LFSRS.len() }]);
             let fb: Vec<String> = taps.iter().map(|t| format!("p{i}[{t}]")).collect();
             let body = format!("p{i} <= {{p{i}[{}:0], {}}};", width - 2, fb.join(" ^ "));
             let verilog = format!(

@@ -833,8 +833,10 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
             return 0;
         }
     }
+    // The models not as marked: not the period yet (the design may repeat a few times per
+    // trip of a CPU's loop; marking again here would never reach the trip).
     if (!h->ff_same(h->ctx)) {
-        ff_mark(b, t);
+        ff_snap(b, t);
         return 0;
     }
     // The counters: how far each moved in the period. A period that moved one is taken once the

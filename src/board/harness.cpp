@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -151,6 +152,15 @@ constexpr uint64_t kFirstPatiencePs = (1ull << 16) * 10000;
 constexpr uint64_t kCounterSettlePs = (1ull << 8) * 10000;
 constexpr uint64_t kShortPatiencePs = (1ull << 10) * 10000;
 constexpr size_t kMaxPhases = 64;
+// A counter that turns at every skip is tried as state when its turns are this many in a row,
+// at most this far apart, at least this many of the period found apart, and the longer
+// period is at most this many turns (see Counting); a trial pays when it skips at least this
+// many periods.
+constexpr int kTurnsBeforeTrial = 3;
+constexpr uint64_t kMaxTurnEveryPs = (1ull << 16) * 10000;
+constexpr uint64_t kTurnPeriods = 8;
+constexpr uint64_t kMaxTrialTurns = 4;
+constexpr uint64_t kTrialPays = 4;
 // The most records a period may show (the display's pins multiplexed every few clocks, an LED
 // dimmed): more, and the mark is taken again. A skip writes one period's and a phase's; the
 // caller's buffer (model.rs's RECORDS) has room for both.
@@ -188,6 +198,14 @@ struct Span {
 // is then compared as state, its bits below the split only (level 1: they repeat, the rest
 // still counts), or all of them (level 2). A level holds from mark to mark, until a mark
 // finds no period.
+//
+// A counter that turns at every skip, the same time apart and at the same value (a VGA line's
+// pixel counter: each line is a mark, a short period proved, a skip to the line's end; the
+// counter wraps once a line) may be the inner one of a longer period with another counter
+// (a few lines, with the line counter): when that period (a few of its turns: the least
+// common multiple of the turns and the period found) is short, the counter is tried as state
+// (level 2), so that the longer period is found and skipped whole. A trial that finds no
+// period, or one too short to skip much, puts it back and waits longer to try again.
 struct Counting {
     BoardCounter c;
     uint64_t mask = 0;
@@ -196,6 +214,11 @@ struct Counting {
     int level = 0;
     uint64_t exact = 0;  // the bits compared as state (level 1: those below the split)
     int early = 0;       // marks in a row it left its interval before a period was found
+    uint64_t last_turn = 0, turn_every = 0;  // when it last left its interval after a skip, and
+    uint64_t turn_value = 0;                 // how long before, at which value; how many times
+    int turns = 0;                           // in a row so
+    bool trial = false;                      // tried as state for a longer period
+    int tried = 0;                           // trials that did not pay
 };
 
 // Where a clock is in its period at a moment `t`: its next edges after `t` (the fractions of a
@@ -716,14 +739,40 @@ __attribute__((noinline)) uint64_t ff_counter_moved(Board* b, uint64_t t) {
         }
     }
     FF_TRACE("ff %.6f ms: a counter turned\n", t / 1e9);
+    // After a skip: the same counter turning the same time apart, again and again, is tried
+    // as state (see Counting).
+    uint64_t trial_patience = 0;
+    if (f.proven) {
+        for (Counting& k : f.counters) {
+            if (counter_inside(k, root)) continue;
+            const uint64_t every = t - k.last_turn, value = counter_value(root, k);
+            k.turns = k.last_turn && every == k.turn_every && value == k.turn_value ? k.turns + 1 : 0;
+            k.turn_every = every;
+            k.turn_value = value;
+            k.last_turn = t;
+            const uint64_t turns = f.last_period ? f.last_period / std::gcd(every, f.last_period) : ~0ull;
+            if (k.level == 0 && !k.trial && k.turns >= (kTurnsBeforeTrial << k.tried) && every <= kMaxTurnEveryPs &&
+                every >= kTurnPeriods * f.last_period && turns <= kMaxTrialTurns) {
+                FF_TRACE("ff %.6f ms: counter at %zu turns every %llu clocks: tried as state\n", t / 1e9, k.c.off,
+                         (unsigned long long)(every / 10000));
+                set_level(k, 2);
+                k.trial = true;
+                k.turns = 0;
+                trial_patience = std::max(trial_patience, 2 * turns * every);
+            }
+        }
+    }
     f.marked = false;
     f.drifting = false;
     f.quiet_from = t;
-    f.settle = kCounterSettlePs;
+    // After a skip the period is known: the board settles for two of them (a VGA line's
+    // counter turns every line), or the settling time if that is shorter.
+    f.settle = f.proven ? std::min(kCounterSettlePs, 2 * f.last_period) : kCounterSettlePs;
     // After a skip the period is known: a few of them. Before one is found, no less than
     // the mark had (it may need all of it).
     const uint64_t few = std::max(4 * f.last_period, kShortPatiencePs);
     f.patience = f.proven ? few : std::max(f.patience, few);
+    f.patience = std::max(f.patience, trial_patience);
     return 0;
 }
 
@@ -783,6 +832,13 @@ __attribute__((noinline)) uint64_t ff_restart(Board* b, uint64_t t) {
         f.patience = std::min(2 * f.patience, kMaxPeriodPs);
         const uint8_t* root = (const uint8_t*)b->top->rootp;
         for (Counting& k : f.counters) {
+            if (k.trial) {
+                // No longer period: back to a counter, and a longer wait before another trial.
+                set_level(k, 0);
+                k.trial = false;
+                k.tried++;
+                continue;
+            }
             if ((counter_value(root, k) ^ counter_value(f.mark.data(), k)) & k.exact) {
                 set_level(k, 0);
                 k.early = 0;
@@ -886,6 +942,21 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
                 phase = j;
                 break;
             }
+        }
+    }
+    // A counter on trial as state: the longer period it let the board find pays if it skips
+    // far; else it is a counter again (from the next mark).
+    for (Counting& c : f.counters) {
+        if (!c.trial) continue;
+        c.trial = false;
+        if (k < kTrialPays) {
+            FF_TRACE("ff %.6f ms: counter at %zu: its trial skips %llu periods only\n", t / 1e9, c.c.off,
+                     (unsigned long long)k);
+            c.tried++;
+            set_level(c, 0);
+            f.marked = false;  // (after this skip: the counter's interval is taken again at the next mark)
+            f.quiet_from = t;
+            f.settle = kCounterSettlePs;
         }
     }
     const uint64_t edges = h->ff_skip(h->ctx, k, (uint32_t)phase);

@@ -237,3 +237,96 @@ fn the_page_drives_the_bot_alone() {
     let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
     std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-bot-page.png"), &shot).unwrap();
 }
+
+/// A key held down in the page (the browser's own key events), or let go.
+fn key(tab: &Tab, name: &str, code: u32, down: bool) {
+    use Input::DispatchKeyEventTypeOption::{KeyUp, RawKeyDown};
+    tab.call_method(Input::DispatchKeyEvent {
+        Type: if down { RawKeyDown } else { KeyUp },
+        key: Some(name.into()),
+        text: None,
+        code: Some(name.into()),
+        windows_virtual_key_code: Some(code),
+        native_virtual_key_code: Some(code),
+        modifiers: None,
+        timestamp: None,
+        unmodified_text: None,
+        key_identifier: None,
+        auto_repeat: None,
+        is_keypad: None,
+        is_system_key: None,
+        location: None,
+        commands: None,
+    })
+    .unwrap();
+}
+
+/// A final project without a bot in the page: no world and no bot registers, the game's
+/// frames on the monitor with the box where game.psm puts it, and the left arrow key held
+/// (the left button) holding the box at the left edge, where by itself it only passes. A
+/// screenshot in target/live-game-page.png.
+#[test]
+fn the_page_plays_a_game_without_a_bot() {
+    use common::game::{box_place, GAME};
+    let Some(chromium) = chromium() else { return };
+    let live = Live::start(&[GAME, "--param", "SIMULATE=1", "--speed", "1"]);
+    let (_browser, tab) = open(chromium, &live.url);
+    let shown = |tab: &Tab| -> Value {
+        let v = tab
+            .evaluate(
+                r#"JSON.stringify({
+                     world: !document.getElementById("worldbox").hidden,
+                     regs: !document.getElementById("regs").hidden,
+                     samples: document.getElementById("samples").textContent,
+                     fps: document.getElementById("fps").textContent,
+                     frame_ps: document.getElementById("vga").dataset.timePs || null })"#,
+                false,
+            )
+            .unwrap()
+            .value
+            .unwrap();
+        serde_json::from_str(v.as_str().unwrap()).unwrap()
+    };
+    until(&tab, "the connection and a frame", |p| p["status"] == "live" && p["frame"].is_object());
+    let s = shown(&tab);
+    assert_eq!((&s["world"], &s["regs"], &s["samples"]), (&Value::from(false), &Value::from(false), &Value::from("")));
+    // The frame on the monitor: the game's picture.
+    let frame = |tab: &Tab| -> ((u8, u8), u64) {
+        let png = tab
+            .evaluate(
+                r#"fetch(document.getElementById("vga").src).then((r) => r.arrayBuffer()).then((b) => {
+                     const u = new Uint8Array(b); let s = "";
+                     for (let i = 0; i < u.length; i++) s += String.fromCharCode(u[i]);
+                     return btoa(s);
+                   })"#,
+                true,
+            )
+            .unwrap()
+            .value
+            .unwrap();
+        let png = base64::engine::general_purpose::STANDARD.decode(png.as_str().unwrap()).unwrap();
+        let at = shown(tab)["frame_ps"].as_str().and_then(|t| t.parse().ok()).unwrap_or(0);
+        (box_place(&png).unwrap(), at)
+    };
+    // The left arrow held: the box goes to the left edge and stays there, bouncing between x
+    // 0 and 1 (by itself it passes the edge in three frames and goes on).
+    key(&tab, "ArrowLeft", 37, true);
+    until(&tab, "the left button held", |p| p["buttons"].as_array().is_some_and(|b| b.contains(&Value::from("btnL"))));
+    let start = Instant::now();
+    let mut at_edge: Vec<u64> = Vec::new();
+    while at_edge.len() < 4 || at_edge[at_edge.len() - 1] - at_edge[0] < 200_000_000_000 {
+        assert!(start.elapsed() < BUDGET, "the box did not stay at the left edge: {at_edge:?}");
+        let ((x, _), at) = frame(&tab);
+        if x > 1 {
+            at_edge.clear();
+        } else if at_edge.last() != Some(&at) {
+            at_edge.push(at);
+        }
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    key(&tab, "ArrowLeft", 37, false);
+    until(&tab, "the left button let go", |p| p["buttons"] == serde_json::json!([]));
+    until(&tab, "a frame rate", |_| shown(&tab)["fps"].as_str().is_some_and(|f| f.ends_with("frames/s")));
+    let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
+    std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-game-page.png"), &shot).unwrap();
+}

@@ -1,8 +1,9 @@
 //! Every command of the README and of docs/guide.md runs as written, so they never go stale:
 //! the `sh` blocks are read, and each `botsim ...` (or `cargo run --release -- ...`) command
 //! runs in a folder holding `my_clone`, a repository of the guide's shape (a Vivado project
-//! with a VGA display and its IP as configurations: tests/board_designs/repos/vivado_ip) and
-//! the examples; the README's own picture is what its first command draws.
+//! with a VGA display and its IP as configurations: tests/board_designs/repos/vivado_ip),
+//! `my_game`, a final project without a bot (tests/board_designs/game), and the examples;
+//! the README's own picture is what its first command draws.
 
 use std::path::Path;
 use std::process::Command;
@@ -74,6 +75,7 @@ fn workspace() -> (tempfile::TempDir, tempfile::TempDir) {
     let dir = tempfile::tempdir().unwrap();
     std::os::unix::fs::symlink(clone.path(), dir.path().join("my_clone")).unwrap();
     std::os::unix::fs::symlink(root().join("examples"), dir.path().join("examples")).unwrap();
+    std::os::unix::fs::symlink(root().join(common::game::GAME), dir.path().join("my_game")).unwrap();
     (dir, clone)
 }
 
@@ -120,6 +122,7 @@ fn the_guides_commands_run_on_a_repository_of_its_shape() {
         "stop.vcd",
         "firmware.txt",
         "firmware.profile.txt",
+        "game_frames/frame_00005.png",
     ] {
         assert!(d.join(f).exists(), "{f}");
     }

@@ -405,3 +405,42 @@ fn a_board_that_cannot_keep_the_pace_says_why_in_one_line() {
     let s = b.state("a state past a few samples", |s| s["samples"].as_u64() > Some(5));
     assert!(s["behind"].is_null(), "{s}");
 }
+
+#[test]
+fn a_game_without_a_bot_plays_live_its_frames_following_the_animation() {
+    use common::game::{box_place, Game, GAME};
+    let live = Live::start(&[GAME, "--param", "SIMULATE=1", "--speed", "max"]);
+    let mut a = live.client("/");
+    let hello = a.next(BUDGET).unwrap();
+    assert_eq!(hello["vga"], true, "{hello}");
+    assert!(hello["world"].is_null(), "no world without a bot: {hello}");
+    // No input: the box moves by itself, and the frames follow it (not one a second).
+    let track = Game::track(2000);
+    let mut places: Vec<(u8, u8)> = Vec::new();
+    let start = std::time::Instant::now();
+    while places.len() < 5 {
+        assert!(start.elapsed() < BUDGET, "frames so far: {places:?}");
+        a.next(Duration::from_millis(100));
+        for (meta, png) in a.frames.drain(..) {
+            let place = box_place(&png).unwrap_or_else(|e| panic!("{e}: {meta}"));
+            assert!(track.contains(&place), "{place:?} is not on the box's track");
+            places.push(place);
+        }
+    }
+    // Each frame later than the one before: the box elsewhere each time.
+    assert!(places.windows(2).all(|w| w[0] != w[1]), "{places:?}");
+    // More than the one frame a second of a still picture.
+    let s = a.state("a state with a frame rate", |s| s["frame_rate"].as_f64() > Some(0.0));
+    assert!(s["bot"].is_null() && s["samples"] == 0, "{s}");
+    a.state("frames faster than a still picture's", |s| s["frame_rate"].as_f64() > Some(1.5));
+    // Step on a board without a bot: 50 ms of board time and the frame that shows it (a
+    // frame simulated from where its pixel path was parked: at most two frame periods),
+    // then paused.
+    a.send(json!({"type": "pause"}));
+    let paused = a.state("paused", |s| s["running"] == false);
+    let t0 = paused["time_ps"].as_u64().unwrap();
+    a.send(json!({"type": "step"}));
+    let stepped = a.state("a step's end", |s| s["running"] == false && s["time_ps"].as_u64() > Some(t0));
+    let t1 = stepped["time_ps"].as_u64().unwrap();
+    assert!((50_000_000_000..=84_000_000_000).contains(&(t1 - t0)), "stepped {} ps", t1 - t0);
+}

@@ -212,7 +212,7 @@ function showState(s) {
   $("rate").textContent = s.running ? s.rate.toFixed(2) + " x real time" : "paused";
   $("behind").textContent = s.behind || "";
   $("behind").hidden = !s.behind;
-  $("samples").textContent = s.samples + " samples";
+  $("samples").textContent = world || mode === "bot" ? s.samples + " samples" : "";
   $("run").textContent = s.running ? "Pause" : "Run";
   if (s.motors != null) {
     $("motctl-now").textContent = "MotCtl " + hex(s.motors);
@@ -335,6 +335,11 @@ function onMessage(ev) {
       $("drive").hidden = mode !== "bot";
       $("monitor").hidden = mode === "bot";
       if (m.vga === false) $("novga").textContent = "this design has no VGA pins";
+      // A board without a bot (a final project): no world, no registers; Step runs 50 ms.
+      const alone = mode === "board" && !m.world;
+      $("worldbox").hidden = alone;
+      $("regs").hidden = alone;
+      if (alone) $("step").title = "Run 50 ms of board time (and draw the frame after it), then pause (N)";
       if (mode === "bot") {
         $("save").textContent = "Save motors";
         $("save").title = "Download the motors so far as a --motors script";

@@ -418,6 +418,8 @@ pub struct Host {
     /// Boxed: the design holds pointers to them while the vector grows.
     #[allow(clippy::vec_box)]
     bots: Vec<Box<BotModel>>,
+    /// The design has no bot (the board alone): nothing of a bot bounds a skip.
+    board_alone: bool,
     raw: RawHost,
 }
 
@@ -436,6 +438,7 @@ impl Host {
             trace_error: None,
             bot_spec: None,
             bots: Vec::new(),
+            board_alone: false,
             raw: RawHost {
                 ctx: std::ptr::null_mut(),
                 cpu_new: cpu_new_ffi,
@@ -589,10 +592,11 @@ impl Host {
     }
 
     /// How many periods (each as long as the time since the mark), at most `periods`, every
-    /// bot's outputs stay as they are with its inputs held; none without a bot model.
+    /// bot's outputs stay as they are with its inputs held; none without a bot model, all
+    /// on a board without a bot.
     fn ff_room(&mut self, periods: u64) -> u64 {
         if self.bots.is_empty() {
-            return 0;
+            return if self.board_alone { periods } else { 0 };
         }
         let mut n = periods;
         for b in &mut self.bots {
@@ -609,11 +613,13 @@ impl Host {
     /// Every bot's outputs stay as they are for `periods` periods and then up to phase
     /// snapshot `phase` (1-based) of the next.
     fn ff_fits(&mut self, periods: u64, phase: usize) -> bool {
-        !self.bots.is_empty()
-            && self.bots.iter_mut().all(|b| {
-                let wanted = periods * (b.bot.edges() - b.mark) + (b.phases[phase - 1] - b.mark) + Self::MARGIN;
-                b.bot.quiet_for(wanted) >= wanted
-            })
+        if self.bots.is_empty() {
+            return self.board_alone;
+        }
+        self.bots.iter_mut().all(|b| {
+            let wanted = periods * (b.bot.edges() - b.mark) + (b.phases[phase - 1] - b.mark) + Self::MARGIN;
+            b.bot.quiet_for(wanted) >= wanted
+        })
     }
 
     /// The fast-forward ends this many cycles before the bot's next write.
@@ -771,7 +777,9 @@ impl Host {
             };
             programs.push((site.path.clone(), r.image.clone()));
         }
-        Ok(Host::new(programs, recording))
+        let mut h = Host::new(programs, recording);
+        h.board_alone = plan.bot_path.is_none();
+        Ok(h)
     }
 
     /// Close the traces: every trace file under its name, and each CPU's profile beside it.

@@ -3,6 +3,7 @@
 
 pub mod cpu_coverage;
 pub mod debug;
+pub mod game;
 pub mod icarus;
 pub mod live;
 pub mod lockstep;

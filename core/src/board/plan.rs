@@ -76,8 +76,9 @@ pub struct Plan {
     pub widths: BTreeMap<String, u32>,
     /// The top's input ports.
     pub inputs: BTreeSet<String>,
-    /// The hierarchical path from the top to the `bot` instance.
-    pub bot_path: String,
+    /// The hierarchical path from the top to the `bot` instance; `None` for a design without
+    /// a bot (a final project: the board alone).
+    pub bot_path: Option<String>,
     /// The user instantiates the bot with `Loc_Y_reg` (later copies of the course files).
     pub loc_y_reg: bool,
     /// Every KCPSM6 instance: the team's and, last, the bot's.
@@ -185,9 +186,9 @@ impl Plan {
             [one] => {
                 let path = format!("{one}.{BOT_CPU_INSTANCE}");
                 cpus.push(CpuSite { path, rom: Ok("bot_pgm".into()), at: "botsim's bot".into() });
-                one.clone()
+                Some(one.clone())
             }
-            [] => return Err(BoardError::plain(format!("the design under `{top}` has no `bot` instance"))),
+            [] => None,
             many => {
                 return Err(BoardError::plain(format!(
                     "the design has {} `bot` instances ({}); botsim simulates one",
@@ -200,11 +201,11 @@ impl Plan {
         // Substitutions.
         let mut replaced = Vec::new();
         let mut warnings = Vec::new();
-        // botsim's own modules are always in the build (the design has a bot, and the bot
-        // has them all); the user's copies are reported.
+        // botsim's own modules are always in the build (a bot has them all); the user's
+        // copies are reported, those of a design without a bot where it uses them.
         for (name, _) in OWN_MODULES {
             let from = defined.get(name).map(|(s, m)| format!("{}:{}", s.path.display(), m.line)).unwrap_or_default();
-            if !from.is_empty() {
+            if !from.is_empty() && (bot_path.is_some() || used.contains(name)) {
                 replaced.push(Replacement { module: name.to_string(), from, with: format!("botsim's {name}") });
             }
         }
@@ -226,12 +227,19 @@ impl Plan {
             req.programs.iter().map(|(p, i)| (p.clone(), i.clone(), false)).collect();
         let rom_modules: Vec<(&Source, &Module)> = defined
             .values()
-            .filter(|(_, m)| (is_program_rom(m) && used.contains(&m.name)) || m.name == "bot_pgm")
+            .filter(|(_, m)| {
+                (is_program_rom(m) && used.contains(&m.name)) || (m.name == "bot_pgm" && bot_path.is_some())
+            })
             .copied()
             .collect();
         let team_roms = rom_modules.iter().filter(|(_, m)| m.name != "bot_pgm").count();
         for (src, m) in &rom_modules {
-            let at = format!("{}:{}", src.path.display(), m.line);
+            // A ROM botsim wrote from a `.psm` (the repository has no Verilog of it) is that file.
+            let at = if src.generated {
+                src.path.with_extension("psm").display().to_string()
+            } else {
+                format!("{}:{}", src.path.display(), m.line)
+            };
             if m.name == "bot_pgm" && req.force_own_firmware {
                 continue;
             }
@@ -261,7 +269,9 @@ impl Plan {
                 }
                 (None, Ok(init)) => {
                     let source = source_beside(&src.path, &m.name, &init, &mut warnings);
-                    (init, format!("its own contents ({at})"), source)
+                    let origin =
+                        if src.generated { format!("{at}, assembled") } else { format!("its own contents ({at})") };
+                    (init, origin, source)
                 }
                 (None, Err(e)) => {
                     return Err(BoardError::plain(format!(
@@ -277,7 +287,7 @@ impl Plan {
             });
             roms.push(Rom { module: m.name.clone(), image, origin, source });
         }
-        if !roms.iter().any(|r| r.module == "bot_pgm") {
+        if bot_path.is_some() && !roms.iter().any(|r| r.module == "bot_pgm") {
             let why = if req.force_own_firmware {
                 "botsim's firmware with the constants asked for"
             } else {
@@ -455,7 +465,7 @@ mod tests {
         );
         let p = plan("nexys4fpga", vec![top], &request()).unwrap();
         assert_eq!(p.top, "nexys4fpga");
-        assert_eq!(p.bot_path, "s.robot");
+        assert_eq!(p.bot_path.as_deref(), Some("s.robot"));
         assert!(p.loc_y_reg);
         assert_eq!(p.used_outputs["MMCME2_ADV"], 0b1000_0001);
         assert_eq!(p.unknown_pins, ["JA"]);
@@ -497,6 +507,34 @@ mod tests {
             "{:?}",
             p.warnings
         );
+    }
+
+    #[test]
+    fn a_design_without_a_bot_is_the_board_alone() {
+        // The team's CPU and ROM, a copy of the course's bot files it does not use.
+        let top = src(
+            "top.v",
+            "module t(input clk, output [15:0] led);\n wire [11:0] a; wire [17:0] i; wire e;\n\
+             kcpsm6 cpu (.address(a), .instruction(i), .bram_enable(e), .clk(clk));\n\
+             prog rom (.address(a), .instruction(i), .enable(e), .clk(clk));\nendmodule\n",
+        );
+        let rom = Source::new(
+            "prog.v",
+            kcpsm6::output::verilog_rom(
+                &kcpsm6::asm::assemble_str("start: JUMP start\n").unwrap().image,
+                "prog",
+                "prog.psm",
+                kcpsm6::asm::RomSize::K1,
+                None,
+            ),
+        );
+        let unused = src("world_if.v", "module world_if(input clk);\nendmodule\n");
+        let p = plan("t", vec![top, rom, unused], &request()).unwrap();
+        assert_eq!(p.bot_path, None);
+        assert_eq!(p.cpus.iter().map(|c| c.path.as_str()).collect::<Vec<_>>(), ["cpu"]);
+        assert_eq!(p.roms.iter().map(|r| r.module.as_str()).collect::<Vec<_>>(), ["prog"]);
+        // Nothing of the bot is said to be replaced.
+        assert!(p.replaced.iter().all(|r| r.module == "prog"), "{:?}", p.replaced);
     }
 
     #[test]

@@ -125,16 +125,22 @@ pub fn resolve(inputs: &[PathBuf], opts: &Options) -> Result<Design, BoardError>
         let forced = !named_projects.is_empty() || opts.top.is_some();
         return match design {
             Ok(d) if forced || pool.reaches_bot(&d.top) => Ok(d),
-            // A project whose design has no bot (a first project beside the one that has):
-            // the folder without it.
-            Ok(d) => {
-                let mut folder = pool.design(None, opts, &repo)?;
-                folder.notes.insert(
-                    0,
-                    format!("{}: its design (top `{}`) has no `bot`; using the folder", projects[0].display(), d.top),
-                );
-                Ok(folder)
-            }
+            // A project whose design has no bot beside a folder whose design has one (a first
+            // project beside the Rojobot's): the folder; else the project (a final project).
+            Ok(d) => match pool.design(None, opts, &repo) {
+                Ok(mut folder) if pool.reaches_bot(&folder.top) => {
+                    folder.notes.insert(
+                        0,
+                        format!(
+                            "{}: its design (top `{}`) has no `bot`; using the folder's design, which has one",
+                            projects[0].display(),
+                            d.top
+                        ),
+                    );
+                    Ok(folder)
+                }
+                _ => Ok(d),
+            },
             Err(e) if forced => Err(e),
             Err(e) => pool.design(None, opts, &repo).map_err(|_| e),
         };

@@ -105,7 +105,6 @@ pub fn board_top(plan: &Plan, params: &[(String, String)]) -> String {
             assigns.push(format!("assign {out} = {off};"));
         }
     }
-    let bot = format!("user.{}", plan.bot_path);
     let overrides = if params.is_empty() {
         String::new()
     } else {
@@ -143,7 +142,26 @@ pub fn board_top(plan: &Plan, params: &[(String, String)]) -> String {
          {decl}\
          \x20   {top} {overrides}user (\n        {conns}\n    );\n\
          \x20   {assigns}\n\
-         \x20   // The substituted bot, seen through hierarchical references.\n\
+         {bot}\
+         \x20   initial bot_cycles = 64'd0;\n\
+         \x20   always @(posedge bot_clk) bot_cycles <= bot_cycles + 64'd1;\n\
+         endmodule\n",
+        top = plan.top,
+        bot = bot_taps(plan.bot_path.as_deref()),
+        conns = conns.join(",\n        "),
+        assigns = assigns.join("\n    "),
+    )
+}
+
+/// The board's view of the bot: its registers through hierarchical references to the
+/// instance at `path` below the user's top, or all 0 (a clock that never ticks) without one.
+fn bot_taps(path: Option<&str>) -> String {
+    let Some(path) = path else {
+        return "    // The design has no bot: its outputs are 0 and its clock stands still.\n    wire bot_clk = 1'b0;\n    assign {bot_upd, bot_locx, bot_locy, bot_info, bot_sensors, bot_lmdist, bot_rmdist, bot_motctl} = 57'd0;\n".to_string();
+    };
+    let bot = format!("user.{path}");
+    format!(
+        "    // The substituted bot, seen through hierarchical references.\n\
          \x20   wire bot_clk = {bot}.clk;\n\
          \x20   assign bot_upd = {bot}.upd_sysregs;\n\
          \x20   assign bot_locx = {bot}.LocX_reg;\n\
@@ -152,13 +170,7 @@ pub fn board_top(plan: &Plan, params: &[(String, String)]) -> String {
          \x20   assign bot_sensors = {bot}.Sensors_reg;\n\
          \x20   assign bot_lmdist = {bot}.LMDist_reg;\n\
          \x20   assign bot_rmdist = {bot}.RMDist_reg;\n\
-         \x20   assign bot_motctl = {bot}.MotCtl_in;\n\
-         \x20   initial bot_cycles = 64'd0;\n\
-         \x20   always @(posedge bot_clk) bot_cycles <= bot_cycles + 64'd1;\n\
-         endmodule\n",
-        top = plan.top,
-        conns = conns.join(",\n        "),
-        assigns = assigns.join("\n    "),
+         \x20   assign bot_motctl = {bot}.MotCtl_in;\n"
     )
 }
 

@@ -80,26 +80,30 @@ pub fn write_save_file(
         ("vsync", Format::Binary),
     ];
     s.group("Board pins", PINS.iter().map(|(n, f)| sig(n, *f)).collect());
-    let (info, motctl) = register_filters();
-    let info_file = side("botinfo.txt");
-    write_atomic(&info_file, info.as_bytes())?;
-    let motctl_file = side("motctl.txt");
-    write_atomic(&motctl_file, motctl.as_bytes())?;
-    let (fi, fm) = (s.filter(&info_file), s.filter(&motctl_file));
-    s.group(
-        "Bot registers",
-        vec![
-            sig("bot_upd", Format::Binary),
-            sig("bot_locx[7:0]", Format::Decimal),
-            sig("bot_locy[7:0]", Format::Decimal),
-            (format!("{top}.bot_info[7:0]"), Format::Hex, Some(fi)),
-            sig("bot_sensors[7:0]", Format::Binary),
-            sig("bot_lmdist[7:0]", Format::Decimal),
-            sig("bot_rmdist[7:0]", Format::Decimal),
-            (format!("{top}.bot_motctl[7:0]"), Format::Hex, Some(fm)),
-        ],
-    );
-    let in_bot = |path: &str| path.strip_prefix(plan.bot_path.as_str()).is_some_and(|r| r.starts_with('.'));
+    // The bot's registers, on a board with a bot.
+    if plan.bot_path.is_some() {
+        let (info, motctl) = register_filters();
+        let info_file = side("botinfo.txt");
+        write_atomic(&info_file, info.as_bytes())?;
+        let motctl_file = side("motctl.txt");
+        write_atomic(&motctl_file, motctl.as_bytes())?;
+        let (fi, fm) = (s.filter(&info_file), s.filter(&motctl_file));
+        s.group(
+            "Bot registers",
+            vec![
+                sig("bot_upd", Format::Binary),
+                sig("bot_locx[7:0]", Format::Decimal),
+                sig("bot_locy[7:0]", Format::Decimal),
+                (format!("{top}.bot_info[7:0]"), Format::Hex, Some(fi)),
+                sig("bot_sensors[7:0]", Format::Binary),
+                sig("bot_lmdist[7:0]", Format::Decimal),
+                sig("bot_rmdist[7:0]", Format::Decimal),
+                (format!("{top}.bot_motctl[7:0]"), Format::Hex, Some(fm)),
+            ],
+        );
+    }
+    let in_bot =
+        |path: &str| plan.bot_path.as_deref().is_some_and(|b| path.strip_prefix(b).is_some_and(|r| r.starts_with('.')));
     for site in plan.cpus.iter().filter(|c| !(bot_model && in_bot(&c.path))) {
         let at = format!("{top}.user.{}", site.path);
         let debug = if probed { format!("{at}.core") } else { at.clone() };
@@ -125,13 +129,19 @@ pub fn breakpoints(
     plan: &Plan,
     sources: &BTreeMap<String, SourceMap>,
 ) -> Result<(BTreeMap<String, Breaks>, Vec<BreakSpec>), String> {
-    let bot_cpu = format!("{}.{}", plan.bot_path, botsim_core::board::plan::BOT_CPU_INSTANCE);
-    let team: Vec<&str> = plan.cpus.iter().map(|c| c.path.as_str()).filter(|p| *p != bot_cpu).collect();
+    let bot_cpu = plan.bot_path.as_ref().map(|b| format!("{b}.{}", botsim_core::board::plan::BOT_CPU_INSTANCE));
+    let team: Vec<&str> =
+        plan.cpus.iter().map(|c| c.path.as_str()).filter(|p| Some(*p) != bot_cpu.as_deref()).collect();
     let mut cpu: BTreeMap<String, Breaks> = BTreeMap::new();
     let mut bot = Vec::new();
     for text in specs {
         let spec = BreakSpec::parse(text)?;
         match &spec.kind {
+            Break::Bot(_) if plan.bot_path.is_none() => {
+                return Err(format!(
+                    "--break {text}: the design has no bot (a condition on the bot's samples needs one)"
+                ))
+            }
             Break::Bot(_) => bot.push(spec),
             Break::Pc(_) | Break::Port(..) => {
                 for p in &team {

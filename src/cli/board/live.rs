@@ -8,10 +8,12 @@
 //! part parked (as a run that records no frames does: only what the page shows is simulated,
 //! and the fast-forward skips what repeats) and simulates the pixel path only for the frames
 //! it shows: when an input or the bot (its place or heading, at a sample) may have changed
-//! what the design draws (and every [`REFRESH_EVERY`] for what it draws by itself), at most
-//! [`FRAME_EVERY`] of wall time apart, and only while the board keeps its pace (a frame costs
-//! about one frame period of all-RTL simulation, 0.1 s on the VGA example). The pixel path
-//! is parked between frames in its vertical back porch, so each frame goes on from there.
+//! what the design draws, or while the picture changes by itself (an animation: the last
+//! frame differed from the one before), at most [`FRAME_EVERY`] of wall time apart while the
+//! board keeps its pace (a frame costs about one frame period of all-RTL simulation, 0.1 s on
+//! the VGA example); a still picture, or a board that cannot keep its pace, gets one every
+//! [`REFRESH_EVERY`]. The pixel path is parked between frames in its vertical back porch, so
+//! each frame goes on from there.
 
 use std::time::{Duration, Instant};
 
@@ -42,6 +44,9 @@ pub const FRAME_EVERY: Duration = Duration::from_millis(120);
 /// The longest wall time between two frames when nothing the board knows of changed (what
 /// a design draws from its own counters: a blinking cursor, an animation).
 const REFRESH_EVERY: Duration = Duration::from_secs(1);
+/// How much board time a Step covers on a board without a bot (which steps to the bot's
+/// next sample): about one main-loop iteration of the course's firmware.
+const STEP_PS: u64 = 50_000_000_000;
 /// How much board time a frame may take to come (three frames at 60 Hz).
 const FRAME_BUDGET_PS: u64 = 50_000_000_000;
 /// How far a frame's simulation runs at a time: a frame ends at most this long before the
@@ -64,6 +69,10 @@ struct Board {
     /// since `drawn` (its registers at the last frame).
     dirty: bool,
     drawn: Option<BotView>,
+    /// The last frame's pixels, and whether it differed from the one before (the design
+    /// animates its picture by itself).
+    last_pixels: Option<Vec<u16>>,
+    animated: bool,
     /// Samples not yet in the pages' log.
     fresh: Vec<serde_json::Value>,
 }
@@ -144,7 +153,7 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
     let hello = json!({
         "vga": has_vga,
         "design": {"top": p.plan.top, "sources": sources.join(" ")},
-        "world": world_json(&p.world),
+        "world": p.plan.bot_path.as_ref().map(|_| world_json(&p.world)),
         "mode": "board",
         "protocol": 1,
     });
@@ -171,6 +180,8 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
         inputs,
         dirty: true,
         drawn: None,
+        last_pixels: None,
+        animated: false,
         fresh: Vec::new(),
     };
     let (r, btn, sw) = b.inputs.inputs_at(0);
@@ -178,7 +189,10 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
 
     let mut running = !a.live.paused;
     let mut pace = Pace::new(a.live.speed.0, 0);
+    // A Step: to the bot's next sample (its count), or on a board without a bot to a time.
     let mut step_to: Option<u64> = None;
+    let mut step_until: Option<u64> = None;
+    let alone = p.plan.bot_path.is_none();
     let mut last_state = Instant::now() - STATE_EVERY;
     let mut last_frame: Option<Instant> = None;
     let mut frames: Vec<Instant> = Vec::new();
@@ -195,13 +209,17 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
             match command {
                 Command::Run => {
                     running = true;
-                    step_to = None;
+                    (step_to, step_until) = (None, None);
                     pace.restart(b.model.time_ps());
                 }
                 Command::Pause => running = false,
                 Command::Step => {
                     running = true;
-                    step_to = Some(b.samples + 1);
+                    if alone {
+                        step_until = Some(aligned(b.model.time_ps() + STEP_PS));
+                    } else {
+                        step_to = Some(b.samples + 1);
+                    }
                     pace.restart(b.model.time_ps());
                 }
                 Command::Speed(f) => pace.set_speed(f, b.model.time_ps()),
@@ -227,21 +245,25 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
             // How far: to the pace's target (or a chunk at full speed), stopping at the
             // power-on reset's release and at the end of a step.
             let (target, on_pace) = pace.target(now, CHUNK_PS);
-            let until = aligned(target);
+            let until = aligned(target).min(step_until.unwrap_or(u64::MAX));
             if until > now {
                 let limit = step_to.unwrap_or(u64::MAX);
                 b.run_to(until, limit)?;
-                if step_to.is_some_and(|s| b.samples >= s) {
-                    (running, step_to) = (false, None);
-                }
             } else {
                 std::thread::sleep(Duration::from_millis(2));
             }
-            // A frame for the page when what it shows may have changed.
-            // (Frames wait while the board catches up with its pace: the pace first.)
-            let due =
-                last_frame.map_or(true, |f| f.elapsed() >= FRAME_EVERY && (b.dirty || f.elapsed() >= REFRESH_EVERY));
-            if has_vga && on_pace && due {
+            // (A frame may have taken the board past a step's end.)
+            if step_to.is_some_and(|s| b.samples >= s) || step_until.is_some_and(|t| b.model.time_ps() >= t) {
+                (running, step_to, step_until) = (false, None, None);
+            }
+            // A frame for the page when what it shows may have changed. Frames wait while
+            // the board catches up with its pace (the pace first), but a board that cannot
+            // keep it still shows one every REFRESH_EVERY.
+            let due = last_frame.map_or(true, |f| {
+                let changed = b.dirty || b.animated;
+                (on_pace && f.elapsed() >= FRAME_EVERY && changed) || f.elapsed() >= REFRESH_EVERY
+            });
+            if has_vga && due {
                 let (t0, s0) = (b.model.time_ps(), b.bot.as_ref().map(|v| v.sample));
                 let began = Instant::now();
                 let made = b.frame(skip_mode)?;
@@ -295,11 +317,11 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
         } else {
             String::new()
         };
+        let samples = if alone { String::new() } else { format!(", {} samples", b.samples) };
         eprintln!(
-            "botsim board --live: ran {:.3} s of board time in {wall:.1} s ({:.2} x real time), {} samples{shown}{recorded}",
+            "botsim board --live: ran {:.3} s of board time in {wall:.1} s ({:.2} x real time){samples}{shown}{recorded}",
             t as f64 / 1e12,
             t as f64 / 1e12 / wall,
-            b.samples
         );
     }
     // Give the pages a moment to hear that the run ended.
@@ -460,7 +482,12 @@ impl Board {
         self.model.fast_forward(skip_mode);
         self.dirty = false;
         self.drawn = self.bot.clone();
-        Ok(frame.map(|f| f.png()))
+        Ok(frame.map(|f| {
+            self.animated = self.last_pixels.as_ref().is_some_and(|p| *p != f.pixels);
+            let png = f.png();
+            self.last_pixels = Some(f.pixels);
+            png
+        }))
     }
 
     fn view(&self, running: bool, speed: Option<f64>, rate: f64, frame_rate: f64) -> BoardView {

@@ -184,7 +184,13 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
     for n in &design.notes {
         a.say(format!("note: {n}"));
     }
-    a.say(format!("botsim board: top `{}`, bot at `{}.{}`", plan.top, plan.top, plan.bot_path));
+    match &plan.bot_path {
+        Some(b) => a.say(format!("botsim board: top `{}`, bot at `{}.{b}`", plan.top, plan.top)),
+        None => {
+            bot_options_without_bot(a)?;
+            a.say(format!("botsim board: top `{}`, no bot (the board alone)", plan.top));
+        }
+    }
     for r in &plan.replaced {
         let from = if r.from.is_empty() { String::new() } else { format!(" ({})", r.from) };
         a.say(format!("  replaced {}{from} with {}", r.module, r.with));
@@ -258,6 +264,8 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
     // The models' programs are known before anything is built.
     let looks_inside = a.cpu_trace.is_some() || !a.breaks.is_empty();
     let bot = match (a.bot, cpu_arg) {
+        // Without a bot, nothing is built for one: the board's runs are as with a model.
+        _ if plan.bot_path.is_none() => BotKind::Model,
         (Some(BotArg::Model), _) => BotKind::Model,
         (None, CpuArg::Iss | CpuArg::Lockstep) if !looks_inside => BotKind::Model,
         _ => BotKind::Rtl,
@@ -333,6 +341,30 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
         twin,
     };
     Ok(prepared)
+}
+
+/// The options that need a bot, on a design without one: the first is an error.
+fn bot_options_without_bot(a: &Args) -> Result<(), String> {
+    let in_samples =
+        |m: &Option<String>| m.as_deref().is_some_and(|m| matches!(parse_mark(m, ""), Ok(Mark::Sample(_))));
+    const BY_TIME: &str = ": use a time (2ms) or cycles (5000000c)";
+    let given = [
+        (a.samples.is_some(), "--samples counts the bot's samples", ": use --seconds"),
+        (a.trace_csv.is_some(), "--trace-csv records the bot's samples", ""),
+        (a.trace_json.is_some(), "--trace-json records the bot's samples", ""),
+        (a.png.is_some(), "--png draws the bot's path", " (--frames saves the design's VGA output)"),
+        (a.map.is_some(), "--map is the bot's world", ""),
+        (a.bot.is_some(), "--bot says what stands for the bot", ""),
+        (a.firmware.any(), "--timing, --threshold and --compat set the bot's firmware", ""),
+        (a.stop_at_line_end, "--stop-at-line-end looks at the bot's samples", ""),
+        (a.stop_when_blocked, "--stop-when-blocked looks at the bot's samples", ""),
+        (in_samples(&a.trace_from), "--trace-from N counts the bot's samples", BY_TIME),
+        (in_samples(&a.trace_to), "--trace-to N counts the bot's samples", BY_TIME),
+    ];
+    match given.iter().find(|(on, _, _)| *on) {
+        Some((_, what, hint)) => Err(format!("{what}, and the design has no bot{hint}")),
+        None => Ok(()),
+    }
 }
 
 /// What a Verilator finding that Vivado accepts means for the simulation, for the codes the

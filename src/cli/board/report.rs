@@ -114,14 +114,25 @@ pub fn report(a: &Args, p: &Prepared, o: Outcome) -> Result<Stopped, String> {
             },
             "break": o.stopped.as_ref().map(|s| serde_json::json!({"time_ps": s.time_ps, "what": s.message})),
         });
+        let mut v = v;
+        if p.plan.bot_path.is_none() {
+            // The board alone: nothing of a bot to say.
+            for key in ["samples", "end", "blocked_moves", "first_blocked_sample"] {
+                v.as_object_mut().expect("an object").remove(key);
+            }
+        }
         println!("{v}");
     } else if !a.quiet {
-        let end = end.map_or("no sample yet".to_string(), |(x, y)| format!("({x}, {y})"));
+        let bot = match (&p.plan.bot_path, end) {
+            (None, _) => String::new(),
+            (Some(_), None) => format!(" {} samples, the bot had no sample yet,", o.rec.snapshots.len()),
+            (Some(_), Some((x, y))) => format!(" {} samples, the bot ended at ({x}, {y}),", o.rec.snapshots.len()),
+        };
+        let frames = if o.rec.frames_seen > 0 { format!(", {} VGA frames", o.rec.frames_seen) } else { String::new() };
         println!(
-            "simulated {:.3} s in {:.1} s: {} samples, the bot ended at {end}, the display showed \"{last_display}\", LEDs {:016b}",
+            "simulated {:.3} s in {:.1} s:{bot} the display showed \"{last_display}\", LEDs {:016b}{frames}",
             o.sim_ps as f64 / 1e12,
             o.wall_seconds,
-            o.rec.snapshots.len(),
             o.rec.last_led
         );
         if o.skips > 0 {

@@ -313,7 +313,7 @@ impl<'a> Session<'a> {
         self.progress.show(now, self.rec.snapshots.len() as u64);
         self.check_waveform_size(now)?;
         // A run counted in samples waits for the next one a bounded time.
-        let counted_in_samples = a.seconds.is_none();
+        let counted_in_samples = a.seconds.is_none() && p.plan.bot_path.is_some();
         if counted_in_samples {
             until = until.min(self.rec.last_sample_ps.saturating_add(NO_SAMPLE_PS));
         }

@@ -1,0 +1,155 @@
+//! Final projects: designs without a bot on the virtual board. tests/board_designs/game (a
+//! VGA game: a box that bounces by itself, steered by the buttons, its bounces counted on the
+//! display and its place on the LEDs; the team's PicoBlaze interrupted at each vertical
+//! sync) is checked against a model of game.psm written from its header: every LED write of
+//! the run, the display, and the box in every VGA frame; the fast-forward against every edge;
+//! the CPU trace; and one clear line for each option that needs a bot.
+
+mod common;
+
+use std::path::Path;
+
+use common::game::{box_place, Game, GAME};
+use common::{board_in, root, stderr};
+use serde_json::Value;
+
+/// The LED values the firmware writes, in order, when the left button is held for frames
+/// `held` (x is written before y, so each frame is two values), and the game after `frames`.
+fn expected_leds(frames: usize, held: std::ops::Range<usize>) -> (Vec<u16>, Game) {
+    let mut g = Game::start();
+    let mut leds = vec![g.x as u16, g.leds()];
+    for f in 0..frames {
+        g.frame(held.contains(&f));
+        leds.push((leds.last().unwrap() & 0xFF00) | g.x as u16);
+        leds.push(g.leds());
+    }
+    (leds, g)
+}
+
+/// The LED values and the display texts of a `--display` log, in order.
+fn display_log(text: &str) -> (Vec<u16>, Vec<String>) {
+    let (mut leds, mut shown) = (Vec::new(), Vec::new());
+    for line in text.lines() {
+        let rest = line.split_once(" ms  ").map(|(_, r)| r).unwrap_or("");
+        if let Some(v) = rest.strip_prefix("leds    ") {
+            leds.push(u16::from_str_radix(v.trim(), 2).unwrap());
+        } else if let Some(v) = rest.strip_prefix("display ") {
+            shown.push(v.to_string());
+        }
+    }
+    (leds, shown)
+}
+
+/// Run the game in `dir` (its outputs there); the summary.
+fn run(dir: &Path, extra: &[&str]) -> Value {
+    let game = root().join(GAME);
+    let mut args = vec![game.to_str().unwrap(), "--param", "SIMULATE=1", "--json"];
+    args.extend(extra);
+    let o = board_in(dir, &args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    serde_json::from_slice(&o.stdout).unwrap()
+}
+
+#[test]
+fn a_game_without_a_bot_runs_every_led_write_and_the_display_as_its_program_says() {
+    let dir = tempfile::tempdir().unwrap();
+    let v = run(dir.path(), &["--seconds", "3", "--display", "d.txt"]);
+    // The summary leaves the bot out.
+    for key in ["samples", "end", "blocked_moves"] {
+        assert!(v.get(key).is_none(), "{key} in {v}");
+    }
+    let (leds, shown) = display_log(&std::fs::read_to_string(dir.path().join("d.txt")).unwrap());
+    // 60 frames a second for 3 s, less the MMCM's lock and the reset's release.
+    let frames = (leds.len() - 2) / 2;
+    assert!((170..=180).contains(&frames), "{frames} frames");
+    let (want, end) = expected_leds(frames, 0..0);
+    assert_eq!(leds, want[..leds.len()], "the LED writes");
+    // Two bounces by then (y at frame 96, x at 146), shown in decimal on digits 3-0.
+    assert_eq!(end.bounces, 2);
+    assert_eq!(shown.last().map(String::as_str), Some("    0002"), "{shown:?}");
+    assert_eq!(v["display"], "    0002");
+    assert_eq!(v["leds"].as_u64(), Some(end.leds() as u64));
+}
+
+#[test]
+fn a_held_button_steers_the_box_and_the_fast_forward_equals_every_edge() {
+    let dir = tempfile::tempdir().unwrap();
+    let press = ["--seconds", "0.8", "--press", "btnL@100+400"];
+    let fast = run(dir.path(), &[&press[..], &["--display", "fast.txt"]].concat());
+    let every = run(dir.path(), &[&press[..], &["--display", "every.txt", "--no-fast-forward"]].concat());
+    let read = |f: &str| std::fs::read_to_string(dir.path().join(f)).unwrap();
+    assert!(read("fast.txt") == read("every.txt"), "the display logs differ");
+    assert_eq!(every["fast_forward"]["skips"], 0);
+    assert!(fast["fast_forward"]["skips"].as_u64() > Some(0), "{fast}");
+    // Held for 400 ms: from the frame the press is seen (x is 16 or so), the box goes left
+    // into the edge and bounces there every other frame until the release (a frame that
+    // finds it at 0 going left is the same held or not: the end is known to a frame).
+    let (leds, shown) = display_log(&read("fast.txt"));
+    let frames = (leds.len() - 2) / 2;
+    let fits: Vec<(usize, usize)> = (0..frames)
+        .flat_map(|from| (1..frames - from).map(move |n| (from, from + n)))
+        .filter(|&(from, to)| expected_leds(frames, from..to).0[..leds.len()] == leds[..])
+        .collect();
+    assert!(!fits.is_empty(), "no press of the left button explains the LED writes: {leds:x?}");
+    for &(from, to) in &fits {
+        assert!((5..=8).contains(&from) && (28..=32).contains(&to), "held for frames {from}..{to}: {fits:?}");
+    }
+    let (_, end) = expected_leds(frames, fits[0].0..fits[0].1);
+    assert!(end.bounces >= 4, "{end:?}");
+    assert_eq!(shown.last(), Some(&format!("    {:04}", end.bounces)));
+}
+
+#[test]
+fn every_vga_frame_shows_the_box_where_the_program_put_it() {
+    let dir = tempfile::tempdir().unwrap();
+    run(dir.path(), &["--seconds", "0.3", "--frames", "frames"]);
+    let mut places = Vec::new();
+    let mut k = 0;
+    while let Ok(png) = std::fs::read(dir.path().join(format!("frames/frame_{k:05}.png"))) {
+        places.push(box_place(&png).unwrap_or_else(|e| panic!("frame {k}: {e}")));
+        k += 1;
+    }
+    assert!(places.len() >= 15, "{} frames", places.len());
+    // Consecutive frames show consecutive frames of the game.
+    let track = Game::track(40);
+    let first = track.iter().position(|p| *p == places[0]).expect("the first frame's box on the track");
+    assert_eq!(places[..], track[first..first + places.len()], "the box frame by frame");
+}
+
+#[test]
+fn the_team_cpu_is_traced_without_a_bot() {
+    let dir = tempfile::tempdir().unwrap();
+    run(dir.path(), &["--seconds", "0.05", "--cpu-trace", "trace"]);
+    let trace = std::fs::read_to_string(dir.path().join("trace/GAMECPU.trace.txt")).unwrap();
+    assert!(trace.contains("game.psm:"), "{}", &trace[..trace.len().min(2000)]);
+    let profile = std::fs::read_to_string(dir.path().join("trace/GAMECPU.profile.txt")).unwrap();
+    assert!(profile.contains("wait"), "{profile}");
+    // Only the team's CPU: the board has no bot.
+    let files: Vec<String> = std::fs::read_dir(dir.path().join("trace"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(files.len(), 2, "{files:?}");
+}
+
+#[test]
+fn an_option_that_needs_a_bot_is_one_line_on_a_design_without_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let game = root().join(GAME);
+    for (args, want) in [
+        (&["--samples", "3"][..], "--samples counts the bot's samples, and the design has no bot: use --seconds"),
+        (&["--trace-csv", "t.csv"][..], "--trace-csv records the bot's samples, and the design has no bot"),
+        (&["--png", "p.png"][..], "--png draws the bot's path, and the design has no bot (--frames saves"),
+        (&["--break", "bot=blocked"][..], "--break bot=blocked: the design has no bot"),
+        (&["--vcd", "w.vcd", "--trace-from", "3"][..], "--trace-from N counts the bot's samples"),
+    ] {
+        let mut a = vec![game.to_str().unwrap(), "--param", "SIMULATE=1", "--quiet"];
+        a.extend(args);
+        let o = board_in(dir.path(), &a);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {e}");
+        assert_eq!(e.lines().count(), 1, "{args:?}: {e}");
+        assert!(e.contains(want), "{args:?}: {e}");
+    }
+    assert!(std::fs::read_dir(dir.path()).unwrap().next().is_none(), "nothing written");
+}

@@ -269,7 +269,7 @@ fn key(tab: &Tab, name: &str, code: u32, down: bool) {
 fn the_page_plays_a_game_without_a_bot() {
     use common::game::{box_place, GAME};
     let Some(chromium) = chromium() else { return };
-    let live = Live::start(&[GAME, "--param", "SIMULATE=1", "--speed", "1"]);
+    let live = Live::start(&[GAME, "--param", "SIMULATE=1", "--speed", "max"]);
     let (_browser, tab) = open(chromium, &live.url);
     let shown = |tab: &Tab| -> Value {
         let v = tab

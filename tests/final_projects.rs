@@ -74,7 +74,7 @@ fn a_game_without_a_bot_runs_every_led_write_and_the_display_as_its_program_says
 #[test]
 fn a_held_button_steers_the_box_and_the_fast_forward_equals_every_edge() {
     let dir = tempfile::tempdir().unwrap();
-    let press = ["--seconds", "0.8", "--press", "btnL@100+400"];
+    let press = ["--seconds", "0.6", "--press", "btnL@100+400"];
     let fast = run(dir.path(), &[&press[..], &["--display", "fast.txt"]].concat());
     let every = run(dir.path(), &[&press[..], &["--display", "every.txt", "--no-fast-forward"]].concat());
     let read = |f: &str| std::fs::read_to_string(dir.path().join(f)).unwrap();
@@ -102,14 +102,14 @@ fn a_held_button_steers_the_box_and_the_fast_forward_equals_every_edge() {
 #[test]
 fn every_vga_frame_shows_the_box_where_the_program_put_it() {
     let dir = tempfile::tempdir().unwrap();
-    run(dir.path(), &["--seconds", "0.3", "--frames", "frames"]);
+    run(dir.path(), &["--seconds", "0.2", "--frames", "frames"]);
     let mut places = Vec::new();
     let mut k = 0;
     while let Ok(png) = std::fs::read(dir.path().join(format!("frames/frame_{k:05}.png"))) {
         places.push(box_place(&png).unwrap_or_else(|e| panic!("frame {k}: {e}")));
         k += 1;
     }
-    assert!(places.len() >= 15, "{} frames", places.len());
+    assert!(places.len() >= 9, "{} frames", places.len());
     // Consecutive frames show consecutive frames of the game.
     let track = Game::track(40);
     let first = track.iter().position(|p| *p == places[0]).expect("the first frame's box on the track");
@@ -152,14 +152,4 @@ fn an_option_that_needs_a_bot_is_one_line_on_a_design_without_one() {
         assert!(e.contains(want), "{args:?}: {e}");
     }
     assert!(std::fs::read_dir(dir.path()).unwrap().next().is_none(), "nothing written");
-}
-
-#[test]
-fn the_bench_measures_a_design_without_a_bot() {
-    // The same run as the plain one, beside the all-RTL board (which has no bot to set).
-    let dir = tempfile::tempdir().unwrap();
-    let plain = run(dir.path(), &["--seconds", "0.05"]);
-    let bench = run(dir.path(), &["--seconds", "0.05", "--bench"]);
-    assert_eq!(bench["skips"], plain["fast_forward"]["skips"], "{bench}\n{plain}");
-    assert!(bench["rtl_mcycles_per_s"].as_f64() > Some(0.0), "{bench}");
 }

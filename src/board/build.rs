@@ -394,9 +394,15 @@ pub fn build(
         "botsim_observed.h",
         &super::observed::header(&checked.members, &checked.counters, checked.triggers_fn.as_deref()),
     )?;
+    // Verilator's run-time library, compiled once for every build of these flags.
+    let runtime = Runtime::new(&v, delays.is_some(), &tmp.join("obj"));
+    runtime.lend();
     let mut make = Command::new("make");
     make.current_dir(tmp.join("obj")).args(["-f", "Vboard.mk", "-j"]).arg(jobs.to_string()).args(MAKE_VARS);
     let out = run_with_budget(&mut make, budget, t0).map_err(fail)?;
+    if out.status.success() {
+        runtime.keep();
+    }
     stderr.push_str(&String::from_utf8_lossy(&out.stderr));
     let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
     if !out.status.success() || !tmp.join("obj/libboard.so").exists() {
@@ -472,6 +478,74 @@ impl Lock {
 
 /// Remove the temporary folders of builds whose process is gone (stopped by a crash or a
 /// kill; Ctrl-C removes its own): `<design>.tmp<pid>`.
+/// Verilator's run-time library (`verilated.o` and the others its makefile lists as global
+/// objects), the same for every build of one Verilator with botsim's flags: compiled by the
+/// first build (about 10 s of the compiler), kept in the cache, and given to the next builds'
+/// makefiles, which then find them made.
+struct Runtime {
+    /// Where the objects are kept, by what they are compiled from.
+    dir: PathBuf,
+    /// The build's folder of objects, and the objects its makefile needs.
+    obj: PathBuf,
+    names: Vec<String>,
+}
+
+impl Runtime {
+    fn new(v: &verilator::Verilator, timing: bool, obj: &Path) -> Runtime {
+        let mut h = DefaultHasher::new();
+        (&v.version, &v.root, VERILATOR_FLAGS, MAKE_VARS, PRINT, timing).hash(&mut h);
+        // The makefile's list: VM_GLOBAL_FAST and VM_GLOBAL_SLOW, one name a line.
+        let classes = std::fs::read_to_string(obj.join("Vboard_classes.mk")).unwrap_or_default();
+        let mut names = Vec::new();
+        let mut in_global = false;
+        for line in classes.lines() {
+            let t = line.trim().trim_end_matches('\\').trim();
+            if t.starts_with("VM_GLOBAL_FAST +=") || t.starts_with("VM_GLOBAL_SLOW +=") {
+                in_global = true;
+            } else if t.is_empty() || t.contains('=') || t.starts_with('#') {
+                in_global = false;
+            } else if in_global && t.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+                names.push(t.to_string());
+            }
+        }
+        Runtime { dir: cache_dir().join("runtime").join(format!("{:016x}", h.finish())), obj: obj.to_path_buf(), names }
+    }
+
+    /// Put the kept objects in the build's folder, newer than its makefile (which they
+    /// depend on), so that make takes them as made.
+    fn lend(&self) {
+        for n in &self.names {
+            let (kept, to) = (self.dir.join(format!("{n}.o")), self.obj.join(format!("{n}.o")));
+            if std::fs::copy(&kept, &to).is_ok() {
+                let touched = std::fs::File::options()
+                    .write(true)
+                    .open(&to)
+                    .and_then(|f| f.set_modified(std::time::SystemTime::now()));
+                if touched.is_err() {
+                    let _ = std::fs::remove_file(&to);
+                }
+            }
+        }
+    }
+
+    /// Keep the objects this build compiled that the cache does not have yet (each written
+    /// whole, then renamed: builds may run side by side).
+    fn keep(&self) {
+        let _ = std::fs::create_dir_all(&self.dir);
+        for n in &self.names {
+            let kept = self.dir.join(format!("{n}.o"));
+            if kept.exists() {
+                continue;
+            }
+            let part = self.dir.join(format!(".{n}.o.{}", std::process::id()));
+            if std::fs::copy(self.obj.join(format!("{n}.o")), &part).is_ok() && std::fs::rename(&part, &kept).is_ok() {
+                continue;
+            }
+            let _ = std::fs::remove_file(&part);
+        }
+    }
+}
+
 fn remove_stale_builds(boards: &Path) {
     for e in std::fs::read_dir(boards).into_iter().flatten().flatten() {
         let name = e.file_name().to_string_lossy().into_owned();

@@ -153,3 +153,13 @@ fn an_option_that_needs_a_bot_is_one_line_on_a_design_without_one() {
     }
     assert!(std::fs::read_dir(dir.path()).unwrap().next().is_none(), "nothing written");
 }
+
+#[test]
+fn the_bench_measures_a_design_without_a_bot() {
+    // The same run as the plain one, beside the all-RTL board (which has no bot to set).
+    let dir = tempfile::tempdir().unwrap();
+    let plain = run(dir.path(), &["--seconds", "0.05"]);
+    let bench = run(dir.path(), &["--seconds", "0.05", "--bench"]);
+    assert_eq!(bench["skips"], plain["fast_forward"]["skips"], "{bench}\n{plain}");
+    assert!(bench["rtl_mcycles_per_s"].as_f64() > Some(0.0), "{bench}");
+}

@@ -508,6 +508,13 @@ impl Runtime {
                 names.push(t.to_string());
             }
         }
+        // And what they are compiled from as it is now (an installation updated in place keeps
+        // its version string).
+        let include = v.root.join("include");
+        for file in names.iter().map(|n| format!("{n}.cpp")).chain(["verilated.h".into(), "verilated_config.h".into()])
+        {
+            std::fs::read(include.join(file)).unwrap_or_default().hash(&mut h);
+        }
         Runtime { dir: cache_dir().join("runtime").join(format!("{:016x}", h.finish())), obj: obj.to_path_buf(), names }
     }
 

@@ -163,3 +163,18 @@ fn the_bench_measures_a_design_without_a_bot() {
     assert_eq!(bench["skips"], plain["fast_forward"]["skips"], "{bench}\n{plain}");
     assert!(bench["rtl_mcycles_per_s"].as_f64() > Some(0.0), "{bench}");
 }
+
+#[test]
+fn the_uart_and_ps2_lines_idle_high_and_an_open_collector_pulls_low() {
+    // tests/board_designs/idle_lines: RsRx, PS2_DATA and PS2_CLK on LEDs 2-0; switch 0 pulls
+    // PS2_CLK low. (Held low, an idle UART line reads as a break, a PS/2 clock as an inhibit.)
+    let dir = tempfile::tempdir().unwrap();
+    let design = root().join("tests/board_designs/idle_lines");
+    for (switches, want) in [("0000", 0b111), ("0001", 0b110)] {
+        let o =
+            board_in(dir.path(), &[design.to_str().unwrap(), "--seconds", "0.0001", "--switches", switches, "--json"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+        assert_eq!(v["leds"].as_u64(), Some(want), "switches {switches}: {v}");
+    }
+}

@@ -30,6 +30,13 @@ pub enum Role {
     Vsync,
 }
 
+/// Whether a port of no board role named `name` is a line the board holds high while idle
+/// (board.md §7): the USB-UART's receive line into the FPGA (`RsRx`, `UART_TXD_IN`) and the
+/// PS/2 clock and data (open collector, pulled up). Other ports of no role are held low.
+pub fn idle_high(name: &str) -> bool {
+    matches!(name.to_ascii_lowercase().as_str(), "rsrx" | "uart_txd_in" | "ps2_clk" | "ps2_data")
+}
+
 /// The role of a port named `name`, if it is one of the board's pins (in any case: `CLK`,
 /// `Led` and `BTNC` are the same pins as `clk`, `led` and `btnC`).
 pub fn role(name: &str) -> Option<Role> {

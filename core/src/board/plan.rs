@@ -74,8 +74,9 @@ pub struct Plan {
     pub unknown_pins: Vec<String>,
     /// The top's port widths.
     pub widths: BTreeMap<String, u32>,
-    /// The top's input ports.
+    /// The top's input ports, and its inout ones.
     pub inputs: BTreeSet<String>,
+    pub inouts: BTreeSet<String>,
     /// The hierarchical path from the top to the `bot` instance; `None` for a design without
     /// a bot (a final project: the board alone).
     pub bot_path: Option<String>,
@@ -343,6 +344,7 @@ impl Plan {
         })?;
         let widths = top_module.ports.iter().map(|p| (p.name.clone(), p.width)).collect();
         let inputs = top_module.ports.iter().filter(|p| p.dir == Dir::Input).map(|p| p.name.clone()).collect();
+        let inouts = top_module.ports.iter().filter(|p| p.dir == Dir::Inout).map(|p| p.name.clone()).collect();
         Ok(Plan {
             top,
             files,
@@ -355,6 +357,7 @@ impl Plan {
             unknown_pins,
             widths,
             inputs,
+            inouts,
             bot_path,
             loc_y_reg,
             cpus,

@@ -12,7 +12,7 @@
 use kcpsm6::asm::RomSize;
 use kcpsm6::output::verilog_rom;
 
-use super::pins::Role;
+use super::pins::{self, Role};
 use super::plan::Plan;
 
 /// The wrapper module's name.
@@ -94,10 +94,20 @@ pub fn board_top(plan: &Plan, params: &[(String, String)]) -> String {
         let bits: Vec<String> = seg_lines.iter().rev().map(|l| l.clone().unwrap_or_else(|| "1'b1".into())).collect();
         driven.push(("seg", format!("{{{}}}", bits.join(", "))));
     }
-    // Ports with no board role: inputs low, outputs open.
+    // Ports with no board role: inputs low, outputs open; the lines the board holds high
+    // while idle high (an inout one pulled up, as the board's resistor does).
     for name in &plan.unknown_pins {
-        let input = plan.inputs.contains(name);
-        conns.push(if input { format!(".{name}({}'d0)", width(name)) } else { format!(".{name}()") });
+        let w = width(name);
+        let conn = match (plan.inputs.contains(name), pins::idle_high(name), plan.inouts.contains(name)) {
+            (true, true, _) => format!(".{name}({{{w}{{1'b1}}}})"),
+            (true, false, _) => format!(".{name}({w}'d0)"),
+            (false, true, true) => {
+                decl.push_str(&format!("    tri1 [{}:0] idle_{name};\n", w - 1));
+                format!(".{name}(idle_{name})")
+            }
+            _ => format!(".{name}()"),
+        };
+        conns.push(conn);
     }
     let mut assigns: Vec<String> = driven.iter().map(|(o, x)| format!("assign {o} = {x};")).collect();
     for (out, off) in OUTPUTS_OFF {

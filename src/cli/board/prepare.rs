@@ -13,6 +13,7 @@ use botsim::kcpsm6::loader;
 use botsim::kcpsm6::source::SourceMap;
 use botsim::{Firmware, World};
 use botsim_core::board::ip::ClockSpec;
+use botsim_core::board::pins::idle_high;
 use botsim_core::board::plan::{Plan, Request};
 use botsim_core::board::resolve::{resolve, Design, Options};
 use botsim_core::board::stimulus::{parse_press, parse_time, Stimulus};
@@ -199,7 +200,21 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
         a.say(format!("warning: {w}"));
     }
     if !plan.unknown_pins.is_empty() {
-        a.say(format!("  ports with no board pin (inputs held low, outputs open): {}", plan.unknown_pins.join(", ")));
+        // The board's idle-high lines (a UART's receive line, PS/2) are held high.
+        let high: Vec<&str> = plan
+            .unknown_pins
+            .iter()
+            .filter(|n| idle_high(n) && (plan.inputs.contains(*n) || plan.inouts.contains(*n)))
+            .map(String::as_str)
+            .collect();
+        let held = match high.as_slice() {
+            [] => String::new(),
+            h => format!(", {} high as the board's idle lines", h.join(", ")),
+        };
+        a.say(format!(
+            "  ports with no board pin (inputs held low{held}, outputs open): {}",
+            plan.unknown_pins.join(", ")
+        ));
     }
     let trace_window = (
         a.cpu_trace_from

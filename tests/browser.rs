@@ -102,6 +102,23 @@ fn mouse(tab: &Tab, kind: Input::DispatchMouseEventTypeOption, x: f64, y: f64) {
     .unwrap();
 }
 
+/// The PNG the page's VGA monitor shows, as the page has it.
+fn monitor_png(tab: &Tab) -> Vec<u8> {
+    let png = tab
+        .evaluate(
+            r#"fetch(document.getElementById("vga").src).then((r) => r.arrayBuffer()).then((b) => {
+                 const u = new Uint8Array(b); let s = "";
+                 for (let i = 0; i < u.length; i++) s += String.fromCharCode(u[i]);
+                 return btoa(s);
+               })"#,
+            true,
+        )
+        .unwrap()
+        .value
+        .unwrap();
+    base64::engine::general_purpose::STANDARD.decode(png.as_str().unwrap()).unwrap()
+}
+
 /// The hex digits the team firmware shows for a byte, as the glyphs read (b and d lower case).
 fn hex_glyphs(v: u64) -> String {
     format!("{v:02X}").replace('B', "b").replace('D', "d")
@@ -153,19 +170,7 @@ fn the_page_in_headless_chromium_plays_the_vga_example() {
     let p = until(&tab, "the run paused", |p| p["running"] == false && p["frame"]["sample"] == p["frame"]["from"]);
     assert_eq!(p["placeholder"], false, "a frame hides the placeholder");
     let sample: u64 = p["frame"]["sample"].as_str().unwrap().parse().unwrap();
-    let png = tab
-        .evaluate(
-            r#"fetch(document.getElementById("vga").src).then((r) => r.arrayBuffer()).then((b) => {
-                 const u = new Uint8Array(b); let s = "";
-                 for (let i = 0; i < u.length; i++) s += String.fromCharCode(u[i]);
-                 return btoa(s);
-               })"#,
-            true,
-        )
-        .unwrap()
-        .value
-        .unwrap();
-    let png = base64::engine::general_purpose::STANDARD.decode(png.as_str().unwrap()).unwrap();
+    let png = monitor_png(&tab);
     // The bot's registers at that sample, from the log every page gets.
     let mut client = live.client("/");
     let entry = client.log_entry("the frame's sample in the log", |e| e["kind"] == "sample" && e["sample"] == sample);
@@ -292,19 +297,7 @@ fn the_page_plays_a_game_without_a_bot() {
     assert_eq!((&s["world"], &s["regs"], &s["samples"]), (&Value::from(false), &Value::from(false), &Value::from("")));
     // The frame on the monitor: the game's picture.
     let frame = |tab: &Tab| -> ((u8, u8), u64) {
-        let png = tab
-            .evaluate(
-                r#"fetch(document.getElementById("vga").src).then((r) => r.arrayBuffer()).then((b) => {
-                     const u = new Uint8Array(b); let s = "";
-                     for (let i = 0; i < u.length; i++) s += String.fromCharCode(u[i]);
-                     return btoa(s);
-                   })"#,
-                true,
-            )
-            .unwrap()
-            .value
-            .unwrap();
-        let png = base64::engine::general_purpose::STANDARD.decode(png.as_str().unwrap()).unwrap();
+        let png = monitor_png(tab);
         let at = shown(tab)["frame_ps"].as_str().and_then(|t| t.parse().ok()).unwrap_or(0);
         (box_place(&png).unwrap(), at)
     };

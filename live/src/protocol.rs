@@ -95,6 +95,16 @@ pub enum Command {
     Save,
     /// End the run (as Ctrl-C does).
     Stop,
+    /// A key of the keyboard pressed (`down`) or released, named as the browser's
+    /// `KeyboardEvent.code` names it (`KeyA`, `ArrowUp`).
+    Key {
+        code: String,
+        down: bool,
+    },
+    /// Text sent to the design's USB-UART (its UTF-8 bytes).
+    Uart(Vec<u8>),
+    /// The board's tilt, in g on x, y and z (flat: 0, 0, 1).
+    Tilt([f64; 3]),
 }
 
 impl Command {
@@ -135,6 +145,27 @@ impl Command {
             "motors" => {
                 let value = word(obj.get("value"), 0xFF);
                 Command::Motors(value.ok_or("`motors`: `value` must be 0 to 255 or two hex digits")? as u8)
+            }
+            "key" => {
+                let code = obj.get("code").and_then(Value::as_str).filter(|c| !c.is_empty() && c.len() <= 32);
+                let code = code.ok_or("`key`: `code` must name a key (as KeyboardEvent.code does: KeyA, Enter)")?;
+                Command::Key { code: code.to_string(), down: flag("down")? }
+            }
+            "uart" => {
+                let text = obj.get("text").and_then(Value::as_str).ok_or("`uart`: `text` must be a string")?;
+                if text.len() > 4096 {
+                    return Err("`uart`: at most 4096 bytes at a time".into());
+                }
+                Command::Uart(text.as_bytes().to_vec())
+            }
+            "tilt" => {
+                let g = |axis: &str| {
+                    obj.get(axis)
+                        .and_then(Value::as_f64)
+                        .filter(|g| g.is_finite() && g.abs() <= 8.0)
+                        .ok_or_else(|| format!("`tilt`: `{axis}` must be a number of g, within +-8"))
+                };
+                Command::Tilt([g("x")?, g("y")?, g("z")?])
             }
             "run" => Command::Run,
             "pause" => Command::Pause,

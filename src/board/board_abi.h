@@ -10,8 +10,11 @@ enum {
     BOARD_EVENT_SAMPLE = 3,
     BOARD_EVENT_VGA = 4,
     BOARD_EVENT_BOT = 5,
-    BOARD_EVENT_REPEAT = 6
+    BOARD_EVENT_REPEAT = 6,
+    BOARD_EVENT_LINES = 7
 };
+/* The devices botsim_push feeds. */
+enum { BOARD_UART = 0, BOARD_KEYBOARD = 1 };
 enum { BOARD_UNTIL = 0, BOARD_BUFFER_FULL = 1, BOARD_SAMPLES = 2, BOARD_FINISHED = 3 };
 
 /* One thing the board showed. DISPLAY: a = an | seg << 8 | dp << 15. LEDS: a = led.
@@ -20,6 +23,8 @@ enum { BOARD_UNTIL = 0, BOARD_BUFFER_FULL = 1, BOARD_SAMPLES = 2, BOARD_FINISHED
  * VGA (when board_record_vga is on): a = r << 8 | g << 4 | b | hsync << 12 | vsync << 13.
  * BOT (when board_record_bot is on): any of the bot's outputs changed; a = upd_sysregs,
  * b = LocX | LocY << 8 | BotInfo << 16 | Sensors << 24 | LMDist << 32 | RMDist << 40.
+ * LINES: a = RsTx | ampPWM << 1 | ampSD << 2 (the board's lines out of the FPGA to its
+ * peripherals; RsTx 1 and ampPWM 0 without such a pin, ampSD 1 with ampPWM alone).
  * REPEAT (a fast-forward over a period in which the board showed something): the a records
  * before this one happen c more times, each b ps after the last (time_ps: the first
  * repetition's start). */

@@ -28,6 +28,7 @@ const PRINT: &str = include_str!("botsim_print.h");
 const DISASM: &str = include_str!("../sim/rtl/ffi/botsim_disasm.h");
 const XILINX: &str = include_str!("../../rtl/board/xilinx.v");
 const CLKGEN: &str = include_str!("../../rtl/board/botsim_clkgen.v");
+const DEVICES: &str = include_str!("../../rtl/board/devices.v");
 const KCPSM6_ISS: &str = include_str!("../../rtl/board/kcpsm6_iss.v");
 const BOT_MODEL: &str = include_str!("../../rtl/board/bot_model.v");
 const KCPSM6_PROBE: &str = include_str!("../../rtl/board/kcpsm6_probe.v");
@@ -170,6 +171,7 @@ fn files(plan: &Plan, params: &[(String, String)], cpu: CpuModel, bot: BotKind) 
         ("botsim_board.sv".to_string(), wrapper::board_top(plan, params)),
         ("botsim_xilinx.sv".to_string(), XILINX.to_string()),
         ("botsim_clkgen.sv".to_string(), CLKGEN.to_string()),
+        ("botsim_devices.sv".to_string(), DEVICES.to_string()),
     ];
     for (_, file) in OWN_MODULES {
         let text = match (file, cpu) {

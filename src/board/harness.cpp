@@ -304,6 +304,7 @@ struct Board {
     uint64_t evals = 0;
     uint8_t last_an = 0xFF, last_seg = 0x7F, last_dp = 1;
     uint16_t last_led = 0;
+    uint8_t last_lines = 0xFF;  // RsTx, ampPWM, ampSD (none yet: the first is recorded)
     bool rising_only = false;  // evaluate at rising clock edges only (nothing on falling ones)
     bool vga = false;  // record the VGA pins (only when frames are asked for)
     uint16_t last_vga = 0x3000;
@@ -358,6 +359,8 @@ Board* board_new_hosted(int argc, const char** argv, BoardHost* host) {
     b->top->reset_pressed = 0;
     b->top->btn = 0;
     b->top->sw = 0;
+    b->top->uart_div = 868;  // 115200 baud
+    b->top->tilt_z = 1000;   // lying flat: +1 g on z
     // A design that stops at power-up (a $fatal, a loop that never settles) is a board that
     // has finished: its first run says so.
     try {
@@ -438,6 +441,47 @@ void board_set_inputs(Board* b, uint32_t reset_pressed, uint32_t buttons, uint32
     }
     b->evals++;
     // The fast-forward's mark and snapshots hold the inputs they saw: look for a new period.
+    b->ff.marked = false;
+    b->ff.quiet_from = b->now;
+}
+
+// Send `n` (1-8) bytes to a device (BOARD_UART, BOARD_KEYBOARD): 1 when it takes them (at the
+// next clock edge); 0 when a push waits for its clock edge (try at the next); -1 when its
+// queue has too little room (try when it has sent some; a design without the device has
+// none).
+int board_push(Board* b, uint32_t device, const uint8_t* bytes, uint32_t n) {
+    enter(b);
+    Vboard* t = b->top;
+    const uint32_t room = device == BOARD_UART ? t->uart_room : t->ps2_room;
+    if (n == 0 || n > 8 || t->uart_pending || t->ps2_pending) return 0;
+    if (room < n) return -1;
+    uint64_t v = 0;
+    for (uint32_t i = 0; i < n; i++) v |= (uint64_t)bytes[i] << (8 * i);
+    t->push_bytes = v;
+    t->push_n = n;
+    if (device == BOARD_UART) t->uart_push ^= 1;
+    else t->ps2_push ^= 1;
+    try {
+        t->eval();
+    } catch (const Stopped&) {
+    }
+    b->evals++;
+    b->ff.marked = false;
+    b->ff.quiet_from = b->now;
+    return 1;
+}
+
+// The UART's clocks of 100 MHz per bit into the FPGA, and the board's tilt in mg.
+void board_set_uart_div(Board* b, uint32_t div) {
+    enter(b);
+    b->top->uart_div = div < 1 ? 1 : div;
+    b->ff.marked = false;
+}
+void board_set_tilt(Board* b, int32_t x, int32_t y, int32_t z) {
+    enter(b);
+    b->top->tilt_x = (uint16_t)(int16_t)x;
+    b->top->tilt_y = (uint16_t)(int16_t)y;
+    b->top->tilt_z = (uint16_t)(int16_t)z;
     b->ff.marked = false;
     b->ff.quiet_from = b->now;
 }
@@ -573,6 +617,7 @@ namespace {
 struct Shown {
     uint8_t an, seg, dp;
     uint16_t led, vga;
+    uint8_t lines;
     uint64_t bot;
     bool upd;
     uint64_t samples, evals;
@@ -1011,6 +1056,7 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
     s.seg = b->top->seg;
     s.dp = b->top->dp;
     s.led = b->top->led;
+    s.lines = (uint8_t)(b->top->uart_tx | b->top->amp_pwm << 1 | b->top->amp_sd << 2);
     f.skips++;
     f.skipped_ps += skipped;
     return skipped / b->clocks[0].num;
@@ -1030,10 +1076,10 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
     // picoseconds), after the oscillator's rising edges.
     const bool ff = b->ff.on && !b->vcd && clocks[0].den == 1 && !(vga && b->ff.observed_only);
     const bool rising_only = b->rising_only && !b->vcd;
-    Shown s{b->last_an, b->last_seg, b->last_dp, b->last_led, b->last_vga, b->last_bot, b->last_upd, b->samples, b->evals};
+    Shown s{b->last_an, b->last_seg, b->last_dp, b->last_led, b->last_vga, b->last_lines, b->last_bot, b->last_upd, b->samples, b->evals};
     uint32_t why = BOARD_BUFFER_FULL;
-    // Room for one evaluation's records (at most 5) must remain.
-    while (*n + 5 <= cap) {
+    // Room for one evaluation's records (at most 6) must remain.
+    while (*n + 6 <= cap) {
         uint64_t t;
         if (kOneClock) {
             t = clocks[0].next_t;
@@ -1121,6 +1167,11 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
             s.led = top->led;
             record(buf, n, t, BOARD_EVENT_LEDS, top->led, 0, 0);
         }
+        const uint8_t lines = (uint8_t)(top->uart_tx | top->amp_pwm << 1 | top->amp_sd << 2);
+        if (lines != s.lines) {
+            s.lines = lines;
+            record(buf, n, t, BOARD_EVENT_LINES, lines, 0, 0);
+        }
         if (watch_bot) {
             uint64_t v = (uint64_t)top->bot_locx | (uint64_t)top->bot_locy << 8 | (uint64_t)top->bot_info << 16 |
                          (uint64_t)top->bot_sensors << 24 | (uint64_t)top->bot_lmdist << 32 |
@@ -1164,6 +1215,7 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
     b->last_seg = s.seg;
     b->last_dp = s.dp;
     b->last_led = s.led;
+    b->last_lines = s.lines;
     b->last_vga = s.vga;
     b->last_bot = s.bot;
     b->last_upd = s.upd;

@@ -177,5 +177,8 @@ fn show(e: Option<&Event>) -> String {
             format!("the bot's outputs upd_sysregs {} registers {regs:012X} (RMDist..LocX)", *upd as u8)
         }
         Some(Event::Repeat { events, count, .. }) => format!("the last {events} records repeated {count} times"),
+        Some(Event::Lines { uart, pwm, amp_on, .. }) => {
+            format!("RsTx {} ampPWM {} ampSD {}", *uart as u8, *pwm as u8, *amp_on as u8)
+        }
     }
 }

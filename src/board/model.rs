@@ -44,6 +44,9 @@ pub enum Event {
     /// `period_ps` after the last; the first repetition starts at `time_ps`. [`expand`]
     /// writes them out; a consumer that knows better (the display decoder) takes them whole.
     Repeat { time_ps: u64, events: usize, period_ps: u64, count: u64 },
+    /// The lines out of the FPGA to the board's peripherals changed (or are seen first):
+    /// the USB-UART's `RsTx` (`uart`), the audio's `ampPWM` and `ampSD` (`pwm`, `amp_on`).
+    Lines { time_ps: u64, uart: bool, pwm: bool, amp_on: bool },
 }
 
 impl RawEvent {
@@ -79,6 +82,7 @@ impl Event {
             4 => Event::Vga { time_ps: t, pins: e.a as u16 },
             5 => Event::Bot { time_ps: t, upd: e.a & 1 == 1, regs: e.b },
             6 => Event::Repeat { time_ps: t, events: e.a as usize, period_ps: e.b, count: e.c },
+            7 => Event::Lines { time_ps: t, uart: e.a & 1 == 1, pwm: e.a & 2 == 2, amp_on: e.a & 4 == 4 },
             _ => return None,
         })
     }
@@ -91,6 +95,7 @@ impl Event {
             | Event::Sample { time_ps, .. }
             | Event::Vga { time_ps, .. }
             | Event::Bot { time_ps, .. }
+            | Event::Lines { time_ps, .. }
             | Event::Repeat { time_ps, .. } => time_ps,
         }
     }
@@ -103,6 +108,7 @@ impl Event {
             | Event::Sample { time_ps, .. }
             | Event::Vga { time_ps, .. }
             | Event::Bot { time_ps, .. }
+            | Event::Lines { time_ps, .. }
             | Event::Repeat { time_ps, .. } => *time_ps += by,
         }
         self
@@ -180,6 +186,29 @@ struct Api {
     rising_edges_only: unsafe extern "C" fn(*mut Opaque, c_int) -> c_int,
     fast_forwarded: unsafe extern "C" fn(*mut Opaque, *mut u64, *mut u64),
     fast_forward_busy: unsafe extern "C" fn(*mut Opaque, *mut *const c_char) -> u64,
+    push: unsafe extern "C" fn(*mut Opaque, u32, *const u8, u32) -> c_int,
+    set_uart_div: unsafe extern "C" fn(*mut Opaque, u32),
+    set_tilt: unsafe extern "C" fn(*mut Opaque, i32, i32, i32),
+}
+
+/// What became of a push (bytes sent to a device).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pushed {
+    Taken,
+    /// An earlier push waits for its clock edge: try at the next.
+    NextClock,
+    /// The device's queue (64 bytes) has too little room: try when it has sent some. A
+    /// design without the device has none.
+    Full,
+}
+
+/// A device of the board the host sends bytes to (board_abi.h's `BOARD_UART`, `BOARD_KEYBOARD`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Device {
+    /// The USB-UART bridge's line into the FPGA.
+    Uart = 0,
+    /// The keyboard (scan codes).
+    Keyboard = 1,
 }
 
 /// Where a design's own printing (`$display`, `$write`, runtime warnings) goes: every line to
@@ -284,6 +313,9 @@ impl BoardModel {
             finish: sym!(b"board_finish"),
             output_done: sym!(b"board_output_done"),
             bench_minimal: sym!(b"board_bench_minimal"),
+            push: sym!(b"board_push"),
+            set_uart_div: sym!(b"board_set_uart_div"),
+            set_tilt: sym!(b"board_set_tilt"),
         };
         // Where the design prints, before anything of it runs (its initial blocks print too).
         let output: unsafe extern "C" fn(*const c_char, u64) -> c_int = sym!(b"board_output");
@@ -350,6 +382,29 @@ impl BoardModel {
     pub fn set_inputs(&mut self, reset_pressed: bool, buttons: u8, switches: u16) {
         // SAFETY: ptr is live until drop.
         unsafe { (self.api.set_inputs)(self.ptr, reset_pressed as u32, buttons as u32, switches as u32) }
+    }
+
+    /// Send up to 8 bytes to `device` (from the current time on, at the next clock edge).
+    pub fn push(&mut self, device: Device, bytes: &[u8]) -> Pushed {
+        let n = bytes.len().min(8);
+        // SAFETY: ptr is live; the harness reads `n` bytes.
+        match unsafe { (self.api.push)(self.ptr, device as u32, bytes.as_ptr(), n as u32) } {
+            1 => Pushed::Taken,
+            0 => Pushed::NextClock,
+            _ => Pushed::Full,
+        }
+    }
+
+    /// The USB-UART's rate into the FPGA, in clocks of the 100 MHz oscillator per bit.
+    pub fn set_uart_div(&mut self, clocks_per_bit: u32) {
+        // SAFETY: ptr is live.
+        unsafe { (self.api.set_uart_div)(self.ptr, clocks_per_bit) }
+    }
+
+    /// The board's tilt: what its accelerometer measures on x, y and z, in mg (flat: 0, 0, 1000).
+    pub fn set_tilt(&mut self, x: i32, y: i32, z: i32) {
+        // SAFETY: ptr is live.
+        unsafe { (self.api.set_tilt)(self.ptr, x, y, z) }
     }
 
     /// Skip the periods in which the board repeats itself (harness.cpp's fast-forward): for a

@@ -4,10 +4,12 @@
 //! ([`display`]: the seven-segment display as a person sees it; [`vga`]: frames from the VGA pins). The `botsim` crate builds
 //! and runs the plan (`botsim::board`).
 
+pub mod audio;
 pub mod course;
 pub mod display;
 pub mod gtkw;
 pub mod ip;
+pub mod keyboard;
 pub mod locate;
 pub mod memcore;
 pub mod parts;
@@ -19,6 +21,7 @@ pub mod resolve;
 pub mod scan;
 pub mod source;
 pub mod stimulus;
+pub mod uart;
 pub mod vga;
 pub mod vhdl;
 pub mod wrapper;

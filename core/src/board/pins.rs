@@ -1,6 +1,8 @@
 //! The board's pins: which port of a user's top module is the clock, the reset button, the
-//! buttons, switches, LEDs, the seven-segment display and VGA (spec board.md 1), by the names
-//! the course's constraint files use (Nexys4 2014 and 2016, Nexys3, Nexys4 DDR / A7).
+//! buttons, switches, LEDs, the seven-segment display and VGA (spec board.md 1), and the
+//! peripherals of final projects: the USB-UART, the keyboard (PS/2), the accelerometer and the
+//! audio output (board.md §7), by the names the course's constraint files use (Nexys4 2014 and
+//! 2016, Nexys3, Nexys4 DDR / A7).
 
 use super::scan::{Dir, Module};
 
@@ -28,13 +30,73 @@ pub enum Role {
     VgaBlue,
     Hsync,
     Vsync,
+    /// The USB-UART's line into the FPGA (`RsRx`) and out of it (`RsTx`).
+    UartRx,
+    UartTx,
+    /// The keyboard's PS/2 clock and data: inputs, or open-collector inouts.
+    Ps2Clock,
+    Ps2Data,
+    /// The ADXL362's SPI pins and interrupts (`aclInt1`/`aclInt2`: 1, 2; `ACL_INT[2:1]`: 0).
+    AclSck,
+    AclMosi,
+    AclMiso,
+    AclSs,
+    AclInt(u8),
+    /// The audio output: the PWM line and the amplifier's enable (`ampSD`, 1 = on).
+    AudioPwm,
+    AudioOn,
 }
 
-/// Whether a port of no board role named `name` is a line the board holds high while idle
-/// (board.md §7): the USB-UART's receive line into the FPGA (`RsRx`, `UART_TXD_IN`) and the
-/// PS/2 clock and data (open collector, pulled up). Other ports of no role are held low.
-pub fn idle_high(name: &str) -> bool {
-    matches!(name.to_ascii_lowercase().as_str(), "rsrx" | "uart_txd_in" | "ps2_clk" | "ps2_data")
+/// A peripheral of the board outside the FPGA (board.md §7), as a design's pins reach it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Peripheral {
+    Uart,
+    Keyboard,
+    Accelerometer,
+    Audio,
+}
+
+impl Peripheral {
+    /// Its name in botsim's messages.
+    pub fn name(self) -> &'static str {
+        match self {
+            Peripheral::Uart => "USB-UART",
+            Peripheral::Keyboard => "keyboard (PS/2)",
+            Peripheral::Accelerometer => "accelerometer (ADXL362)",
+            Peripheral::Audio => "audio",
+        }
+    }
+}
+
+impl Role {
+    /// The peripheral a pin of this role reaches, if any.
+    pub fn peripheral(self) -> Option<Peripheral> {
+        Some(match self {
+            Role::UartRx | Role::UartTx => Peripheral::Uart,
+            Role::Ps2Clock | Role::Ps2Data => Peripheral::Keyboard,
+            Role::AclSck | Role::AclMosi | Role::AclMiso | Role::AclSs | Role::AclInt(_) => Peripheral::Accelerometer,
+            Role::AudioPwm | Role::AudioOn => Peripheral::Audio,
+            _ => return None,
+        })
+    }
+}
+
+/// The peripherals the pins reach, each with its pins' names, in the order of [`Peripheral`].
+///
+/// ```
+/// use botsim_core::board::pins::{peripherals, role, Peripheral};
+/// let pins: Vec<(String, _)> = ["RsTx", "clk", "PS2_CLK"].iter().map(|n| (n.to_string(), role(n).unwrap())).collect();
+/// let p = peripherals(&pins);
+/// assert_eq!(p, [(Peripheral::Uart, vec!["RsTx".to_string()]), (Peripheral::Keyboard, vec!["PS2_CLK".to_string()])]);
+/// ```
+pub fn peripherals(pins: &[(String, Role)]) -> Vec<(Peripheral, Vec<String>)> {
+    let mut out: std::collections::BTreeMap<Peripheral, Vec<String>> = Default::default();
+    for (name, r) in pins {
+        if let Some(p) = r.peripheral() {
+            out.entry(p).or_default().push(name.clone());
+        }
+    }
+    out.into_iter().collect()
 }
 
 /// The role of a port named `name`, if it is one of the board's pins (in any case: `CLK`,
@@ -66,6 +128,19 @@ pub fn role(name: &str) -> Option<Role> {
         "vgablue" | "vga_blue" | "vga_b" => Role::VgaBlue,
         "hsync" | "vga_hsync" | "vga_hs" => Role::Hsync,
         "vsync" | "vga_vsync" | "vga_vs" => Role::Vsync,
+        "rsrx" | "uart_txd_in" => Role::UartRx,
+        "rstx" | "uart_rxd_out" => Role::UartTx,
+        "ps2_clk" | "ps2clk" => Role::Ps2Clock,
+        "ps2_data" | "ps2data" => Role::Ps2Data,
+        "aclsck" | "acl_sclk" => Role::AclSck,
+        "aclmosi" | "acl_mosi" => Role::AclMosi,
+        "aclmiso" | "acl_miso" => Role::AclMiso,
+        "aclss" | "acl_csn" => Role::AclSs,
+        "aclint1" => Role::AclInt(1),
+        "aclint2" => Role::AclInt(2),
+        "acl_int" => Role::AclInt(0),
+        "amppwm" | "aud_pwm" => Role::AudioPwm,
+        "ampsd" | "aud_sd" => Role::AudioOn,
         _ => return None,
     })
 }
@@ -80,9 +155,23 @@ pub struct PinError {
 /// The direction each role needs.
 fn expected_dir(r: Role) -> Dir {
     match r {
-        Role::Clock | Role::Reset { .. } | Role::Button(_) | Role::Switches => Dir::Input,
+        Role::Clock
+        | Role::Reset { .. }
+        | Role::Button(_)
+        | Role::Switches
+        | Role::UartRx
+        | Role::Ps2Clock
+        | Role::Ps2Data
+        | Role::AclMiso
+        | Role::AclInt(_) => Dir::Input,
         _ => Dir::Output,
     }
+}
+
+/// Whether a port of role `r` may be declared `dir`: as the role needs, or an inout for the
+/// open-collector PS/2 lines and the audio line (driven low or left floating).
+fn dir_fits(r: Role, dir: Dir) -> bool {
+    dir == expected_dir(r) || (dir == Dir::Inout && matches!(r, Role::Ps2Clock | Role::Ps2Data | Role::AudioPwm))
 }
 
 /// The roles of a top's ports, and the ports with none.
@@ -97,7 +186,7 @@ pub fn map(top: &Module) -> Result<PinMap, PinError> {
     for p in &top.ports {
         match role(&p.name) {
             Some(r) => {
-                if p.dir != expected_dir(r) {
+                if !dir_fits(r, p.dir) {
                     return Err(PinError {
                         port: p.name.clone(),
                         reason: format!(
@@ -142,6 +231,10 @@ fn describe(r: Role) -> &'static str {
         Role::DecimalPoint => "decimal point",
         Role::Anodes => "anode",
         Role::VgaRed | Role::VgaGreen | Role::VgaBlue | Role::Hsync | Role::Vsync => "VGA",
+        Role::UartRx | Role::UartTx => "USB-UART",
+        Role::Ps2Clock | Role::Ps2Data => "keyboard (PS/2)",
+        Role::AclSck | Role::AclMosi | Role::AclMiso | Role::AclSs | Role::AclInt(_) => "accelerometer",
+        Role::AudioPwm | Role::AudioOn => "audio",
     }
 }
 

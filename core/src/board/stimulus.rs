@@ -3,6 +3,10 @@
 //! stimulus file. Times are simulated: milliseconds by default, or with a unit: `ms`, `us`,
 //! `ns`, `s`, or `c` for cycles of the board's 100 MHz clock.
 //!
+//! The board's peripherals take part too: keys of the keyboard (named as the browser names
+//! them, [`Key`]), text sent to the USB-UART, and the board's tilt (in g, as the
+//! accelerometer measures it; flat is `0 0 1`).
+//!
 //! A stimulus file has one action per line, `#` comments:
 //!
 //! ```text
@@ -10,6 +14,9 @@
 //! 100ms     press btnC 50ms     # press btnC for 50 ms (default 100 ms)
 //! 250       switches 00FF       # from 250 ms on
 //! 30000000c press btnCpuReset 1ms
+//! 300ms     key ArrowUp 200ms   # press a key of the keyboard for 200 ms (default 100 ms)
+//! 400ms     uart "hello\r\n"    # send text to the design's UART (\n \r \t \\ \" \xHH)
+//! 500ms     tilt 0.5 0 0.87     # the board tilted: x, y, z in g
 //! ```
 //!
 //! ```
@@ -23,8 +30,53 @@
 
 use std::path::Path;
 
+use super::keyboard::{self, Key};
 use super::pins::BUTTONS;
+use super::uart::{quoted, unquote};
 use super::BoardError;
+
+/// The board's tilt: what the accelerometer measures on x, y and z, in mg.
+pub type Tilt = [i32; 3];
+/// A board lying flat: +1 g on z.
+pub const FLAT: Tilt = [0, 0, 1000];
+
+/// A tilt `X,Y,Z` (or with spaces) in g, as `--tilt` and stimulus files take it, within
+/// +-8 g (the accelerometer's widest range).
+///
+/// ```
+/// use botsim_core::board::stimulus::parse_tilt;
+/// assert_eq!(parse_tilt("0.5,0,-0.866").unwrap(), [500, 0, -866]);
+/// assert!(parse_tilt("1,2").is_err());
+/// ```
+pub fn parse_tilt(s: &str) -> Result<Tilt, String> {
+    let v: Vec<&str> = s.split([',', ' ']).filter(|w| !w.is_empty()).collect();
+    let bad = || format!("`{s}`: expected a tilt X,Y,Z in g (e.g. 0,0,1 lying flat; within +-8)");
+    if v.len() != 3 {
+        return Err(bad());
+    }
+    let mut t = [0; 3];
+    for (k, w) in v.iter().enumerate() {
+        let g: f64 = w.parse().map_err(|_| bad())?;
+        if !g.is_finite() || g.abs() > 8.0 {
+            return Err(bad());
+        }
+        t[k] = (g * 1000.0).round() as i32;
+    }
+    Ok(t)
+}
+
+/// A tilt as [`parse_tilt`] reads it back.
+fn tilt_text(t: Tilt) -> String {
+    t.iter().map(|&v| format!("{}", v as f64 / 1000.0)).collect::<Vec<_>>().join(" ")
+}
+
+/// One key of the keyboard held from `from` to `to` (ps).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct KeyPress {
+    pub key: Key,
+    pub from: u64,
+    pub to: u64,
+}
 
 /// Picoseconds per millisecond.
 pub const PS_PER_MS: u64 = 1_000_000_000;
@@ -107,6 +159,12 @@ pub struct Stimulus {
     /// Switch settings from a time on, in time order; before the first, `initial_switches`.
     pub switches: Vec<(u64, u16)>,
     pub initial_switches: u16,
+    /// Keys of the keyboard.
+    pub keys: Vec<KeyPress>,
+    /// Bytes sent to the design's UART, from a time on (one after another).
+    pub uart: Vec<(u64, Vec<u8>)>,
+    /// The board's tilt from a time on, in time order; before the first, [`FLAT`].
+    pub tilts: Vec<(u64, Tilt)>,
 }
 
 impl Stimulus {
@@ -114,7 +172,21 @@ impl Stimulus {
     pub fn parse(path: &Path, text: &str) -> Result<Stimulus, BoardError> {
         let mut s = Stimulus::default();
         for (n, raw) in text.lines().enumerate() {
-            let line = raw.split('#').next().unwrap_or("");
+            // A comment starts at a `#` outside quotes.
+            let mut quoted_now = false;
+            let mut escaped = false;
+            let end = raw
+                .char_indices()
+                .find(|&(_, c)| {
+                    let hash = c == '#' && !quoted_now;
+                    if c == '"' && !escaped {
+                        quoted_now = !quoted_now;
+                    }
+                    escaped = c == '\\' && !escaped;
+                    hash
+                })
+                .map_or(raw.len(), |(i, _)| i);
+            let line = &raw[..end];
             let words: Vec<(usize, &str)> =
                 line.split_whitespace().map(|w| (w.as_ptr() as usize - raw.as_ptr() as usize + 1, w)).collect();
             let Some(&(c0, t)) = words.first() else { continue };
@@ -137,11 +209,43 @@ impl Stimulus {
                         .map_err(|_| at(cv, format!("`{v}`: expected up to four hexadecimal digits")))?;
                     s.switches.push((time, v));
                 }
-                Some((ca, ref a)) => return Err(at(ca, format!("unknown action `{a}` (press, switches)"))),
-                None => return Err(at(c0, "a time needs an action (press, switches)".into())),
+                Some((_, ref a)) if a == "key" => {
+                    let &(ck, name) =
+                        words.get(2).ok_or_else(|| at(c0, "key what? (e.g. `100ms key KeyA 50ms`)".into()))?;
+                    let key = Key::named(name).ok_or_else(|| at(ck, keyboard::unknown(name)))?;
+                    let len = match words.get(3) {
+                        Some(&(cl, l)) => parse_time(l).map_err(|m| at(cl, m))?,
+                        None => DEFAULT_PRESS_PS,
+                    };
+                    if len == 0 {
+                        return Err(at(ck, "a key is held longer than 0".into()));
+                    }
+                    s.keys.push(KeyPress { key, from: time, to: time + len });
+                }
+                Some((ca, ref a)) if a == "uart" => {
+                    let rest = line[ca - 1 + 4..].trim();
+                    let col = ca + 4 + line[ca - 1 + 4..].len() - line[ca - 1 + 4..].trim_start().len();
+                    let text = rest
+                        .strip_prefix('"')
+                        .and_then(|r| r.strip_suffix('"'))
+                        .ok_or_else(|| at(col, "uart takes a quoted text (e.g. `400ms uart \"hi\\r\\n\"`)".into()))?;
+                    let bytes = unquote(text).map_err(|m| at(col, m))?;
+                    s.uart.push((time, bytes));
+                }
+                Some((ca, ref a)) if a == "tilt" => {
+                    let rest = line[ca - 1 + 4..].trim();
+                    let t = parse_tilt(rest).map_err(|m| at(ca, m))?;
+                    s.tilts.push((time, t));
+                }
+                Some((ca, ref a)) => {
+                    return Err(at(ca, format!("unknown action `{a}` (press, switches, key, uart, tilt)")))
+                }
+                None => return Err(at(c0, "a time needs an action (press, switches, key, uart, tilt)".into())),
             }
         }
         s.switches.sort_by_key(|&(t, _)| t);
+        s.tilts.sort_by_key(|&(t, _)| t);
+        s.uart.sort_by_key(|&(t, _)| t);
         Ok(s)
     }
 
@@ -171,6 +275,16 @@ impl Stimulus {
         for &(t, v) in &self.switches {
             lines.push((t, format!("{} switches {v:04X}", time(t))));
         }
+        for k in &self.keys {
+            let to = if k.to == u64::MAX { held_until_ps.max(k.from + crate::PS_PER_CYCLE) } else { k.to };
+            lines.push((k.from, format!("{} key {} {}", time(k.from), k.key.name, time(to - k.from))));
+        }
+        for (t, bytes) in &self.uart {
+            lines.push((*t, format!("{} uart {}", time(*t), quoted(bytes))));
+        }
+        for &(t, v) in &self.tilts {
+            lines.push((t, format!("{} tilt {}", time(t), tilt_text(v))));
+        }
         lines.sort_by_key(|(t, _)| *t);
         let mut out = format!("# {header}\n");
         for (_, l) in lines {
@@ -185,7 +299,10 @@ impl Stimulus {
         let mut t: Vec<u64> = std::iter::once(POWER_ON_RESET_PS)
             .chain(self.presses.iter().flat_map(|p| [p.from, p.to]))
             .chain(self.switches.iter().map(|&(t, _)| t))
-            .filter(|&t| t > 0)
+            .chain(self.keys.iter().flat_map(|k| [k.from, k.to]))
+            .chain(self.uart.iter().map(|(t, _)| *t))
+            .chain(self.tilts.iter().map(|&(t, _)| t))
+            .filter(|&t| t > 0 && t != u64::MAX)
             .collect();
         t.sort_unstable();
         t.dedup();
@@ -205,6 +322,23 @@ impl Stimulus {
         let switches = self.switches.iter().rev().find(|&&(at, _)| at <= t).map_or(self.initial_switches, |&(_, v)| v);
         (reset, buttons, switches)
     }
+
+    /// The scan codes the keyboard sends at `t`: the keys released then, then those pressed.
+    pub fn keyboard_at(&self, t: u64) -> Vec<u8> {
+        let up = self.keys.iter().filter(|k| k.to == t).flat_map(|k| keyboard::codes(k.key, false));
+        let down = self.keys.iter().filter(|k| k.from == t).flat_map(|k| keyboard::codes(k.key, true));
+        up.chain(down).collect()
+    }
+
+    /// The bytes sent to the UART at `t`.
+    pub fn uart_at(&self, t: u64) -> Vec<u8> {
+        self.uart.iter().filter(|(at, _)| *at == t).flat_map(|(_, b)| b.iter().copied()).collect()
+    }
+
+    /// The board's tilt at `t`.
+    pub fn tilt_at(&self, t: u64) -> Tilt {
+        self.tilts.iter().rev().find(|&&(at, _)| at <= t).map_or(FLAT, |&(_, v)| v)
+    }
 }
 
 #[cfg(test)]
@@ -222,6 +356,7 @@ mod tests {
             ],
             switches: vec![(10_000, 0x0030), (7_000_000_010, 0xFF01)],
             initial_switches: 0x8001,
+            ..Default::default()
         };
         let back = Stimulus::parse(Path::new("s.txt"), &s.text(6_000_000_000, "round trip")).unwrap();
         let mut want = s.clone();
@@ -250,9 +385,33 @@ mod tests {
         let e = Stimulus::parse(p, "# start\n10ms press btnQ\n").unwrap_err().to_string();
         assert_eq!(e, "stim.txt:2:12: unknown button `btnQ` (btnC, btnU, btnD, btnL, btnR, btnCpuReset)");
         let e = Stimulus::parse(p, "  10ms  jump\n").unwrap_err().to_string();
-        assert_eq!(e, "stim.txt:1:9: unknown action `jump` (press, switches)");
+        assert_eq!(e, "stim.txt:1:9: unknown action `jump` (press, switches, key, uart, tilt)");
         let e = Stimulus::parse(p, "10ms switches zz\n").unwrap_err().to_string();
         assert_eq!(e, "stim.txt:1:15: `zz`: expected up to four hexadecimal digits");
+    }
+
+    #[test]
+    fn keys_uart_text_and_tilts_read_back_as_written() {
+        let p = Path::new("s.txt");
+        let text =
+            "1ms key ArrowUp 2ms\n2ms uart \"hi # there\\r\\n\" # a comment\n3ms tilt 0.5, 0, 0.866\n5ms key KeyA\n";
+        let s = Stimulus::parse(p, text).unwrap();
+        assert_eq!(s.keyboard_at(PS_PER_MS), [0xE0, 0x75]);
+        assert_eq!(s.keyboard_at(3 * PS_PER_MS), [0xE0, 0xF0, 0x75]);
+        assert_eq!(s.uart_at(2 * PS_PER_MS), b"hi # there\r\n");
+        assert_eq!((s.tilt_at(0), s.tilt_at(4 * PS_PER_MS)), (FLAT, [500, 0, 866]));
+        assert_eq!(s.change_times(), [1.0, 2.0, 3.0, 5.0, 105.0].map(|ms: f64| (ms * PS_PER_MS as f64) as u64));
+        let back = Stimulus::parse(p, &s.text(0, "again")).unwrap();
+        assert_eq!((back.keys, back.uart, back.tilts), (s.keys, s.uart, s.tilts));
+        for (bad, col, what) in [
+            ("1ms key Hyper\n", 9, "unknown key `Hyper`"),
+            ("1ms uart hello\n", 10, "uart takes a quoted text"),
+            ("1ms uart \"\\q\"\n", 10, "unknown escape"),
+            ("1ms tilt 9 0 0\n", 5, "expected a tilt X,Y,Z in g"),
+        ] {
+            let e = Stimulus::parse(p, bad).unwrap_err().to_string();
+            assert!(e.starts_with(&format!("s.txt:1:{col}: ")) && e.contains(what), "{bad}: {e}");
+        }
     }
 
     #[test]

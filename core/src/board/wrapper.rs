@@ -8,11 +8,17 @@
 //! the design has no such pin); and the substituted bot's `bot_upd`, registers, MotCtl and
 //! `bot_cycles` (rising edges of the bot's clock since power-up), read through hierarchical
 //! references.
+//!
+//! The peripherals (rtl/board/devices.v, instantiated when the design has their pins): the
+//! bytes the host sends to the USB-UART's line into the FPGA and to the keyboard come in
+//! through `push_bytes`/`push_n` and a toggle of `uart_push` or `ps2_push` (`*_room`,
+//! `*_pending` say when another push fits); `uart_div` is the UART's clocks per bit, `tilt_*`
+//! the board's tilt in mg; `uart_tx` (the design's `RsTx`), `amp_pwm` and `amp_sd` come out.
 
 use kcpsm6::asm::RomSize;
 use kcpsm6::output::verilog_rom;
 
-use super::pins::{self, Role};
+use super::pins::{Peripheral, Role};
 use super::plan::Plan;
 
 /// The wrapper module's name.
@@ -20,7 +26,7 @@ pub const TOP: &str = "botsim_board";
 
 /// The wrapper's board outputs, and what each shows when the design has no such pin
 /// (everything dark: the display and VGA syncs are active low).
-const OUTPUTS_OFF: [(&str, &str); 9] = [
+const OUTPUTS_OFF: [(&str, &str); 16] = [
     ("led", "16'h0000"),
     ("seg", "7'h7F"),
     ("dp", "1'b1"),
@@ -30,6 +36,13 @@ const OUTPUTS_OFF: [(&str, &str); 9] = [
     ("vga_b", "4'h0"),
     ("hsync", "1'b1"),
     ("vsync", "1'b1"),
+    ("uart_tx", "1'b1"),
+    ("amp_pwm", "1'b0"),
+    ("amp_sd", "1'b0"),
+    ("uart_room", "7'd0"),
+    ("uart_pending", "1'b0"),
+    ("ps2_room", "7'd0"),
+    ("ps2_pending", "1'b0"),
 ];
 
 /// What a board input pin of `w` bits is connected to.
@@ -40,6 +53,13 @@ fn input(role: Role, w: u32) -> Option<String> {
         Role::Reset { active_low: false } => "reset_pressed".into(),
         Role::Button(b) => format!("btn[{b}]"),
         Role::Switches => format!("sw[{}:0]", w.min(16) - 1),
+        Role::UartRx => "uart_line".into(),
+        Role::Ps2Clock => "ps2_clk_line".into(),
+        Role::Ps2Data => "ps2_data_line".into(),
+        Role::AclMiso => "acl_miso".into(),
+        Role::AclInt(1) => "acl_int1".into(),
+        Role::AclInt(2) => "acl_int2".into(),
+        Role::AclInt(_) => "{acl_int2, acl_int1}".into(),
         _ => return None,
     })
 }
@@ -64,6 +84,9 @@ fn drives(role: Role, u: &str, w: u32) -> Vec<(&'static str, String)> {
         Role::VgaBlue => vga("vga_b"),
         Role::Hsync => vec![("hsync", u.into())],
         Role::Vsync => vec![("vsync", u.into())],
+        Role::UartTx => vec![("uart_tx", format!("{u}[0]"))],
+        Role::AudioPwm => vec![("amp_pwm", format!("{u}[0]"))],
+        Role::AudioOn => vec![("amp_sd", format!("{u}[0]"))],
         _ => vec![],
     }
 }
@@ -83,7 +106,9 @@ pub fn board_top(plan: &Plan, params: &[(String, String)]) -> String {
             continue;
         }
         let u = format!("user_{port}");
-        decl.push_str(&format!("    wire [{}:0] {u};\n", w - 1));
+        // The audio line driven low or left floating (open drain) reads high when floating.
+        let net = if *role == Role::AudioPwm { "tri1" } else { "wire" };
+        decl.push_str(&format!("    {net} [{}:0] {u};\n", w - 1));
         conns.push(format!(".{port}({u})"));
         match role {
             Role::Segment(i) => seg_lines[*i as usize] = Some(u),
@@ -94,21 +119,14 @@ pub fn board_top(plan: &Plan, params: &[(String, String)]) -> String {
         let bits: Vec<String> = seg_lines.iter().rev().map(|l| l.clone().unwrap_or_else(|| "1'b1".into())).collect();
         driven.push(("seg", format!("{{{}}}", bits.join(", "))));
     }
-    // Ports with no board role: inputs low, outputs open; the lines the board holds high
-    // while idle high (an inout one pulled up, as the board's resistor does).
+    // Ports with no board role: inputs low, outputs open.
     for name in &plan.unknown_pins {
         let w = width(name);
-        let conn = match (plan.inputs.contains(name), pins::idle_high(name), plan.inouts.contains(name)) {
-            (true, true, _) => format!(".{name}({{{w}{{1'b1}}}})"),
-            (true, false, _) => format!(".{name}({w}'d0)"),
-            (false, true, true) => {
-                decl.push_str(&format!("    tri1 [{}:0] idle_{name};\n", w - 1));
-                format!(".{name}(idle_{name})")
-            }
-            _ => format!(".{name}()"),
-        };
+        let conn = if plan.inputs.contains(name) { format!(".{name}({w}'d0)") } else { format!(".{name}()") };
         conns.push(conn);
     }
+    let (devices, device_outputs) = devices(plan);
+    driven.extend(device_outputs);
     let mut assigns: Vec<String> = driven.iter().map(|(o, x)| format!("assign {o} = {x};")).collect();
     for (out, off) in OUTPUTS_OFF {
         if !driven.iter().any(|(o, _)| *o == out) {
@@ -139,6 +157,21 @@ pub fn board_top(plan: &Plan, params: &[(String, String)]) -> String {
          \x20   output wire [ 3:0] vga_b,\n\
          \x20   output wire        hsync,\n\
          \x20   output wire        vsync,\n\
+         \x20   input  wire        uart_push,\n\
+         \x20   input  wire        ps2_push,\n\
+         \x20   input  wire [ 3:0] push_n,\n\
+         \x20   input  wire [63:0] push_bytes,\n\
+         \x20   input  wire [31:0] uart_div,\n\
+         \x20   input  wire [15:0] tilt_x,\n\
+         \x20   input  wire [15:0] tilt_y,\n\
+         \x20   input  wire [15:0] tilt_z,\n\
+         \x20   output wire        uart_tx,\n\
+         \x20   output wire        amp_pwm,\n\
+         \x20   output wire        amp_sd,\n\
+         \x20   output wire [ 6:0] uart_room,\n\
+         \x20   output wire        uart_pending,\n\
+         \x20   output wire [ 6:0] ps2_room,\n\
+         \x20   output wire        ps2_pending,\n\
          \x20   output wire        bot_upd,\n\
          \x20   output wire [ 7:0] bot_locx,\n\
          \x20   output wire [ 7:0] bot_locy,\n\
@@ -150,6 +183,7 @@ pub fn board_top(plan: &Plan, params: &[(String, String)]) -> String {
          \x20   output reg  [63:0] bot_cycles\n\
          );\n\
          {decl}\
+         {devices}\
          \x20   {top} {overrides}user (\n        {conns}\n    );\n\
          \x20   {assigns}\n\
          {bot}\
@@ -159,8 +193,62 @@ pub fn board_top(plan: &Plan, params: &[(String, String)]) -> String {
         top = plan.top,
         bot = bot_taps(plan.bot_path.as_deref()),
         conns = conns.join(",\n        "),
+        devices = devices,
         assigns = assigns.join("\n    "),
     )
+}
+
+/// The peripherals the design's pins reach (rtl/board/devices.v), as Verilog before the user's
+/// instance, and the wrapper outputs they drive. The PS/2 lines of an inout port are the
+/// board's: pulled up, the keyboard and the design each pulling low; of an input port, the
+/// keyboard's alone. The accelerometer's inputs a design lacks are idle (select high).
+fn devices(plan: &Plan) -> (String, Vec<(&'static str, String)>) {
+    let pin = |r: Role| plan.pins.iter().find(|(_, x)| *x == r).map(|(p, _)| p.as_str());
+    let has = |p: Peripheral| plan.pins.iter().any(|(_, r)| r.peripheral() == Some(p));
+    let mut v = String::new();
+    let mut out: Vec<(&'static str, String)> = Vec::new();
+    // A device the host feeds bytes: the queue's ports, its status on the wrapper's outputs.
+    let mut queue = |name: &'static str, room: &'static str, pending: &'static str, v: &mut String| {
+        v.push_str(&format!("    wire [6:0] {name}_room_w;\n    wire {name}_pending_w;\n"));
+        out.extend([(room, format!("{name}_room_w")), (pending, format!("{name}_pending_w"))]);
+        format!(".push({name}_push), .push_n(push_n), .push_bytes(push_bytes), .room({name}_room_w), .pending({name}_pending_w)")
+    };
+    if pin(Role::UartRx).is_some() {
+        v.push_str("    // The USB-UART bridge's line into the FPGA.\n    wire uart_line;\n");
+        let q = queue("uart", "uart_room", "uart_pending", &mut v);
+        v.push_str(&format!("    botsim_uart_source uart_in (.clk(clk), .div(uart_div), {q}, .line(uart_line));\n"));
+    }
+    if has(Peripheral::Keyboard) {
+        v.push_str("    // The keyboard, open collector on the board's pulled-up PS/2 lines.\n    wire kbd_clk_low, kbd_data_low;\n");
+        for (role, line, low) in
+            [(Role::Ps2Clock, "ps2_clk_line", "kbd_clk_low"), (Role::Ps2Data, "ps2_data_line", "kbd_data_low")]
+        {
+            match pin(role) {
+                Some(p) if plan.inouts.contains(p) => {
+                    v.push_str(&format!("    tri1 {line};\n    assign {line} = {low} ? 1'b0 : 1'bz;\n"))
+                }
+                _ => v.push_str(&format!("    wire {line} = !{low};\n")),
+            }
+        }
+        let q = queue("ps2", "ps2_room", "ps2_pending", &mut v);
+        v.push_str(&format!(
+            "    botsim_ps2_keyboard keyboard (.clk(clk), {q}, .clk_line(ps2_clk_line), .data_line(ps2_data_line), .clk_low(kbd_clk_low), .data_low(kbd_data_low));\n"
+        ));
+    }
+    if has(Peripheral::Accelerometer) {
+        let line = |r: Role, idle: &str| pin(r).map_or(idle.to_string(), |p| format!("user_{p}[0]"));
+        v.push_str(&format!(
+            "    // The accelerometer, tilted as the board is.\n    wire acl_miso, acl_int1, acl_int2;\n    botsim_adxl362 accelerometer (.clk(clk), .sck({}), .mosi({}), .cs_n({}), .miso(acl_miso), .int1(acl_int1), .int2(acl_int2), .x_mg(tilt_x), .y_mg(tilt_y), .z_mg(tilt_z));\n",
+            line(Role::AclSck, "1'b0"),
+            line(Role::AclMosi, "1'b0"),
+            line(Role::AclSs, "1'b1"),
+        ));
+    }
+    // A design with an audio line and no amplifier enable: the amplifier is on.
+    if pin(Role::AudioPwm).is_some() && pin(Role::AudioOn).is_none() {
+        out.push(("amp_sd", "1'b1".into()));
+    }
+    (v, out)
 }
 
 /// The board's view of the bot: its registers through hierarchical references to the
@@ -226,8 +314,10 @@ mod tests {
         Plan::new(&design, &req).unwrap()
     }
 
+    /// The assignments of the board's outputs (the bot's and the peripherals' aside).
     fn assigns(v: &str) -> Vec<&str> {
-        v.lines().map(str::trim).filter(|l| l.starts_with("assign ") && !l.contains("bot_")).collect()
+        let aside = ["bot_", "uart_", "ps2_", "amp_"];
+        v.lines().map(str::trim).filter(|l| l.starts_with("assign ") && !aside.iter().any(|a| l.contains(a))).collect()
     }
 
     #[test]

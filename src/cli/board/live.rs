@@ -18,16 +18,20 @@
 use std::time::{Duration, Instant};
 
 use botsim::board::build::{BotKind, CpuModel};
+use botsim::board::model::Device;
 use botsim::board::model::{BoardModel, Event, FastForward, Printing, RawEvent, RECORDS};
 use botsim::files::write_atomic;
 use botsim::PS_PER_CYCLE;
+use botsim_core::board::audio::RATE;
 use botsim_core::board::display::Display;
-use botsim_core::board::pins::Role;
-use botsim_core::board::stimulus::{Press, Stimulus, POWER_ON_RESET_PS};
+use botsim_core::board::keyboard::{self, Key};
+use botsim_core::board::pins::{Peripheral, Role};
+use botsim_core::board::stimulus::{parse_tilt, KeyPress, Press, Stimulus, POWER_ON_RESET_PS};
 use botsim_core::board::vga::Capture;
 use botsim_live::protocol::{BoardView, BotView, Button, Command};
 use serde_json::json;
 
+use super::devices::{Feeder, Heard};
 use super::prepare::Prepared;
 use super::session::load;
 use super::Args;
@@ -75,7 +79,16 @@ struct Board {
     animated: bool,
     /// Samples not yet in the pages' log.
     fresh: Vec<serde_json::Value>,
+    /// The bytes waiting for the design's UART and keyboard, and when to try again.
+    feeder: Feeder,
+    feed_at: Option<u64>,
+    /// What the design sent the host, and how much of it the pages have.
+    heard: Heard,
+    uart_told: usize,
 }
+
+/// An input the board cannot take, in one line for the page that sent it (the run goes on).
+struct Refused(String);
 
 /// Whether a live run keeps the pace asked for: how long it has been behind, and the VGA
 /// frames of the last seconds (their wall time).
@@ -150,8 +163,15 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
     }
     let sources: Vec<String> = a.sources.iter().map(|s| s.display().to_string()).collect();
     let has_vga = p.plan.pins.iter().any(|(_, r)| *r == Role::Vsync);
+    let has = |x: Peripheral| p.plan.pins.iter().any(|(_, r)| r.peripheral() == Some(x));
     let hello = json!({
         "vga": has_vga,
+        "peripherals": {
+            "uart": has(Peripheral::Uart),
+            "keyboard": has(Peripheral::Keyboard),
+            "accelerometer": has(Peripheral::Accelerometer),
+            "audio": has(Peripheral::Audio),
+        },
         "design": {"top": p.plan.top, "sources": sources.join(" ")},
         "world": p.plan.bot_path.as_ref().map(|_| world_json(&p.world)),
         "mode": "board",
@@ -169,6 +189,10 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
         inputs.initial_switches = u16::from_str_radix(h.trim_start_matches("0x"), 16)
             .map_err(|_| format!("--switches {h}: expected up to four hexadecimal digits"))?;
     }
+    // (prepare checked it.)
+    if let Some(t) = a.tilt.as_deref().and_then(|t| parse_tilt(t).ok()) {
+        inputs.tilts.push((0, t));
+    }
     let mut b = Board {
         model,
         buf: vec![RawEvent::default(); RECORDS],
@@ -183,9 +207,16 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
         last_pixels: None,
         animated: false,
         fresh: Vec::new(),
+        feeder: Feeder::default(),
+        feed_at: None,
+        heard: Heard::new(a.uart_baud, has(Peripheral::Audio)),
+        uart_told: 0,
     };
     let (r, btn, sw) = b.inputs.inputs_at(0);
     b.model.set_inputs(r, btn, sw);
+    b.model.set_uart_div(b.heard.uart_div);
+    let [x, y, z] = b.inputs.tilt_at(0);
+    b.model.set_tilt(x, y, z);
 
     let mut running = !a.live.paused;
     let mut pace = Pace::new(a.live.speed.0, 0);
@@ -230,10 +261,15 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
                     client,
                     json!({"type": "error", "message": "the board's motors are its design's: use the switches and buttons"}),
                 ),
-                Command::Switch { .. } | Command::Switches(_) | Command::Button { .. } => {
-                    let entry = b.input(&command)?;
-                    server.log(entry);
-                }
+                Command::Switch { .. }
+                | Command::Switches(_)
+                | Command::Button { .. }
+                | Command::Key { .. }
+                | Command::Uart(_)
+                | Command::Tilt(_) => match b.input(&command) {
+                    Ok(entry) => server.log(entry),
+                    Err(Refused(message)) => server.reply(client, json!({"type": "error", "message": message})),
+                },
             }
             next = server.try_command();
         }
@@ -245,7 +281,8 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
             // How far: to the pace's target (or a chunk at full speed), stopping at the
             // power-on reset's release and at the end of a step.
             let (target, on_pace) = pace.target(now, CHUNK_PS);
-            let until = aligned(target).min(step_until.unwrap_or(u64::MAX));
+            // Bytes waiting for a device: the board stops when it may take more.
+            let until = aligned(target).min(step_until.unwrap_or(u64::MAX)).min(b.feed_at.unwrap_or(u64::MAX));
             if until > now {
                 let limit = step_to.unwrap_or(u64::MAX);
                 b.run_to(until, limit)?;
@@ -284,6 +321,8 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
                 }
             }
         }
+        b.feed();
+        b.tell_heard();
         for entry in b.fresh.drain(..) {
             server.log(entry);
         }
@@ -384,6 +423,7 @@ impl Board {
                 self.bot = Some(view);
             }
             Event::Vga { time_ps, pins } => self.vga.pins(time_ps, pins),
+            Event::Lines { time_ps, uart, pwm, amp_on } => self.heard.lines(time_ps, uart, pwm, amp_on),
             Event::Bot { .. } | Event::Repeat { .. } => {}
         }
     }
@@ -417,14 +457,89 @@ impl Board {
         Ok(self.model.time_ps())
     }
 
+    /// Push what the devices take now; what the design sent the host since, for the pages
+    /// (the UART's rate, once measured, is the host's too).
+    fn feed(&mut self) {
+        let t = self.model.time_ps();
+        if self.feed_at.is_none_or(|f| f <= t) {
+            let model = &mut self.model;
+            self.feed_at = self.feeder.feed(t, |d, bytes| model.push(d, bytes));
+        }
+    }
+
+    /// What the design sent the host since the pages were last told: its UART's bytes, and
+    /// its sound (48 kHz samples of the line's average, 0 to 255).
+    fn tell_heard(&mut self) {
+        let t = self.model.time_ps();
+        self.heard.uart.flush(t);
+        if let Some(div) = self.heard.new_uart_div() {
+            self.model.set_uart_div(div);
+        }
+        let got = &self.heard.uart.received;
+        if got.len() > self.uart_told {
+            let text = botsim_core::board::uart::text(got[self.uart_told..].iter().map(|r| r.byte));
+            let baud = self.heard.uart.baud().map(|b| b.0);
+            self.fresh
+                .push(json!({"kind": "uart", "time_ps": got[self.uart_told].time_ps, "text": text, "baud": baud}));
+            self.uart_told = got.len();
+        }
+        if let Some(audio) = &mut self.heard.audio {
+            audio.finish(t);
+            let (first, samples) = audio.take();
+            if !samples.is_empty() && audio.heard() {
+                let pcm: Vec<u8> = samples.iter().map(|&v| (v * 255.0).round() as u8).collect();
+                self.fresh.push(json!({"kind": "audio", "first": first, "rate": RATE, "samples": pcm}));
+            }
+        }
+    }
+
     /// Apply an input from a page at the next cycle boundary (a release one cycle after its
     /// press, at the least); the log entry that says so.
-    fn input(&mut self, command: &Command) -> Result<serde_json::Value, String> {
-        let mut t = self.align()?;
+    fn input(&mut self, command: &Command) -> Result<serde_json::Value, Refused> {
+        // The peripherals' inputs first: checked, then at the next cycle boundary.
+        let key = match command {
+            Command::Key { code, .. } => Some(Key::named(code).ok_or_else(|| Refused(keyboard::unknown(code)))?),
+            _ => None,
+        };
+        let mut t = self.align().map_err(Refused)?;
+        match command {
+            Command::Key { down, .. } => {
+                let key = key.expect("checked above");
+                let held = self.inputs.keys.iter_mut().find(|k| k.key == key && k.to == u64::MAX);
+                match (held, *down) {
+                    (None, true) => self.inputs.keys.push(KeyPress { key, from: t, to: u64::MAX }),
+                    (Some(k), false) => k.to = t,
+                    // A key held down repeats nothing (typematic repeat is optional); a release of
+                    // a key not held sends nothing.
+                    _ => {
+                        return Ok(json!({"kind": "input", "time_ps": t, "key": key.name, "down": down, "sent": false}))
+                    }
+                }
+                self.feeder.send(Device::Keyboard, &keyboard::codes(key, *down));
+                self.feed_at = Some(t);
+                self.dirty = true;
+                return Ok(json!({"kind": "input", "time_ps": t, "key": key.name, "down": down}));
+            }
+            Command::Uart(bytes) => {
+                self.inputs.uart.push((t, bytes.clone()));
+                self.feeder.send(Device::Uart, bytes);
+                self.feed_at = Some(t);
+                self.dirty = true;
+                return Ok(json!({"kind": "input", "time_ps": t, "uart": String::from_utf8_lossy(bytes)}));
+            }
+            Command::Tilt(g) => {
+                let tilt = g.map(|v| (v * 1000.0).round() as i32);
+                self.inputs.tilts.push((t, tilt));
+                self.model.set_tilt(tilt[0], tilt[1], tilt[2]);
+                self.dirty = true;
+                return Ok(json!({"kind": "input", "time_ps": t, "tilt": g}));
+            }
+            _ => {}
+        }
         if let Command::Button { button, down: false } = *command {
             let bit = botsim_core::board::stimulus::button_bit(button.name());
             if self.inputs.presses.iter().any(|p| p.button == bit && p.to == u64::MAX && p.from == t) {
-                self.run_to(t + PS_PER_CYCLE, u64::MAX)?;
+                self.run_to(t + PS_PER_CYCLE, u64::MAX).map_err(Refused)?;
                 t = self.model.time_ps();
             }
         }

@@ -2,6 +2,7 @@
 
 mod bench;
 mod breaks;
+mod devices;
 mod live;
 mod prepare;
 mod progress;
@@ -74,9 +75,24 @@ pub struct Args {
     /// The switches from power-up, in hexadecimal
     #[arg(long, value_name = "HEX")]
     switches: Option<String>,
-    /// A stimulus file: one `TIME press NAME [DURATION]` or `TIME switches HEX` per line
+    /// A stimulus file: one `TIME press NAME [DURATION]`, `TIME switches HEX`, `TIME key NAME
+    /// [DURATION]`, `TIME uart "TEXT"` or `TIME tilt X Y Z` per line
     #[arg(long, value_name = "FILE")]
     stimulus: Option<PathBuf>,
+    /// The board's tilt from power-up, in g, as its accelerometer measures it [default: 0,0,1,
+    /// lying flat]
+    #[arg(long, value_name = "X,Y,Z", allow_negative_numbers = true)]
+    tilt: Option<String>,
+    /// The USB-UART's rate in baud [default: measured from what the design sends, 115200
+    /// before it has sent anything]
+    #[arg(long, value_name = "BAUD")]
+    uart_baud: Option<u32>,
+    /// What the design sent on the USB-UART (RsTx), byte for byte
+    #[arg(long, value_name = "FILE")]
+    uart: Option<PathBuf>,
+    /// The board's sound (ampPWM averaged, silent while ampSD is 0) as a 48 kHz WAV file
+    #[arg(long, value_name = "FILE")]
+    audio: Option<PathBuf>,
     /// A parameter of the top: NAME=VALUE (e.g. SIMULATE=1)
     #[arg(long, value_name = "NAME=VALUE")]
     param: Vec<String>,

@@ -13,10 +13,10 @@ use botsim::kcpsm6::loader;
 use botsim::kcpsm6::source::SourceMap;
 use botsim::{Firmware, World};
 use botsim_core::board::ip::ClockSpec;
-use botsim_core::board::pins::idle_high;
+use botsim_core::board::pins::{peripherals, Peripheral, Role};
 use botsim_core::board::plan::{Plan, Request};
 use botsim_core::board::resolve::{resolve, Design, Options};
-use botsim_core::board::stimulus::{parse_press, parse_time, Stimulus};
+use botsim_core::board::stimulus::{parse_press, parse_tilt, parse_time, Stimulus};
 use botsim_core::debug::{BreakSpec, Breaks};
 
 use super::breaks::{breakpoints, parse_mark, Mark};
@@ -84,6 +84,29 @@ impl Prepared {
     }
 }
 
+/// Every option and stimulus about a peripheral the design does not reach is one line.
+fn peripheral_options(a: &Args, s: &Stimulus, plan: &Plan) -> Result<(), String> {
+    let has = |r: Role| plan.pins.iter().any(|(_, x)| *x == r);
+    let acl = plan.pins.iter().any(|(_, r)| r.peripheral() == Some(Peripheral::Accelerometer));
+    let lacks = |what: &str, pins: &str| format!("{what}, and the design has no {pins}");
+    if a.uart.is_some() && !has(Role::UartTx) {
+        return Err(lacks("--uart writes what the design sends on the USB-UART", "RsTx (UART_RXD_OUT) pin"));
+    }
+    if a.audio.is_some() && !has(Role::AudioPwm) {
+        return Err(lacks("--audio writes the board's sound", "ampPWM (AUD_PWM) pin"));
+    }
+    if !s.uart.is_empty() && !has(Role::UartRx) {
+        return Err(lacks("the stimulus sends text to the USB-UART", "RsRx (UART_TXD_IN) pin"));
+    }
+    if !s.keys.is_empty() && !(has(Role::Ps2Clock) && has(Role::Ps2Data)) {
+        return Err(lacks("the stimulus types on the keyboard", "PS2_CLK and PS2_DATA pins"));
+    }
+    if (!s.tilts.is_empty() || a.tilt.is_some()) && !acl {
+        return Err(lacks("the board's tilt is measured by its accelerometer", "aclSCK/aclMOSI/aclMISO/aclSS pins"));
+    }
+    Ok(())
+}
+
 /// Check the arguments, find the design, plan it and build it.
 pub fn prepare(a: &Args) -> Result<Prepared, String> {
     // Arguments first: every bad one is one line before anything is built.
@@ -100,6 +123,12 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
     if let Some(h) = &a.switches {
         stimulus.initial_switches = u16::from_str_radix(h.trim_start_matches("0x"), 16)
             .map_err(|_| format!("--switches {h}: expected up to four hexadecimal digits"))?;
+    }
+    if let Some(t) = &a.tilt {
+        stimulus.tilts.insert(0, (0, parse_tilt(t).map_err(|e| format!("--tilt {e}"))?));
+    }
+    if a.uart_baud.is_some_and(|b| !(50..=4_000_000).contains(&b)) {
+        return Err("--uart-baud: expected a rate from 50 to 4000000 baud".into());
     }
     let vcd_from = a.trace_from.as_deref().map(|m| parse_mark(m, "trace-from")).transpose()?.unwrap_or(Mark::Time(0));
     let vcd_to = a.trace_to.as_deref().map(|m| parse_mark(m, "trace-to")).transpose()?;
@@ -145,7 +174,10 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
         let img = loader::load(p, &botsim::kcpsm6::asm::Options::default()).map_err(|d| d.errors_text())?;
         programs.push((p.clone(), img));
     }
-    for p in [&a.trace_csv, &a.trace_json, &a.png, &a.display, &a.pins, &a.vcd, &a.design_log].into_iter().flatten() {
+    for p in [&a.trace_csv, &a.trace_json, &a.png, &a.display, &a.pins, &a.vcd, &a.design_log, &a.uart, &a.audio]
+        .into_iter()
+        .flatten()
+    {
         check_writable(p)?;
     }
     if let Some(d) = &a.frames {
@@ -199,22 +231,13 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
     for w in &plan.warnings {
         a.say(format!("warning: {w}"));
     }
+    let reached = peripherals(&plan.pins);
+    for (device, names) in &reached {
+        a.say(format!("  the board's {}: {}", device.name(), names.join(", ")));
+    }
+    peripheral_options(a, &stimulus, &plan)?;
     if !plan.unknown_pins.is_empty() {
-        // The board's idle-high lines (a UART's receive line, PS/2) are held high.
-        let high: Vec<&str> = plan
-            .unknown_pins
-            .iter()
-            .filter(|n| idle_high(n) && (plan.inputs.contains(*n) || plan.inouts.contains(*n)))
-            .map(String::as_str)
-            .collect();
-        let held = match high.as_slice() {
-            [] => String::new(),
-            h => format!(", {} high as the board's idle lines", h.join(", ")),
-        };
-        a.say(format!(
-            "  ports with no board pin (inputs held low{held}, outputs open): {}",
-            plan.unknown_pins.join(", ")
-        ));
+        a.say(format!("  ports with no board pin (inputs held low, outputs open): {}", plan.unknown_pins.join(", ")));
     }
     let trace_window = (
         a.cpu_trace_from

@@ -8,6 +8,7 @@ use super::prepare::Prepared;
 use super::session::{at_line_end, Outcome};
 use super::Args;
 use crate::cli::rows::{csv_row, CSV_HEADER};
+use botsim_core::board::pins::Role;
 
 /// Below this fraction of its time skipped, a run says what kept it busy.
 const BUSY_SAID: f64 = 0.9;
@@ -47,7 +48,17 @@ impl Busy {
 }
 
 /// Write the outputs the arguments ask for and say how the run went.
-pub fn report(a: &Args, p: &Prepared, o: Outcome) -> Result<Stopped, String> {
+pub fn report(a: &Args, p: &Prepared, mut o: Outcome) -> Result<Stopped, String> {
+    o.rec.heard.uart.flush(o.sim_ps);
+    if let Some(f) = &a.uart {
+        let bytes: Vec<u8> = o.rec.heard.uart.received.iter().map(|r| r.byte).collect();
+        write_atomic(f, &bytes)?;
+    }
+    if let (Some(f), Some(audio)) = (&a.audio, &mut o.rec.heard.audio) {
+        audio.finish(o.sim_ps);
+        write_atomic(f, &audio.wav())?;
+    }
+    let has_uart = p.plan.pins.iter().any(|(_, r)| *r == Role::UartTx);
     if let Some(f) = &a.trace_csv {
         let mut csv = format!("{CSV_HEADER}\n");
         for s in &o.rec.snapshots {
@@ -113,6 +124,16 @@ pub fn report(a: &Args, p: &Prepared, o: Outcome) -> Result<Stopped, String> {
                 })),
             },
             "break": o.stopped.as_ref().map(|s| serde_json::json!({"time_ps": s.time_ps, "what": s.message})),
+            "uart": has_uart.then(|| {
+                let u = &o.rec.heard.uart;
+                serde_json::json!({
+                    "baud": u.baud().map(|b| b.0),
+                    "measured": u.baud().map(|b| b.1),
+                    "bytes": u.received.len(),
+                    "framing_errors": u.framing_errors(),
+                    "text": u.text(),
+                })
+            }),
         });
         let mut v = v;
         if p.plan.bot_path.is_none() {
@@ -149,6 +170,9 @@ pub fn report(a: &Args, p: &Prepared, o: Outcome) -> Result<Stopped, String> {
                 b.describe(),
                 b.times
             );
+        }
+        if let Some(line) = o.rec.heard.uart_summary() {
+            println!("  {line}");
         }
         for t in &o.traces {
             println!("  wrote {}", t.display());

@@ -10,7 +10,7 @@ use std::time::Instant;
 use botsim::board::build::{BotKind, CpuModel};
 use botsim::board::iss::Host;
 use botsim::board::lockstep::Lockstep;
-use botsim::board::model::{BoardModel, Event, FastForward, Printing, RawEvent, Stop, RECORDS};
+use botsim::board::model::{BoardModel, Device, Event, FastForward, Printing, Pushed, RawEvent, Stop, RECORDS};
 use botsim::files::write_atomic;
 use botsim::{Snapshot, World};
 use botsim_core::board::display::Display;
@@ -20,6 +20,7 @@ use botsim_core::board::wrapper;
 use botsim_core::debug::{describe_pc, sample_state};
 
 use super::breaks::{save_file_view, write_save_file, BreakStop, Mark};
+use super::devices::{Feeder, Heard};
 use super::prepare::Prepared;
 use super::progress::Progress;
 use super::Args;
@@ -65,10 +66,12 @@ pub struct Records {
     frame_every: u64,
     pub frames_seen: u64,
     pub frames_written: u64,
+    /// What the design sent the host: the UART's bytes, the sound.
+    pub heard: Heard,
 }
 
 impl Records {
-    pub fn new(frames: Option<PathBuf>, frame_every: u64, pins: bool) -> Records {
+    pub fn new(frames: Option<PathBuf>, frame_every: u64, pins: bool, heard: Heard) -> Records {
         Records {
             display: Display::default(),
             display_log: String::new(),
@@ -83,6 +86,7 @@ impl Records {
             frame_every: frame_every.max(1),
             frames_seen: 0,
             frames_written: 0,
+            heard,
         }
     }
 
@@ -112,6 +116,7 @@ impl Records {
                 self.snapshots.push(snapshot);
             }
             Event::Vga { time_ps, pins } => self.vga.pins(time_ps, pins),
+            Event::Lines { time_ps, uart, pwm, amp_on } => self.heard.lines(time_ps, uart, pwm, amp_on),
             // Recorded for the lock-step's comparison only.
             Event::Bot { .. } => {}
             // Taken whole by `repeat`; here, written out is all that can be done.
@@ -237,6 +242,8 @@ struct Session<'a> {
     at_end: bool,
     blocked_now: bool,
     bot_stop: Option<BreakStop>,
+    /// The bytes waiting for the design's UART and keyboard.
+    feeder: Feeder,
 }
 
 impl<'a> Session<'a> {
@@ -283,11 +290,23 @@ impl<'a> Session<'a> {
         }
         let (r, b, sw) = p.stimulus.inputs_at(0);
         model.set_inputs(r, b, sw);
+        let heard = Heard::new(a.uart_baud, a.audio.is_some());
+        let [x, y, z] = p.stimulus.tilt_at(0);
+        let div = heard.uart_div;
+        model.each(|m| {
+            m.set_uart_div(div);
+            m.set_tilt(x, y, z);
+        });
+        let mut feeder = Feeder::default();
+        feeder.queue(&p.stimulus, 0);
+        if let Some(t) = feeder.feed(0, |d, b| model.push(d, b)) {
+            stops.insert(t);
+        }
         Ok(Session {
             a,
             p,
             model,
-            rec: Records::new(a.frames.clone(), a.frame_every, a.pins.is_some()),
+            rec: Records::new(a.frames.clone(), a.frame_every, a.pins.is_some(), heard),
             vcd,
             fast_forward_off,
             end_ps,
@@ -299,6 +318,7 @@ impl<'a> Session<'a> {
             at_end: false,
             blocked_now: false,
             bot_stop: None,
+            feeder,
         })
     }
 
@@ -385,8 +405,21 @@ impl<'a> Session<'a> {
             ));
         }
         if self.stops.contains(&t) {
-            let (r, b, sw) = p.stimulus.inputs_at(t);
-            self.model.set_inputs(r, b, sw);
+            if p.stimulus.change_times().binary_search(&t).is_ok() {
+                let (r, b, sw) = p.stimulus.inputs_at(t);
+                self.model.set_inputs(r, b, sw);
+                let [x, y, z] = p.stimulus.tilt_at(t);
+                self.model.each(|m| m.set_tilt(x, y, z));
+                self.feeder.queue(&p.stimulus, t);
+            }
+            // The design's own UART rate, once measured, is the host's too.
+            if let Some(div) = self.rec.heard.new_uart_div() {
+                self.model.each(|m| m.set_uart_div(div));
+            }
+            let model = &mut self.model;
+            if let Some(again) = self.feeder.feed(t, |d, b| model.push(d, b)) {
+                self.stops.insert(again);
+            }
             if let Some(v) = &a.vcd {
                 if !self.vcd.open && !self.vcd.done && p.vcd_from == Mark::Time(t) {
                     self.model.main().open_vcd(v).map_err(|e| e.to_string())?;
@@ -612,6 +645,27 @@ impl Sim {
         match self {
             Sim::One(m) => m.set_inputs(r, b, sw),
             Sim::Pair(p) => p.set_inputs(r, b, sw),
+        }
+    }
+    /// Do the same to every board (both of a lock-step run).
+    fn each(&mut self, mut f: impl FnMut(&mut BoardModel)) {
+        match self {
+            Sim::One(m) => f(m),
+            Sim::Pair(p) => {
+                f(&mut p.rtl);
+                f(&mut p.iss);
+            }
+        }
+    }
+    /// Send bytes to a device of every board (both take them alike).
+    fn push(&mut self, device: Device, bytes: &[u8]) -> Pushed {
+        match self {
+            Sim::One(m) => m.push(device, bytes),
+            Sim::Pair(p) => {
+                let r = p.rtl.push(device, bytes);
+                p.iss.push(device, bytes);
+                r
+            }
         }
     }
     fn record_vga(&mut self, on: bool) {

@@ -132,9 +132,14 @@ pub fn run(args: &Args) -> Result<(), String> {
                         server.log(json!({"kind": "input", "time_ps": now, "iteration": from, "motors": v}));
                     }
                 },
-                Command::Switch { .. } | Command::Switches(_) | Command::Button { .. } => server.reply(
+                Command::Switch { .. }
+                | Command::Switches(_)
+                | Command::Button { .. }
+                | Command::Key { .. }
+                | Command::Uart(_)
+                | Command::Tilt(_) => server.reply(
                     client,
-                    json!({"type": "error", "message": "the bot alone has no switches or buttons: set its motors (`motors`)"}),
+                    json!({"type": "error", "message": "the bot alone has no board (switches, buttons, keyboard, UART, tilt): set its motors (`motors`)"}),
                 ),
             }
             next = server.try_command();

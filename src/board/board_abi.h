@@ -23,8 +23,9 @@ enum { BOARD_UNTIL = 0, BOARD_BUFFER_FULL = 1, BOARD_SAMPLES = 2, BOARD_FINISHED
  * VGA (when board_record_vga is on): a = r << 8 | g << 4 | b | hsync << 12 | vsync << 13.
  * BOT (when board_record_bot is on): any of the bot's outputs changed; a = upd_sysregs,
  * b = LocX | LocY << 8 | BotInfo << 16 | Sensors << 24 | LMDist << 32 | RMDist << 40.
- * LINES: a = RsTx | ampPWM << 1 | ampSD << 2 (the board's lines out of the FPGA to its
- * peripherals; RsTx 1 and ampPWM 0 without such a pin, ampSD 1 with ampPWM alone).
+ * LINES: the peripherals' lines, a = RsTx | ampPWM << 1 | ampSD << 2 | RsRx << 3 |
+ * PS2_CLK << 4 | PS2_DATA << 5 | aclSCK << 6 | aclMOSI << 7 | aclMISO << 8 | aclSS << 9
+ * (as on the board; idle where the design has no such pin, ampSD 1 with ampPWM alone).
  * REPEAT (a fast-forward over a period in which the board showed something): the a records
  * before this one happen c more times, each b ps after the last (time_ps: the first
  * repetition's start). */

@@ -304,7 +304,7 @@ struct Board {
     uint64_t evals = 0;
     uint8_t last_an = 0xFF, last_seg = 0x7F, last_dp = 1;
     uint16_t last_led = 0;
-    uint8_t last_lines = 0xFF;  // RsTx, ampPWM, ampSD (none yet: the first is recorded)
+    uint16_t last_lines = 0xFFFF;  // the peripherals' lines (none yet: the first is recorded)
     bool rising_only = false;  // evaluate at rising clock edges only (nothing on falling ones)
     bool vga = false;  // record the VGA pins (only when frames are asked for)
     uint16_t last_vga = 0x3000;
@@ -616,8 +616,7 @@ namespace {
 // to the compiler, so fields behind `b` would be reloaded after every evaluation).
 struct Shown {
     uint8_t an, seg, dp;
-    uint16_t led, vga;
-    uint8_t lines;
+    uint16_t led, vga, lines;
     uint64_t bot;
     bool upd;
     uint64_t samples, evals;
@@ -1056,7 +1055,7 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
     s.seg = b->top->seg;
     s.dp = b->top->dp;
     s.led = b->top->led;
-    s.lines = (uint8_t)(b->top->uart_tx | b->top->amp_pwm << 1 | b->top->amp_sd << 2);
+    s.lines = b->top->lines;
     f.skips++;
     f.skipped_ps += skipped;
     return skipped / b->clocks[0].num;
@@ -1167,10 +1166,9 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
             s.led = top->led;
             record(buf, n, t, BOARD_EVENT_LEDS, top->led, 0, 0);
         }
-        const uint8_t lines = (uint8_t)(top->uart_tx | top->amp_pwm << 1 | top->amp_sd << 2);
-        if (lines != s.lines) {
-            s.lines = lines;
-            record(buf, n, t, BOARD_EVENT_LINES, lines, 0, 0);
+        if (top->lines != s.lines) {
+            s.lines = top->lines;
+            record(buf, n, t, BOARD_EVENT_LINES, top->lines, 0, 0);
         }
         if (watch_bot) {
             uint64_t v = (uint64_t)top->bot_locx | (uint64_t)top->bot_locy << 8 | (uint64_t)top->bot_info << 16 |

@@ -8,7 +8,7 @@ use botsim_core::board::BoardError;
 use botsim_core::board::plan::BOT_CPU_INSTANCE;
 
 use super::iss::{Host, Recorded};
-use super::model::{expand, BoardModel, Event, RawEvent, Stop, RECORDS};
+use super::model::{expand, BoardModel, Event, Lines, RawEvent, Stop, RECORDS};
 
 /// The most simulated time the two boards run apart between comparisons (1 ms: 100,000
 /// cycles of 100 MHz, a few MB of recorded ports).
@@ -177,8 +177,9 @@ fn show(e: Option<&Event>) -> String {
             format!("the bot's outputs upd_sysregs {} registers {regs:012X} (RMDist..LocX)", *upd as u8)
         }
         Some(Event::Repeat { events, count, .. }) => format!("the last {events} records repeated {count} times"),
-        Some(Event::Lines { uart, pwm, amp_on, .. }) => {
-            format!("RsTx {} ampPWM {} ampSD {}", *uart as u8, *pwm as u8, *amp_on as u8)
+        Some(Event::Lines { lines, .. }) => {
+            let each: Vec<String> = Lines::NAMES.iter().enumerate().map(|(k, n)| format!("{n} {}", lines.bit(k) as u8)).collect();
+            format!("the peripherals' lines {}", each.join(" "))
         }
     }
 }

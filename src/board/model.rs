@@ -44,9 +44,8 @@ pub enum Event {
     /// `period_ps` after the last; the first repetition starts at `time_ps`. [`expand`]
     /// writes them out; a consumer that knows better (the display decoder) takes them whole.
     Repeat { time_ps: u64, events: usize, period_ps: u64, count: u64 },
-    /// The lines out of the FPGA to the board's peripherals changed (or are seen first):
-    /// the USB-UART's `RsTx` (`uart`), the audio's `ampPWM` and `ampSD` (`pwm`, `amp_on`).
-    Lines { time_ps: u64, uart: bool, pwm: bool, amp_on: bool },
+    /// The lines between the FPGA and the board's peripherals changed (or are seen first).
+    Lines { time_ps: u64, lines: Lines },
 }
 
 impl RawEvent {
@@ -82,7 +81,7 @@ impl Event {
             4 => Event::Vga { time_ps: t, pins: e.a as u16 },
             5 => Event::Bot { time_ps: t, upd: e.a & 1 == 1, regs: e.b },
             6 => Event::Repeat { time_ps: t, events: e.a as usize, period_ps: e.b, count: e.c },
-            7 => Event::Lines { time_ps: t, uart: e.a & 1 == 1, pwm: e.a & 2 == 2, amp_on: e.a & 4 == 4 },
+            7 => Event::Lines { time_ps: t, lines: Lines(e.a as u16) },
             _ => return None,
         })
     }
@@ -189,6 +188,57 @@ struct Api {
     push: unsafe extern "C" fn(*mut Opaque, u32, *const u8, u32) -> c_int,
     set_uart_div: unsafe extern "C" fn(*mut Opaque, u32),
     set_tilt: unsafe extern "C" fn(*mut Opaque, i32, i32, i32),
+}
+
+/// The lines between the FPGA and the board's peripherals, as on the board (a line the
+/// design has no pin for idle): board_abi.h's packing.
+///
+/// ```
+/// use botsim::board::model::Lines;
+/// let l = Lines(0b10_0011_1001);
+/// assert!(l.uart_tx() && l.uart_rx() && l.ps2_clk() && l.ps2_data() && l.acl_ss() && !l.pwm());
+/// assert_eq!(Lines::NAMES[0], "RsTx");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Lines(pub u16);
+
+impl Lines {
+    /// The lines' names, bit 0 first.
+    pub const NAMES: [&'static str; 10] =
+        ["RsTx", "ampPWM", "ampSD", "RsRx", "PS2_CLK", "PS2_DATA", "aclSCK", "aclMOSI", "aclMISO", "aclSS"];
+    pub fn bit(self, k: usize) -> bool {
+        self.0 >> k & 1 == 1
+    }
+    pub fn uart_tx(self) -> bool {
+        self.bit(0)
+    }
+    pub fn pwm(self) -> bool {
+        self.bit(1)
+    }
+    pub fn amp_on(self) -> bool {
+        self.bit(2)
+    }
+    pub fn uart_rx(self) -> bool {
+        self.bit(3)
+    }
+    pub fn ps2_clk(self) -> bool {
+        self.bit(4)
+    }
+    pub fn ps2_data(self) -> bool {
+        self.bit(5)
+    }
+    pub fn acl_sck(self) -> bool {
+        self.bit(6)
+    }
+    pub fn acl_mosi(self) -> bool {
+        self.bit(7)
+    }
+    pub fn acl_miso(self) -> bool {
+        self.bit(8)
+    }
+    pub fn acl_ss(self) -> bool {
+        self.bit(9)
+    }
 }
 
 /// What became of a push (bytes sent to a device).

@@ -5,6 +5,7 @@ pub mod cpu_coverage;
 pub mod debug;
 pub mod game;
 pub mod icarus;
+pub mod lines;
 pub mod live;
 pub mod lockstep;
 pub mod random_design;

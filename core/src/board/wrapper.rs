@@ -13,7 +13,9 @@
 //! bytes the host sends to the USB-UART's line into the FPGA and to the keyboard come in
 //! through `push_bytes`/`push_n` and a toggle of `uart_push` or `ps2_push` (`*_room`,
 //! `*_pending` say when another push fits); `uart_div` is the UART's clocks per bit, `tilt_*`
-//! the board's tilt in mg; `uart_tx` (the design's `RsTx`), `amp_pwm` and `amp_sd` come out.
+//! the board's tilt in mg; `lines` are the peripherals' lines as they are on the board, bit
+//! 0 up: RsTx, ampPWM, ampSD, RsRx, PS2_CLK, PS2_DATA, aclSCK, aclMOSI, aclMISO, aclSS (each
+//! idle when the design has no such pin).
 
 use kcpsm6::asm::RomSize;
 use kcpsm6::output::verilog_rom;
@@ -26,7 +28,7 @@ pub const TOP: &str = "botsim_board";
 
 /// The wrapper's board outputs, and what each shows when the design has no such pin
 /// (everything dark: the display and VGA syncs are active low).
-const OUTPUTS_OFF: [(&str, &str); 16] = [
+const OUTPUTS_OFF: [(&str, &str); 13] = [
     ("led", "16'h0000"),
     ("seg", "7'h7F"),
     ("dp", "1'b1"),
@@ -36,9 +38,6 @@ const OUTPUTS_OFF: [(&str, &str); 16] = [
     ("vga_b", "4'h0"),
     ("hsync", "1'b1"),
     ("vsync", "1'b1"),
-    ("uart_tx", "1'b1"),
-    ("amp_pwm", "1'b0"),
-    ("amp_sd", "1'b0"),
     ("uart_room", "7'd0"),
     ("uart_pending", "1'b0"),
     ("ps2_room", "7'd0"),
@@ -84,9 +83,6 @@ fn drives(role: Role, u: &str, w: u32) -> Vec<(&'static str, String)> {
         Role::VgaBlue => vga("vga_b"),
         Role::Hsync => vec![("hsync", u.into())],
         Role::Vsync => vec![("vsync", u.into())],
-        Role::UartTx => vec![("uart_tx", format!("{u}[0]"))],
-        Role::AudioPwm => vec![("amp_pwm", format!("{u}[0]"))],
-        Role::AudioOn => vec![("amp_sd", format!("{u}[0]"))],
         _ => vec![],
     }
 }
@@ -165,9 +161,7 @@ pub fn board_top(plan: &Plan, params: &[(String, String)]) -> String {
          \x20   input  wire [15:0] tilt_x,\n\
          \x20   input  wire [15:0] tilt_y,\n\
          \x20   input  wire [15:0] tilt_z,\n\
-         \x20   output wire        uart_tx,\n\
-         \x20   output wire        amp_pwm,\n\
-         \x20   output wire        amp_sd,\n\
+         \x20   output wire [ 9:0] lines,\n\
          \x20   output wire [ 6:0] uart_room,\n\
          \x20   output wire        uart_pending,\n\
          \x20   output wire [ 6:0] ps2_room,\n\
@@ -244,10 +238,24 @@ fn devices(plan: &Plan) -> (String, Vec<(&'static str, String)>) {
             line(Role::AclSs, "1'b1"),
         ));
     }
-    // A design with an audio line and no amplifier enable: the amplifier is on.
-    if pin(Role::AudioPwm).is_some() && pin(Role::AudioOn).is_none() {
-        out.push(("amp_sd", "1'b1".into()));
-    }
+    // The lines as they are on the board, idle where the design has no pin: an audio line
+    // without an amplifier enable has the amplifier on.
+    let user = |r: Role, idle: &str| pin(r).map_or(idle.to_string(), |p| format!("user_{p}[0]"));
+    let of = |p: Peripheral, line: &str, idle: &str| if has(p) { line.to_string() } else { idle.to_string() };
+    let amp_on = if pin(Role::AudioPwm).is_some() { "1'b1" } else { "1'b0" };
+    let lines = [
+        user(Role::AclSs, "1'b1"),
+        of(Peripheral::Accelerometer, "acl_miso", "1'b0"),
+        user(Role::AclMosi, "1'b0"),
+        user(Role::AclSck, "1'b0"),
+        of(Peripheral::Keyboard, "ps2_data_line", "1'b1"),
+        of(Peripheral::Keyboard, "ps2_clk_line", "1'b1"),
+        if pin(Role::UartRx).is_some() { "uart_line".to_string() } else { "1'b1".to_string() },
+        user(Role::AudioOn, amp_on),
+        user(Role::AudioPwm, "1'b0"),
+        user(Role::UartTx, "1'b1"),
+    ];
+    out.push(("lines", format!("{{{}}}", lines.join(", "))));
     (v, out)
 }
 

@@ -4,7 +4,7 @@
 
 use std::collections::VecDeque;
 
-use botsim::board::model::{Device, Pushed};
+use botsim::board::model::{Device, Lines, Pushed};
 use botsim::PS_PER_CYCLE;
 use botsim_core::board::audio::{Audio, RATE};
 use botsim_core::board::stimulus::Stimulus;
@@ -81,11 +81,11 @@ impl Heard {
         }
     }
 
-    /// The lines out of the FPGA from `t` on.
-    pub fn lines(&mut self, t: u64, uart: bool, pwm: bool, amp_on: bool) {
-        self.uart.level(t, uart);
+    /// The peripherals' lines from `t` on.
+    pub fn lines(&mut self, t: u64, lines: Lines) {
+        self.uart.level(t, lines.uart_tx());
         if let Some(a) = &mut self.audio {
-            a.line(t, pwm, amp_on);
+            a.line(t, lines.pwm(), lines.amp_on());
         }
     }
 

@@ -423,7 +423,7 @@ impl Board {
                 self.bot = Some(view);
             }
             Event::Vga { time_ps, pins } => self.vga.pins(time_ps, pins),
-            Event::Lines { time_ps, uart, pwm, amp_on } => self.heard.lines(time_ps, uart, pwm, amp_on),
+            Event::Lines { time_ps, lines } => self.heard.lines(time_ps, lines),
             Event::Bot { .. } | Event::Repeat { .. } => {}
         }
     }

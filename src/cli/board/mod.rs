@@ -124,6 +124,11 @@ pub struct Args {
     /// dp, led in hex): the board's outputs edge for edge, as a waveform shows them
     #[arg(long, value_name = "FILE")]
     pins: Option<PathBuf>,
+    /// Every change of the lines between the FPGA and the board's peripherals, one CSV row
+    /// each (time_ps, then RsTx, ampPWM, ampSD, RsRx, PS2_CLK, PS2_DATA, aclSCK, aclMOSI,
+    /// aclMISO, aclSS as 0 or 1, as on the board: idle where the design has no such pin)
+    #[arg(long, value_name = "FILE")]
+    lines: Option<PathBuf>,
     /// A waveform of the whole design (a window of a VGA design's opened later shows its VGA
     /// part as x: see --vcd-all-signals)
     #[arg(long, value_name = "FILE")]

@@ -72,6 +72,9 @@ pub fn report(a: &Args, p: &Prepared, mut o: Outcome) -> Result<Stopped, String>
     if let Some(f) = &a.pins {
         write_atomic(f, o.rec.pins_csv.as_deref().unwrap_or_default().as_bytes())?;
     }
+    if let Some(f) = &a.lines {
+        write_atomic(f, o.rec.lines_csv.as_deref().unwrap_or_default().as_bytes())?;
+    }
     if let Some(f) = &a.display {
         write_atomic(f, o.rec.display_log.as_bytes())?;
     }

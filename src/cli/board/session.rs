@@ -10,7 +10,7 @@ use std::time::Instant;
 use botsim::board::build::{BotKind, CpuModel};
 use botsim::board::iss::Host;
 use botsim::board::lockstep::Lockstep;
-use botsim::board::model::{BoardModel, Device, Event, FastForward, Printing, Pushed, RawEvent, Stop, RECORDS};
+use botsim::board::model::{BoardModel, Device, Event, FastForward, Lines, Printing, Pushed, RawEvent, Stop, RECORDS};
 use botsim::files::write_atomic;
 use botsim::{Snapshot, World};
 use botsim_core::board::display::Display;
@@ -68,6 +68,8 @@ pub struct Records {
     pub frames_written: u64,
     /// What the design sent the host: the UART's bytes, the sound.
     pub heard: Heard,
+    /// `--lines`: every change of the peripherals' lines (kept only when asked for).
+    pub lines_csv: Option<String>,
 }
 
 impl Records {
@@ -87,6 +89,7 @@ impl Records {
             frames_seen: 0,
             frames_written: 0,
             heard,
+            lines_csv: None,
         }
     }
 
@@ -116,7 +119,16 @@ impl Records {
                 self.snapshots.push(snapshot);
             }
             Event::Vga { time_ps, pins } => self.vga.pins(time_ps, pins),
-            Event::Lines { time_ps, uart, pwm, amp_on } => self.heard.lines(time_ps, uart, pwm, amp_on),
+            Event::Lines { time_ps, lines } => {
+                self.heard.lines(time_ps, lines);
+                if let Some(csv) = &mut self.lines_csv {
+                    let _ = write!(csv, "{time_ps}");
+                    for k in 0..Lines::NAMES.len() {
+                        let _ = write!(csv, ",{}", lines.bit(k) as u8);
+                    }
+                    csv.push('\n');
+                }
+            }
             // Recorded for the lock-step's comparison only.
             Event::Bot { .. } => {}
             // Taken whole by `repeat`; here, written out is all that can be done.
@@ -306,7 +318,10 @@ impl<'a> Session<'a> {
             a,
             p,
             model,
-            rec: Records::new(a.frames.clone(), a.frame_every, a.pins.is_some(), heard),
+            rec: Records {
+                lines_csv: a.lines.as_ref().map(|_| format!("time_ps,{}\n", Lines::NAMES.join(","))),
+                ..Records::new(a.frames.clone(), a.frame_every, a.pins.is_some(), heard)
+            },
             vcd,
             fast_forward_off,
             end_ps,

@@ -1,0 +1,147 @@
+//! The board's peripherals (spec board.md §7) end to end at the pins, on clean-room designs
+//! under tests/board_designs: the USB-UART and the keyboard (console), the accelerometer and
+//! the audio. Each run is checked at the lines between the FPGA and the peripheral (`--lines`,
+//! decoded by tests/common/lines.rs from the spec's timing) and by what the design did with
+//! what it got (its LEDs, display, UART echo).
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::lines::{self, PS2_CLK, PS2_DATA, RSRX, RSTX};
+use common::{board_in, root, stderr};
+use serde_json::Value;
+
+fn design(name: &str) -> PathBuf {
+    root().join("tests/board_designs").join(name)
+}
+
+/// `botsim board DESIGN ARGS --json` in `dir`: the summary.
+fn run(dir: &Path, name: &str, args: &[&str]) -> Value {
+    let d = design(name);
+    let o = board_in(dir, &[&[d.to_str().unwrap(), "--json"], args].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    serde_json::from_slice(&o.stdout).unwrap()
+}
+
+/// The LED values of a `--display` log, in order.
+fn led_log(text: &str) -> Vec<u16> {
+    text.lines()
+        .filter_map(|l| l.split_once(" ms  leds    ").map(|(_, v)| u16::from_str_radix(v.trim(), 2).unwrap()))
+        .collect()
+}
+
+/// The scan codes the console showed: each new code enters LEDs 7-0 (the old one moves to
+/// 15-8 first).
+fn codes_shown(leds: &[u16]) -> Vec<u8> {
+    let mut out: Vec<u8> = Vec::new();
+    let leds: Vec<u16> = std::iter::once(0).chain(leds.iter().copied()).collect();
+    for w in leds.windows(2) {
+        if w[1] >> 8 == w[0] >> 8 && w[1] & 0xFF != w[0] & 0xFF {
+            out.push(w[1] as u8);
+        }
+    }
+    out
+}
+
+const GREETING: &str = "botsim console\r\n";
+const TYPED: &str = "3ms uart \"hi!\\r\"\n5ms key KeyA 3ms\n10ms key ArrowUp 3ms\n";
+const CODES: [u8; 8] = [0x1C, 0xF0, 0x1C, 0xE0, 0x75, 0xE0, 0xF0, 0x75];
+
+#[test]
+fn the_console_greets_echoes_and_counts_the_keys_at_the_pins() {
+    let dir = tempfile::tempdir().unwrap();
+    let p = |n: &str| dir.path().join(n);
+    let typed = p("typed.txt");
+    std::fs::write(&typed, TYPED).unwrap();
+    let mut logs = Vec::new();
+    for ff in [true, false] {
+        let (uart, display, csv) = (p(&format!("{ff}.bin")), p(&format!("{ff}.txt")), p(&format!("{ff}.csv")));
+        let mut args = vec!["--seconds", "0.016", "--stimulus", typed.to_str().unwrap()];
+        args.extend(["--uart", uart.to_str().unwrap(), "--display", display.to_str().unwrap()]);
+        args.extend(["--lines", csv.to_str().unwrap()]);
+        if !ff {
+            args.push("--no-fast-forward");
+        }
+        let v = run(dir.path(), "console", &args);
+        // What the design sent: its greeting, then the text typed, echoed.
+        let sent = std::fs::read(&uart).unwrap();
+        assert_eq!(String::from_utf8_lossy(&sent), format!("{GREETING}hi!\r"), "{v}");
+        assert_eq!((v["uart"]["baud"].as_u64(), v["uart"]["measured"].as_bool()), (Some(115_200), Some(true)), "{v}");
+        assert_eq!(v["uart"]["framing_errors"], 0);
+        // What it showed of the keys: every scan code, and two keys pressed.
+        let log = std::fs::read_to_string(&display).unwrap();
+        assert_eq!(codes_shown(&led_log(&log)), CODES, "{log}");
+        assert_eq!(v["display"], "    0002", "{v}");
+        // The lines as the spec has them: the UART both ways at 115200, the keyboard's frames.
+        let rows = lines::read(&std::fs::read_to_string(&csv).unwrap());
+        assert_eq!(lines::uart(&lines::changes(&rows, RSRX), 115_200), b"hi!\r");
+        assert_eq!(lines::uart(&lines::changes(&rows, RSTX), 115_200), format!("{GREETING}hi!\r").as_bytes());
+        let (clk, data) = (lines::changes(&rows, PS2_CLK), lines::changes(&rows, PS2_DATA));
+        assert_eq!(lines::ps2(&clk, &data), CODES);
+        // The first key's make code begins after its time.
+        assert!(clk.iter().find(|c| !c.1).unwrap().0 > 5_000_000_000);
+        logs.push((sent, log, std::fs::read_to_string(&csv).unwrap()));
+    }
+    // The fast-forward changes nothing, to the line.
+    assert!(logs[0] == logs[1], "the fast-forward differs from every edge");
+}
+
+#[test]
+fn a_keyboard_the_host_inhibits_sends_when_it_lets_go() {
+    // Switch 0 holds PS2_CLK low until 12 ms (after the debounce); the key is pressed at 2 ms.
+    let dir = tempfile::tempdir().unwrap();
+    let (stim, csv, display) = (dir.path().join("s.txt"), dir.path().join("l.csv"), dir.path().join("d.txt"));
+    std::fs::write(&stim, "0ms switches 0001\n2ms key Space 2ms\n12ms switches 0000\n").unwrap();
+    let args = ["--seconds", "0.02", "--stimulus", stim.to_str().unwrap(), "--lines", csv.to_str().unwrap()];
+    run(dir.path(), "console", &[&args[..], &["--display", display.to_str().unwrap()]].concat());
+    let rows = lines::read(&std::fs::read_to_string(&csv).unwrap());
+    let (clk, data) = (lines::changes(&rows, PS2_CLK), lines::changes(&rows, PS2_DATA));
+    // The host's low clock, then the keyboard's frames after it.
+    let released = clk.iter().find(|c| c.0 > 1_000_000_000 && c.1).unwrap().0;
+    assert!(released > 12_000_000_000, "released at {released} ps");
+    let after: Vec<(u64, bool)> = clk.iter().copied().filter(|c| c.0 > released).collect();
+    let data_after: Vec<(u64, bool)> = data.iter().copied().filter(|c| c.0 > released).collect();
+    assert_eq!(lines::ps2(&after, &data_after), [0x29, 0xF0, 0x29]);
+    let shown = codes_shown(&led_log(&std::fs::read_to_string(&display).unwrap()));
+    assert_eq!(shown, [0x29, 0xF0, 0x29]);
+}
+
+#[test]
+fn a_uart_at_another_rate_reads_framing_errors_both_ways() {
+    // The host at 9600 baud, the design at 115200: its greeting is not read as sent, and the
+    // text sent to it comes back as something else.
+    let dir = tempfile::tempdir().unwrap();
+    let (stim, uart) = (dir.path().join("s.txt"), dir.path().join("u.bin"));
+    std::fs::write(&stim, "3ms uart \"hi!\\r\"\n").unwrap();
+    let args = ["--seconds", "0.02", "--uart-baud", "9600", "--stimulus", stim.to_str().unwrap()];
+    let v = run(dir.path(), "console", &[&args[..], &["--uart", uart.to_str().unwrap()]].concat());
+    assert_eq!((v["uart"]["baud"].as_u64(), v["uart"]["measured"].as_bool()), (Some(9600), Some(false)), "{v}");
+    assert!(v["uart"]["framing_errors"].as_u64() > Some(0), "{v}");
+    let sent = std::fs::read(&uart).unwrap();
+    assert!(!String::from_utf8_lossy(&sent).contains("botsim") && !String::from_utf8_lossy(&sent).contains("hi!"));
+    // The summary names the rate the line suggests.
+    let d = design("console");
+    let o = board_in(dir.path(), &[&[d.to_str().unwrap()], &args[..]].concat());
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("framing errors (the design's rate looks like 11"), "{out}");
+}
+
+#[test]
+fn peripherals_the_design_lacks_are_one_line_each() {
+    let dir = tempfile::tempdir().unwrap();
+    let stim = dir.path().join("s.txt");
+    let cases: [(&str, &[&str], &str, &str); 4] = [
+        ("console", &["--audio", "a.wav"], "", "--audio writes the board's sound, and the design has no ampPWM"),
+        ("console", &["--tilt", "0,0,1"], "", "the board's tilt is measured by its accelerometer, and the design has no"),
+        ("game", &[], "1ms uart \"x\"\n", "the stimulus sends text to the USB-UART, and the design has no RsRx"),
+        ("game", &["--uart", "u.bin"], "", "--uart writes what the design sends on the USB-UART, and the design has no RsTx"),
+    ];
+    for (name, extra, stimulus, want) in cases {
+        std::fs::write(&stim, stimulus).unwrap();
+        let d = design(name);
+        let o = board_in(dir.path(), &[&[d.to_str().unwrap(), "--stimulus", stim.to_str().unwrap()], extra].concat());
+        let e = stderr(&o);
+        assert!(!o.status.success() && e.lines().last().unwrap_or("").contains(want), "{name} {extra:?}: {e}");
+    }
+}

@@ -127,15 +127,82 @@ fn a_uart_at_another_rate_reads_framing_errors_both_ways() {
     assert!(out.contains("framing errors (the design's rate looks like 11"), "{out}");
 }
 
+/// A tilt in mg as the ADXL362 gives it at +-2 g: (x, y, z) 8-bit, and x, y, z 12-bit as
+/// six bytes, low first, sign-extended (board.md §7).
+fn accelerometer_bytes(mg: [i32; 3]) -> ([u8; 3], [u8; 6]) {
+    let v = mg.map(|a| a.clamp(-2048, 2047) as u16 & 0xFFF);
+    let high = |x: u16| if x & 0x800 != 0 { (x >> 8) as u8 | 0xF0 } else { (x >> 8) as u8 };
+    (v.map(|x| (x >> 4) as u8), [v[0] as u8, high(v[0]), v[1] as u8, high(v[1]), v[2] as u8, high(v[2])])
+}
+
+#[test]
+fn the_tilt_reaches_the_design_through_the_accelerometer() {
+    // tests/board_designs/tilt reads x and y (8 bits) to the LEDs and x and z (12 bits) to the
+    // display at each sample (100 Hz); the board tilts at 30 ms.
+    let dir = tempfile::tempdir().unwrap();
+    let (stim, csv, display) = (dir.path().join("s.txt"), dir.path().join("l.csv"), dir.path().join("d.txt"));
+    std::fs::write(&stim, "30ms tilt -1 0 0\n").unwrap();
+    let args = ["--seconds", "0.05", "--tilt", "0.5,-0.25,0.866", "--stimulus", stim.to_str().unwrap()];
+    let v = run(
+        dir.path(),
+        "tilt",
+        &[&args[..], &["--lines", csv.to_str().unwrap(), "--display", display.to_str().unwrap()]].concat(),
+    );
+    let (first, second) = (accelerometer_bytes([500, -250, 866]), accelerometer_bytes([-1000, 0, 0]));
+    let log = std::fs::read_to_string(&display).unwrap();
+    let leds = led_log(&log);
+    // x to LEDs 15-8, then y to 7-0: 1F F0, then C1 00.
+    assert_eq!([first.0[0], first.0[1], second.0[0], second.0[1]], [0x1F, 0xF0, 0xC1, 0x00]);
+    assert_eq!(leds, [0x1F00, 0x1FF0, 0xC1F0, 0xC100], "{log}");
+    assert!(log.contains("display 036201F4"), "{log}");
+    assert_eq!(v["display"], "0000FC18");
+    // The bus, decoded from the spec: the write that starts measuring, then reads whose data
+    // are the registers at the tilt of the time (0 before the first sample).
+    let rows = lines::read(&std::fs::read_to_string(&csv).unwrap());
+    let spi = lines::spi(&rows);
+    assert_eq!(spi[0].1, [0x0A, 0x2D, 0x02]);
+    let (mut short, mut burst) = (0, 0);
+    let mut seen_second = false;
+    for (t, mosi, miso) in &spi[1..] {
+        match mosi[..2] {
+            [0x0B, 0x0B] => assert_eq!(miso.len(), 3),
+            [0x0B, 0x08] => {
+                let got = [miso[2], miso[3]];
+                seen_second |= got == [second.0[0], second.0[1]];
+                let want = if seen_second { [second.0[0], second.0[1]] } else { [first.0[0], first.0[1]] };
+                assert_eq!(got, want, "the 8-bit x, y read at {t} ps");
+                short += 1;
+            }
+            [0x0B, 0x0E] => {
+                let want = if seen_second { second.1 } else { first.1 };
+                assert_eq!(miso[2..], want, "the 12-bit x, y, z read at {t} ps");
+                burst += 1;
+            }
+            _ => panic!("an unexpected transaction at {t} ps: {mosi:02X?}"),
+        }
+    }
+    assert!(short >= 4 && burst == short && seen_second, "{short} reads, {burst} bursts");
+}
+
 #[test]
 fn peripherals_the_design_lacks_are_one_line_each() {
     let dir = tempfile::tempdir().unwrap();
     let stim = dir.path().join("s.txt");
     let cases: [(&str, &[&str], &str, &str); 4] = [
         ("console", &["--audio", "a.wav"], "", "--audio writes the board's sound, and the design has no ampPWM"),
-        ("console", &["--tilt", "0,0,1"], "", "the board's tilt is measured by its accelerometer, and the design has no"),
+        (
+            "console",
+            &["--tilt", "0,0,1"],
+            "",
+            "the board's tilt is measured by its accelerometer, and the design has no",
+        ),
         ("game", &[], "1ms uart \"x\"\n", "the stimulus sends text to the USB-UART, and the design has no RsRx"),
-        ("game", &["--uart", "u.bin"], "", "--uart writes what the design sends on the USB-UART, and the design has no RsTx"),
+        (
+            "game",
+            &["--uart", "u.bin"],
+            "",
+            "--uart writes what the design sends on the USB-UART, and the design has no RsTx",
+        ),
     ];
     for (name, extra, stimulus, want) in cases {
         std::fs::write(&stim, stimulus).unwrap();

@@ -171,7 +171,8 @@ endmodule
 // range in bits 7:6, output data rate in bits 2:0), POWER_CTL (2D: bits 1:0 = 10 measures)
 // and INTMAP1/2 (2A/2B: bit 0 maps DATA_READY, bit 7 makes the pin active low) act. While
 // measuring, the data registers take the board's tilt (`x_mg`, `y_mg`, `z_mg`, in mg) at the
-// output data rate (12.5 Hz << ODR, 400 Hz at most), scaled by the range (1, 2 or 4 mg a
+// output data rate (12.5 Hz << ODR, 400 Hz at most; the first sample within one period of the
+// start), scaled by the range (1, 2 or 4 mg a
 // bit) and limited to 12 bits; before the first sample they read 0. The temperature reads 0.
 // The clock and select are sampled on the board's clock: a design's SPI clock up to 25 MHz.
 module botsim_adxl362 (
@@ -189,7 +190,9 @@ module botsim_adxl362 (
     reg [7:0] cfg[0:15];  // 20-2F
     reg [11:0] x = 12'd0, y = 12'd0, z = 12'd0;
     reg ready = 1'b0;  // STATUS bit 0
-    reg [22:0] odr_count = 23'd0;  // clocks to the next sample
+    // The output data rate as 400 Hz ticks (a wrap counter of 250,000 clocks) per sample.
+    reg [17:0] tick_count = 18'd0;
+    reg [4:0] ticks = 5'd0;  // ticks since the last sample
     reg sck_q = 1'b0;
     reg [6:0] shift_in = 7'd0;
     reg [7:0] shift_out = 8'd0, command = 8'd0, addr = 8'd0;
@@ -202,7 +205,8 @@ module botsim_adxl362 (
 
     wire measuring = cfg[4'hD][1:0] == 2'b10;
     wire [2:0] odr = cfg[4'hC][2:0] > 3'd5 ? 3'd5 : cfg[4'hC][2:0];
-    wire [22:0] odr_period = 23'd8000000 >> odr;
+    wire [5:0] odr_ticks = 6'd32 >> odr;  // 12.5 Hz << odr
+    wire tick = tick_count == 18'd249999;
     wire [1:0] range = cfg[4'hC][7:6];
     // One axis in the range's units, limited to 12 bits.
     function [11:0] scaled(input [15:0] mg, input [1:0] r);
@@ -242,16 +246,19 @@ module botsim_adxl362 (
     always @(posedge clk) begin
         sck_q <= sck;
         // Samples at the output data rate while measuring.
+        tick_count <= tick ? 18'd0 : tick_count + 18'd1;
         if (!measuring) begin
-            odr_count <= odr_period;
-        end else if (odr_count <= 23'd1) begin
-            odr_count <= odr_period;
-            x <= scaled(x_mg, range);
-            y <= scaled(y_mg, range);
-            z <= scaled(z_mg, range);
-            ready <= 1'b1;
-        end else begin
-            odr_count <= odr_count - 23'd1;
+            ticks <= 5'd0;
+        end else if (tick) begin
+            if ({1'b0, ticks} + 6'd1 >= odr_ticks) begin
+                ticks <= 5'd0;
+                x <= scaled(x_mg, range);
+                y <= scaled(y_mg, range);
+                z <= scaled(z_mg, range);
+                ready <= 1'b1;
+            end else begin
+                ticks <= ticks + 5'd1;
+            end
         end
         if (cs_n) begin
             nbits <= 16'd0;

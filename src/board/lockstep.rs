@@ -178,7 +178,8 @@ fn show(e: Option<&Event>) -> String {
         }
         Some(Event::Repeat { events, count, .. }) => format!("the last {events} records repeated {count} times"),
         Some(Event::Lines { lines, .. }) => {
-            let each: Vec<String> = Lines::NAMES.iter().enumerate().map(|(k, n)| format!("{n} {}", lines.bit(k) as u8)).collect();
+            let each: Vec<String> =
+                Lines::NAMES.iter().enumerate().map(|(k, n)| format!("{n} {}", lines.bit(k) as u8)).collect();
             format!("the peripherals' lines {}", each.join(" "))
         }
     }

@@ -116,3 +116,48 @@ pub fn ps2(clk: &[(u64, bool)], data: &[(u64, bool)]) -> Vec<u8> {
     }
     out
 }
+
+/// The transactions on an SPI bus in mode 0 (spec board.md §7: the clock idles low, data is
+/// sampled at its rising edge and changes while it is low, most significant bit first, a
+/// transaction framed by the select low): (the select's fall, the bytes out, the bytes in).
+/// A clock not low at the select's edges, a data line changing while the clock is high or at
+/// its rising edge, or a transaction of part of a byte panics.
+pub fn spi(rows: &[(u64, [bool; 10])]) -> Vec<(u64, Vec<u8>, Vec<u8>)> {
+    let mut out = Vec::new();
+    let mut prev = rows[0].1;
+    let mut current: Option<(u64, Vec<bool>, Vec<bool>)> = None;
+    for &(t, v) in &rows[1..] {
+        let (sck, ss) = (v[ACL_SCK], v[ACL_SS]);
+        if prev[ACL_SS] && !ss {
+            assert!(!sck && !prev[ACL_SCK], "the select fell at {t} ps with the clock high");
+            current = Some((t, Vec::new(), Vec::new()));
+        }
+        if let Some((t0, mosi, miso)) = &mut current {
+            // The data lines hold while the clock is high (and at its rising edge).
+            for line in [ACL_MOSI, ACL_MISO] {
+                if v[line] != prev[line] {
+                    assert!(
+                        !sck,
+                        "{} changed at {t} ps while the clock was high",
+                        ["MOSI", "MISO"][(line == ACL_MISO) as usize]
+                    );
+                }
+            }
+            if sck && !prev[ACL_SCK] {
+                mosi.push(v[ACL_MOSI]);
+                miso.push(v[ACL_MISO]);
+            }
+            if !prev[ACL_SS] && ss {
+                assert!(!sck, "the select rose at {t} ps with the clock high");
+                assert_eq!(mosi.len() % 8, 0, "a transaction at {t0} ps of {} bits", mosi.len());
+                let bytes = |bits: &[bool]| -> Vec<u8> {
+                    bits.chunks(8).map(|c| c.iter().fold(0u8, |b, &x| b << 1 | x as u8)).collect()
+                };
+                out.push((*t0, bytes(mosi), bytes(miso)));
+                current = None;
+            }
+        }
+        prev = v;
+    }
+    out
+}

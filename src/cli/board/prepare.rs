@@ -174,9 +174,10 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
         let img = loader::load(p, &botsim::kcpsm6::asm::Options::default()).map_err(|d| d.errors_text())?;
         programs.push((p.clone(), img));
     }
-    for p in [&a.trace_csv, &a.trace_json, &a.png, &a.display, &a.pins, &a.vcd, &a.design_log, &a.uart, &a.audio, &a.lines]
-        .into_iter()
-        .flatten()
+    for p in
+        [&a.trace_csv, &a.trace_json, &a.png, &a.display, &a.pins, &a.vcd, &a.design_log, &a.uart, &a.audio, &a.lines]
+            .into_iter()
+            .flatten()
     {
         check_writable(p)?;
     }

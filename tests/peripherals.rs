@@ -184,6 +184,56 @@ fn the_tilt_reaches_the_design_through_the_accelerometer() {
     assert!(short >= 4 && burst == short && seen_second, "{short} reads, {burst} bursts");
 }
 
+/// The 16-bit samples of a mono WAV file, and its rate.
+fn wav_samples(bytes: &[u8]) -> (u32, Vec<i16>) {
+    assert_eq!((&bytes[..4], &bytes[8..16]), (&b"RIFF"[..], &b"WAVEfmt "[..]));
+    let u16_at = |i: usize| u16::from_le_bytes([bytes[i], bytes[i + 1]]);
+    let u32_at = |i: usize| u32::from_le_bytes(bytes[i..i + 4].try_into().unwrap());
+    assert_eq!((u16_at(20), u16_at(22), u16_at(34)), (1, 1, 16), "PCM, mono, 16 bits");
+    assert_eq!(&bytes[36..40], b"data");
+    let data = &bytes[44..44 + u32_at(40) as usize];
+    (u32_at(24), data.chunks(2).map(|c| i16::from_le_bytes([c[0], c[1]])).collect())
+}
+
+/// The strongest frequency of `x` (1 Hz steps from `lo` to `hi`), by each one's DFT power.
+fn strongest(x: &[i16], rate: u32, lo: u32, hi: u32) -> u32 {
+    (lo..=hi)
+        .max_by(|&a, &b| {
+            let power = |f: u32| {
+                let w = 2.0 * std::f64::consts::PI * f as f64 / rate as f64;
+                let (re, im) = x.iter().enumerate().fold((0.0, 0.0), |(re, im), (n, &v)| {
+                    (re + v as f64 * (w * n as f64).cos(), im + v as f64 * (w * n as f64).sin())
+                });
+                re * re + im * im
+            };
+            power(a).total_cmp(&power(b))
+        })
+        .unwrap()
+}
+
+#[test]
+fn the_tone_player_sounds_the_note_the_switches_choose() {
+    // tests/board_designs/tones: A4 (switches 2-0 = 5), C5 (7) from 100 ms, the amplifier off
+    // (switch 15) from 200 ms.
+    let dir = tempfile::tempdir().unwrap();
+    let (stim, wav) = (dir.path().join("s.txt"), dir.path().join("t.wav"));
+    std::fs::write(&stim, "0 switches 8005\n100ms switches 8007\n200ms switches 0007\n").unwrap();
+    run(
+        dir.path(),
+        "tones",
+        &["--seconds", "0.3", "--stimulus", stim.to_str().unwrap(), "--audio", wav.to_str().unwrap()],
+    );
+    let (rate, x) = wav_samples(&std::fs::read(&wav).unwrap());
+    assert_eq!((rate, x.len()), (48_000, 14_400));
+    let ms = |m: usize| m * 48;
+    assert_eq!(strongest(&x[ms(20)..ms(95)], rate, 200, 1000), 440);
+    assert_eq!(strongest(&x[ms(120)..ms(195)], rate, 200, 1000), 523);
+    // Loud while on, silent (the coupling's decay aside) once off.
+    let peak = |s: &[i16]| s.iter().map(|v| v.unsigned_abs()).max().unwrap();
+    assert!(peak(&x[ms(20)..ms(95)]) > 8000, "{}", peak(&x[ms(20)..ms(95)]));
+    assert!(peak(&x[ms(250)..]) < 800, "{}", peak(&x[ms(250)..]));
+}
+
 #[test]
 fn peripherals_the_design_lacks_are_one_line_each() {
     let dir = tempfile::tempdir().unwrap();

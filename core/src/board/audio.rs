@@ -109,15 +109,13 @@ impl Audio {
         self.heard
     }
 
-    /// The samples as a mono 16-bit WAV file: each sample's deviation from the run's mean
-    /// (the board's output is AC-coupled), full scale at a line that swings 0 to 1.
+    /// The samples as a mono 16-bit WAV file, AC-coupled as the board's output is (a
+    /// first-order high-pass at about 20 Hz takes the line's average away), full scale at a
+    /// line that swings 0 to 1.
     pub fn wav(&self) -> Vec<u8> {
-        let s = &self.samples;
-        let mean = if s.is_empty() { 0.0 } else { s.iter().map(|&v| v as f64).sum::<f64>() / s.len() as f64 };
-        let mut pcm = Vec::with_capacity(s.len() * 2);
-        for &v in s {
-            let x = ((v as f64 - mean) * 2.0 * 32767.0).round().clamp(-32768.0, 32767.0) as i16;
-            pcm.extend_from_slice(&x.to_le_bytes());
+        let mut pcm = Vec::with_capacity(self.samples.len() * 2);
+        for x in ac_coupled(&self.samples) {
+            pcm.extend_from_slice(&((x * 32767.0).round().clamp(-32768.0, 32767.0) as i16).to_le_bytes());
         }
         let mut w = Vec::with_capacity(44 + pcm.len());
         w.extend_from_slice(b"RIFF");
@@ -135,6 +133,21 @@ impl Audio {
         w.extend_from_slice(&pcm);
         w
     }
+}
+
+/// `samples` with their slow average taken away (a one-pole DC blocker, as the board's
+/// coupling capacitor does), from rest.
+pub fn ac_coupled(samples: &[f32]) -> Vec<f32> {
+    const POLE: f32 = 0.9974; // about 20 Hz at 48 kHz
+    let (mut last_in, mut last_out) = (samples.first().copied().unwrap_or(0.0), 0.0f32);
+    samples
+        .iter()
+        .map(|&x| {
+            last_out = x - last_in + POLE * last_out;
+            last_in = x;
+            last_out
+        })
+        .collect()
 }
 
 /// The strongest frequency of `samples` at `rate` between `lo` and `hi` Hz (1 Hz steps, the

@@ -323,3 +323,98 @@ fn the_page_plays_a_game_without_a_bot() {
     let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
     std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-game-page.png"), &shot).unwrap();
 }
+
+/// The peripherals' panels of the page as it shows them.
+fn devices(tab: &Tab) -> Value {
+    let v = tab
+        .evaluate(
+            r#"JSON.stringify({
+                 panels: ["kbd", "uart", "tilt", "sound"].filter((id) => !document.getElementById(id).hidden),
+                 console: document.getElementById("console-out").textContent,
+                 baud: document.getElementById("baud").textContent,
+                 tilt: document.getElementById("tilt-now").textContent,
+                 sound: { samples: window.botsimSound.samples, peak: window.botsimSound.peak },
+                 focused: document.activeElement === document.getElementById("board") })"#,
+            false,
+        )
+        .unwrap()
+        .value
+        .unwrap();
+    serde_json::from_str(v.as_str().unwrap()).unwrap()
+}
+
+/// Wait until the peripherals' panels show what `want` looks for.
+fn devices_until(tab: &Tab, what: &str, mut want: impl FnMut(&Value) -> bool) -> Value {
+    let start = Instant::now();
+    loop {
+        let d = devices(tab);
+        if want(&d) {
+            return d;
+        }
+        assert!(start.elapsed() < BUDGET, "the page never showed {what}: {d}");
+        std::thread::sleep(Duration::from_millis(100));
+    }
+}
+
+/// A final project's console in the page (tests/board_designs/console): the greeting in the
+/// console with its measured rate, a line typed into it echoed, and keys typed on the board
+/// (it has the focus) reaching the design's keyboard: its LEDs show the scan codes.
+#[test]
+fn the_page_types_on_the_console_and_the_keyboard() {
+    let Some(chromium) = chromium() else { return };
+    let live = Live::start(&["tests/board_designs/console", "--speed", "max"]);
+    let (_browser, tab) = open(chromium, &live.url);
+    until(&tab, "the connection", |p| p["status"] == "live");
+    let d = devices_until(&tab, "the greeting", |d| d["console"] == "botsim console\n");
+    assert_eq!(d["panels"], serde_json::json!(["kbd", "uart"]));
+    assert_eq!(d["baud"], "USB-UART, 115200 baud");
+    tab.find_element("#console-in").unwrap().click().unwrap();
+    tab.type_str("echo me").unwrap().press_key("Enter").unwrap();
+    devices_until(&tab, "the echo", |d| d["console"] == "botsim console\necho me\n");
+    // The board focused (a click on it), then keys: A, then the up arrow (E0 75).
+    tab.find_element("#board").unwrap().click().unwrap();
+    devices_until(&tab, "the board focused", |d| d["focused"] == true);
+    key(&tab, "KeyA", 65, true);
+    until(&tab, "A's make code", |p| p["leds"] == 0x1C);
+    key(&tab, "KeyA", 65, false);
+    until(&tab, "A's break code", |p| p["leds"] == 0xF01C);
+    key(&tab, "ArrowUp", 38, true);
+    until(&tab, "the up arrow's make code", |p| p["leds"] == 0xE075);
+    key(&tab, "ArrowUp", 38, false);
+    until(&tab, "two keys counted", |p| p["leds"] == 0xF075 && p["lit"][0] == 0x5B);
+    let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
+    std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-console-page.png"), &shot).unwrap();
+}
+
+/// The tilt pad tilts the board (tests/board_designs/tilt shows the accelerometer's x and y on
+/// its LEDs), and the tone player's sound arrives as samples the page plays (sound on).
+#[test]
+fn the_page_tilts_the_board_and_plays_its_sound() {
+    let Some(chromium) = chromium() else { return };
+    let live = Live::start(&["tests/board_designs/tilt", "--speed", "1"]);
+    let (_browser, tab) = open(chromium.clone(), &live.url);
+    until(&tab, "flat: x and y 0", |p| p["status"] == "live");
+    assert_eq!(devices(&tab)["panels"], serde_json::json!(["tilt"]));
+    // Drag to the pad's right edge, half way up: x 1 g (LEDs 15-8 3E), y 0.
+    let pad = tab.find_element("#tilt-pad").unwrap().get_box_model().unwrap();
+    let (cx, cy) = (
+        (pad.content.top_left.x + pad.content.top_right.x) / 2.0,
+        (pad.content.top_left.y + pad.content.bottom_left.y) / 2.0,
+    );
+    let r = (pad.content.top_right.x - pad.content.top_left.x) / 2.0 - 10.0;
+    mouse(&tab, Input::DispatchMouseEventTypeOption::MousePressed, cx + r, cy);
+    mouse(&tab, Input::DispatchMouseEventTypeOption::MouseReleased, cx + r, cy);
+    devices_until(&tab, "x 1 g", |d| d["tilt"] == "x 1.00 g, y 0.00 g, z 0.00 g");
+    until(&tab, "x 1 g on the LEDs", |p| p["leds"] == 0x3E00);
+    drop(tab);
+    drop(_browser);
+    drop(live);
+
+    let live = Live::start(&["tests/board_designs/tones", "--speed", "1", "--switches", "8005"]);
+    let (_browser, tab) = open(chromium, &live.url);
+    until(&tab, "the connection", |p| p["status"] == "live");
+    assert_eq!(devices(&tab)["panels"], serde_json::json!(["sound"]));
+    tab.find_element("#mute").unwrap().click().unwrap();
+    let d = devices_until(&tab, "a second of sound", |d| d["sound"]["samples"].as_u64() > Some(48_000));
+    assert!(d["sound"]["peak"].as_f64() > Some(0.2), "{d}");
+}

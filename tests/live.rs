@@ -444,3 +444,86 @@ fn a_game_without_a_bot_plays_live_its_frames_following_the_animation() {
     let t1 = stepped["time_ps"].as_u64().unwrap();
     assert!((50_000_000_000..=84_000_000_000).contains(&(t1 - t0)), "stepped {} ps", t1 - t0);
 }
+
+/// A final project's peripherals over the WebSocket (tests/board_designs/console): the
+/// design's greeting reaches the page as UART log entries (its rate measured), a line typed
+/// comes back echoed, keys pressed and released reach the design's keyboard as scan codes
+/// (its LEDs show the last two), an unknown key and a tilt the board cannot measure are
+/// answered with one line each, and the session's inputs replay exactly without --live.
+#[test]
+fn the_console_plays_live_keys_and_uart_and_replays_exactly() {
+    let dir = tempfile::tempdir().unwrap();
+    let record = dir.path().join("session.txt");
+    let console = common::root().join("tests/board_designs/console");
+    let mut live = Live::start(&[console.to_str().unwrap(), "--speed", "max", "--record", record.to_str().unwrap()]);
+    let mut a = live.client("/");
+    let hello = a.next(BUDGET).unwrap();
+    assert_eq!(hello["peripherals"], json!({"uart": true, "keyboard": true, "accelerometer": false, "audio": false}));
+    let mut heard = String::new();
+    let listen = |v: &Value, heard: &mut String| {
+        for e in v["entries"].as_array().into_iter().flatten() {
+            if e["kind"] == "uart" {
+                heard.push_str(e["text"].as_str().unwrap());
+                assert_eq!(e["baud"], 115_200, "{e}");
+            }
+        }
+    };
+    a.until("the greeting", |v| {
+        listen(v, &mut heard);
+        heard.contains("botsim console\r\n")
+    });
+    a.send(json!({"type": "uart", "text": "live\r"}));
+    a.until("the echo", |v| {
+        listen(v, &mut heard);
+        heard.ends_with("live\r")
+    });
+    assert_eq!(heard, "botsim console\r\nlive\r");
+    a.send(json!({"type": "key", "code": "KeyZ", "down": true}));
+    a.log_entry("the key pressed", |e| e["kind"] == "input" && e["key"] == "KeyZ");
+    a.state("the make code on the LEDs", |s| s["leds"].as_u64() == Some(0x001A));
+    a.send(json!({"type": "key", "code": "KeyZ", "down": false}));
+    a.state("F0 then the code again", |s| s["leds"].as_u64() == Some(0xF01A));
+    a.state("one key on the display", |s| s["text"] == "    0001");
+    a.send(json!({"type": "key", "code": "Hyper", "down": true}));
+    let e = a.until("the refusal", |v| v["type"] == "error");
+    assert!(e["message"].as_str().unwrap().contains("unknown key `Hyper`"), "{e}");
+    a.send(json!({"type": "stop"}));
+    while let Some(v) = a.next(Duration::from_millis(500)) {
+        if v["type"] == "closed" {
+            break;
+        }
+    }
+    assert!(live.wait().success());
+    let text = std::fs::read_to_string(&record).unwrap();
+    assert!(text.contains("uart \"live\\r\"") && text.contains("key KeyZ"), "{text}");
+    // Replayed to 20 ms after the last input (a key's release: its time and how long it was
+    // held): the same bytes on the UART, the same keys on the LEDs.
+    let cycles = |w: Option<&str>| w.and_then(|w| w.strip_suffix('c')?.parse::<u64>().ok());
+    let last = text
+        .lines()
+        .filter_map(|l| {
+            let w: Vec<&str> = l.split_whitespace().collect();
+            let held = if w.get(1) == Some(&"key") { cycles(w.get(3).copied()) } else { Some(0) };
+            Some(cycles(w.first().copied())? + held?)
+        })
+        .max();
+    let seconds = format!("{}", last.unwrap() as f64 * 1e-8 + 0.02);
+    let uart = dir.path().join("u.bin");
+    let o = common::board_in(
+        &common::root(),
+        &[
+            console.to_str().unwrap(),
+            "--stimulus",
+            record.to_str().unwrap(),
+            "--seconds",
+            &seconds,
+            "--uart",
+            uart.to_str().unwrap(),
+            "--json",
+        ],
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert_eq!(std::fs::read(&uart).unwrap(), b"botsim console\r\nlive\r");
+    let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!((v["leds"].as_u64(), v["display"].as_str()), (Some(0xF01A), Some("    0001")), "{v}");
+}

@@ -146,8 +146,21 @@ const keyDrive = { ArrowUp: 0x33, ArrowDown: 0x22, ArrowLeft: 0x23, ArrowRight: 
 let driveKey = null;
 
 const keyButtons = { ArrowUp: "btnU", ArrowDown: "btnD", ArrowLeft: "btnL", ArrowRight: "btnR", Enter: "btnC", r: "btnCpuReset", R: "btnCpuReset" };
+// A design with a keyboard: keys typed on the board (it has the focus) are its keyboard's
+// (scan codes by the key's place, KeyboardEvent.code); the buttons are clicked.
+let peripherals = {};
+const keysDown = new Set();
+function typing(e) { return peripherals.keyboard && document.activeElement === board; }
 window.addEventListener("keydown", (e) => {
-  if (e.target.tagName === "SELECT") return;
+  if (e.target.tagName === "SELECT" || e.target.tagName === "INPUT") return;
+  if (typing(e)) {
+    e.preventDefault();
+    if (!e.repeat && e.code && !keysDown.has(e.code)) {
+      keysDown.add(e.code);
+      send({ type: "key", code: e.code, down: true });
+    }
+    return;
+  }
   if (mode === "bot") {
     if (e.key in keyDrive) {
       e.preventDefault();
@@ -161,6 +174,13 @@ window.addEventListener("keydown", (e) => {
   if (e.key === "n" || e.key === "N") send({ type: "step" });
 });
 window.addEventListener("keyup", (e) => {
+  if (keysDown.has(e.code)) {
+    e.preventDefault();
+    keysDown.delete(e.code);
+    send({ type: "key", code: e.code, down: false });
+    return;
+  }
+  if (e.target.tagName === "INPUT") return;
   if (mode === "bot") {
     if (e.key === driveKey) { e.preventDefault(); driveKey = null; setMotors(0); }
     return;
@@ -168,6 +188,100 @@ window.addEventListener("keyup", (e) => {
   const b = keyButtons[e.key];
   if (b) { e.preventDefault(); press(b, false); }
 });
+
+// Keys held when the board loses the focus are released.
+board.addEventListener("blur", () => {
+  for (const code of keysDown) send({ type: "key", code: code, down: false });
+  keysDown.clear();
+});
+board.addEventListener("mousedown", () => board.focus());
+
+// ---- The console (USB-UART) -------------------------------------------------------------
+$("console-form").addEventListener("submit", (e) => {
+  e.preventDefault();
+  const text = $("console-in").value + "\r";
+  $("console-in").value = "";
+  send({ type: "uart", text: text });
+});
+function consoleText(text, baud) {
+  const out = $("console-out");
+  // A terminal: CR LF and lone CR end a line.
+  out.textContent += text.replace(/\r\n?/g, "\n");
+  out.scrollTop = out.scrollHeight;
+  if (baud) $("baud").textContent = "USB-UART, " + baud + " baud";
+}
+
+// ---- The tilt (the accelerometer): sliders, or drag on the pad (x right, y up; z from
+// them, as gravity is 1 g) ------------------------------------------------------------------
+const tilt = { x: 0, y: 0, z: 1 };
+let tiltSent = 0, tiltTimer = null;
+function sendTilt() {
+  const now = performance.now();
+  clearTimeout(tiltTimer);
+  if (now - tiltSent < 50) { tiltTimer = setTimeout(sendTilt, 50); return; }
+  tiltSent = now;
+  send({ type: "tilt", x: tilt.x, y: tilt.y, z: tilt.z });
+}
+function showTilt() {
+  for (const a of ["x", "y", "z"]) $("tilt-" + a).value = tilt[a];
+  $("tilt-now").textContent = `x ${tilt.x.toFixed(2)} g, y ${tilt.y.toFixed(2)} g, z ${tilt.z.toFixed(2)} g`;
+  const c = $("tilt-pad"), g = c.getContext("2d"), r = c.width / 2;
+  g.clearRect(0, 0, c.width, c.height);
+  g.strokeStyle = "#3a434e";
+  g.beginPath(); g.arc(r, r, r - 2, 0, 2 * Math.PI); g.moveTo(r, 4); g.lineTo(r, c.height - 4); g.moveTo(4, r); g.lineTo(c.width - 4, r); g.stroke();
+  g.fillStyle = "#4fb3ff";
+  g.beginPath(); g.arc(r + tilt.x * (r - 10), r - tilt.y * (r - 10), 7, 0, 2 * Math.PI); g.fill();
+}
+for (const a of ["x", "y", "z"]) {
+  $("tilt-" + a).addEventListener("input", (e) => { tilt[a] = Number(e.target.value); showTilt(); sendTilt(); });
+}
+$("tilt-flat").addEventListener("click", () => { Object.assign(tilt, { x: 0, y: 0, z: 1 }); showTilt(); sendTilt(); });
+function padTilt(e) {
+  const c = $("tilt-pad"), rect = c.getBoundingClientRect(), r = rect.width / 2;
+  let x = (e.clientX - rect.left - r) / (r - 10), y = -(e.clientY - rect.top - r) / (r - 10);
+  const len = Math.hypot(x, y);
+  if (len > 1) { x /= len; y /= len; }
+  tilt.x = Math.round(x * 100) / 100;
+  tilt.y = Math.round(y * 100) / 100;
+  tilt.z = Math.round(Math.sqrt(Math.max(0, 1 - tilt.x * tilt.x - tilt.y * tilt.y)) * 100) / 100;
+  showTilt();
+  sendTilt();
+}
+$("tilt-pad").addEventListener("pointerdown", (e) => { e.target.setPointerCapture(e.pointerId); padTilt(e); });
+$("tilt-pad").addEventListener("pointermove", (e) => { if (e.buttons) padTilt(e); });
+
+// ---- The sound: the board's ampPWM averaged into 48 kHz samples by the server, AC-coupled
+// here (as the board's output is) and played through Web Audio ---------------------------
+const sound = { ctx: null, on: false, next: 0, lastIn: null, lastOut: 0, samples: 0, peak: 0 };
+window.botsimSound = sound; // what the page computed, for tests
+$("mute").addEventListener("click", () => {
+  sound.on = !sound.on;
+  if (sound.on && !sound.ctx) sound.ctx = new AudioContext();
+  if (sound.ctx) (sound.on ? sound.ctx.resume() : sound.ctx.suspend());
+  $("mute").textContent = sound.on ? "Mute" : "Sound on";
+  $("sound-now").textContent = sound.on ? "playing" : "muted";
+});
+function playSamples(rate, bytes) {
+  const x = new Float32Array(bytes.length);
+  for (let i = 0; i < bytes.length; i++) {
+    const v = bytes[i] / 255;
+    if (sound.lastIn === null) sound.lastIn = v;
+    sound.lastOut = v - sound.lastIn + 0.9974 * sound.lastOut;
+    sound.lastIn = v;
+    x[i] = sound.lastOut;
+    sound.peak = Math.max(sound.peak, Math.abs(x[i]));
+  }
+  sound.samples += x.length;
+  if (!sound.on || !sound.ctx) return;
+  const buf = sound.ctx.createBuffer(1, x.length, rate);
+  buf.copyToChannel(x, 0);
+  const src = sound.ctx.createBufferSource();
+  src.buffer = buf;
+  src.connect(sound.ctx.destination);
+  const t = Math.max(sound.next, sound.ctx.currentTime + 0.05);
+  src.start(t);
+  sound.next = t + buf.duration;
+}
 
 // ---- Controls --------------------------------------------------------------------------
 function toggleRun() { send({ type: state && state.running ? "pause" : "run" }); }
@@ -335,11 +449,24 @@ function onMessage(ev) {
       $("drive").hidden = mode !== "bot";
       $("monitor").hidden = mode === "bot";
       if (m.vga === false) $("novga").textContent = "this design has no VGA pins";
+      // A design with no VGA and no bot: nothing on the right but its peripherals' panels.
+      if (m.vga === false && !m.world && mode === "board") $("monitor").hidden = true;
       // A board without a bot (a final project): no world, no registers; Step runs 50 ms.
       const alone = mode === "board" && !m.world;
       $("worldbox").hidden = alone;
       $("regs").hidden = alone;
       if (alone) $("step").title = "Run 50 ms of board time (and draw the frame after it), then pause (N)";
+      // The peripherals the design's pins reach.
+      peripherals = m.peripherals || {};
+      $("kbd").hidden = !peripherals.keyboard;
+      $("uart").hidden = !peripherals.uart;
+      $("tilt").hidden = !peripherals.accelerometer;
+      $("sound").hidden = !peripherals.audio;
+      $("devices").hidden = !(peripherals.keyboard || peripherals.uart || peripherals.accelerometer || peripherals.audio);
+      if (peripherals.keyboard) {
+        $("board-hint").textContent = "Click the board and type: keys go to the design's keyboard. Buttons are pressed while the mouse is down (shift-click holds one down).";
+      }
+      showTilt();
       if (mode === "bot") {
         $("save").textContent = "Save motors";
         $("save").title = "Download the motors so far as a --motors script";
@@ -352,7 +479,11 @@ function onMessage(ev) {
       break;
     case "state": showState(m); break;
     case "log":
-      for (const e of m.entries) if (e.kind === "sample") path.push([e.x, e.y]);
+      for (const e of m.entries) {
+        if (e.kind === "sample") path.push([e.x, e.y]);
+        else if (e.kind === "uart") consoleText(e.text, e.baud);
+        else if (e.kind === "audio") playSamples(e.rate, e.samples);
+      }
       drawWorld();
       break;
     case "frame": pendingFrame = m; break;

@@ -38,7 +38,7 @@ pub fn read(csv: &str) -> Vec<(u64, [bool; 10])> {
 pub fn changes(rows: &[(u64, [bool; 10])], line: usize) -> Vec<(u64, bool)> {
     let mut out: Vec<(u64, bool)> = Vec::new();
     for &(t, v) in rows {
-        if out.last().is_none_or(|&(_, l)| l != v[line]) {
+        if out.last().map_or(true, |&(_, l)| l != v[line]) {
             out.push((t, v[line]));
         }
     }
@@ -47,7 +47,7 @@ pub fn changes(rows: &[(u64, [bool; 10])], line: usize) -> Vec<(u64, bool)> {
 
 /// The level of a line at `t` from its changes.
 pub fn level_at(changes: &[(u64, bool)], t: u64) -> bool {
-    changes.iter().take_while(|c| c.0 <= t).last().is_none_or(|c| c.1)
+    changes.iter().take_while(|c| c.0 <= t).last().map_or(true, |c| c.1)
 }
 
 /// The bytes of a UART line (8N1 at `baud`). Every change within a frame must fall on a bit

@@ -135,7 +135,7 @@ impl UartLine {
             // The level at the middle of bit k.
             let at = |k: u32| {
                 let t = t0 + ((k as f64 + 0.5) * bit) as u64;
-                self.edges.iter().take_while(|e| e.0 <= t).last().is_none_or(|e| e.1)
+                self.edges.iter().take_while(|e| e.0 <= t).last().map_or(true, |e| e.1)
             };
             let byte = (0..8).fold(0u8, |b, k| b | (at(k + 1) as u8) << k);
             let framed = at(9) && !at(0);
@@ -143,7 +143,7 @@ impl UartLine {
             // The next frame starts at a falling edge after this one's stop bit began.
             let stop = t0 + (9.0 * bit) as u64;
             let keep = self.edges.iter().position(|e| e.0 > stop).unwrap_or(self.edges.len());
-            let level_then = self.edges[..keep].last().is_none_or(|e| e.1);
+            let level_then = self.edges[..keep].last().map_or(true, |e| e.1);
             self.edges.drain(..keep);
             if !level_then {
                 // Still low at the stop bit (a break, or another rate): the next frame

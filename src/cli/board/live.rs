@@ -461,7 +461,7 @@ impl Board {
     /// (the UART's rate, once measured, is the host's too).
     fn feed(&mut self) {
         let t = self.model.time_ps();
-        if self.feed_at.is_none_or(|f| f <= t) {
+        if self.feed_at.map_or(true, |f| f <= t) {
             let model = &mut self.model;
             self.feed_at = self.feeder.feed(t, |d, bytes| model.push(d, bytes));
         }

@@ -98,7 +98,8 @@ fn peripheral_options(a: &Args, s: &Stimulus, plan: &Plan) -> Result<(), String>
     if !s.uart.is_empty() && !has(Role::UartRx) {
         return Err(lacks("the stimulus sends text to the USB-UART", "RsRx (UART_TXD_IN) pin"));
     }
-    if !s.keys.is_empty() && !(has(Role::Ps2Clock) && has(Role::Ps2Data)) {
+    let keyboard = has(Role::Ps2Clock) && has(Role::Ps2Data);
+    if !s.keys.is_empty() && !keyboard {
         return Err(lacks("the stimulus types on the keyboard", "PS2_CLK and PS2_DATA pins"));
     }
     if (!s.tilts.is_empty() || a.tilt.is_some()) && !acl {

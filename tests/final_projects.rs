@@ -75,9 +75,17 @@ fn a_game_without_a_bot_runs_every_led_write_and_the_display_as_its_program_says
 fn a_held_button_steers_the_box_and_the_fast_forward_equals_every_edge() {
     let dir = tempfile::tempdir().unwrap();
     let press = ["--seconds", "0.6", "--press", "btnL@100+400"];
-    let fast = run(dir.path(), &[&press[..], &["--display", "fast.txt"]].concat());
-    let every = run(dir.path(), &[&press[..], &["--display", "every.txt", "--no-fast-forward"]].concat());
-    let read = |f: &str| std::fs::read_to_string(dir.path().join(f)).unwrap();
+    held_left_steers(dir.path(), &press);
+    // The keyboard's left arrow held as long (E0 6B, then E0 F0 6B) steers it the same way.
+    std::fs::write(dir.path().join("key.txt"), "100ms key ArrowLeft 400ms\n").unwrap();
+    held_left_steers(dir.path(), &["--seconds", "0.6", "--stimulus", "key.txt"]);
+}
+
+/// The box steered by the left button or arrow key held from 100 ms for 400 ms (`press`).
+fn held_left_steers(dir: &Path, press: &[&str]) {
+    let fast = run(dir, &[press, &["--display", "fast.txt"]].concat());
+    let every = run(dir, &[press, &["--display", "every.txt", "--no-fast-forward"]].concat());
+    let read = |f: &str| std::fs::read_to_string(dir.join(f)).unwrap();
     assert!(read("fast.txt") == read("every.txt"), "the display logs differ");
     assert_eq!(every["fast_forward"]["skips"], 0);
     assert!(fast["fast_forward"]["skips"].as_u64() > Some(0), "{fast}");

@@ -3,8 +3,9 @@
 // 16 x 16 box bounces around the 640 x 480 screen on its own, one step of 4 pixels a frame
 // in x and in y; the buttons set its direction (left, right, up, down); each bounce counts
 // on the seven-segment display (decimal), and the LEDs show its place (x on 7-0, y on
-// 15-8). The CPU is interrupted at each frame's vertical sync and waits on a scratchpad
-// semaphore, as the course's Project 2 firmware does. The course's debounce and
+// 15-8); the keyboard's arrow keys held are the same as the buttons (arrows.v). The CPU is
+// interrupted at each frame's vertical sync and waits on a scratchpad semaphore, as the
+// course's Project 2 firmware does. The course's debounce and
 // sevensegment are not committed (botsim brings them); a 25 MHz pixel clock from an MMCM.
 `timescale 1ns / 1ps
 module nexys4fpga #(
@@ -22,7 +23,9 @@ module nexys4fpga #(
     output reg  [ 3:0] vgaGreen = 4'd0,
     output reg  [ 3:0] vgaBlue = 4'd0,
     output reg         Hsync = 1'b1,
-    output reg         Vsync = 1'b1
+    output reg         Vsync = 1'b1,
+    input  wire        PS2Clk,
+    input  wire        PS2Data
 );
     // The course's debounce (board.md 2.1): bit 0 the CPU reset button (active low).
     wire [ 5:0] db_pbtns;
@@ -50,13 +53,17 @@ module nexys4fpga #(
     );
     game GAMEPGM (.enable(bram_enable), .address(address), .instruction(instruction), .rdl(rdl), .clk(clk));
 
+    // The keyboard's arrows, held: left, up, right, down.
+    wire [3:0] arrow;
+    arrows KEYS (.clk(clk), .ps2_clk(PS2Clk), .ps2_data(PS2Data), .held(arrow));
+
     // Its ports (the course's numbers where it has them).
     reg [ 7:0] box_x = 8'd0, box_y = 8'd0;
     reg [15:0] leds = 16'd0;
     reg [ 4:0] dig0 = 5'd0, dig1 = 5'd0, dig2 = 5'd0, dig3 = 5'd0;
     always @(posedge clk) begin
         case (port_id)
-            8'h00: in_port <= {3'b000, db_pbtns[5:1]};
+            8'h00: in_port <= {3'b000, db_pbtns[5:1] | {1'b0, arrow}};
             8'h01: in_port <= db_sw[7:0];
             default: in_port <= 8'h00;
         endcase

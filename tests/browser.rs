@@ -382,6 +382,7 @@ fn the_page_types_on_the_console_and_the_keyboard() {
     until(&tab, "the up arrow's make code", |p| p["leds"] == 0xE075);
     key(&tab, "ArrowUp", 38, false);
     until(&tab, "two keys counted", |p| p["leds"] == 0xF075 && p["lit"][0] == 0x5B);
+    tab.evaluate("window.scrollTo(0, 0)", false).unwrap();
     let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
     std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-console-page.png"), &shot).unwrap();
 }

@@ -2,7 +2,8 @@
 //! the `sh` blocks are read, and each `botsim ...` (or `cargo run --release -- ...`) command
 //! runs in a folder holding `my_clone`, a repository of the guide's shape (a Vivado project
 //! with a VGA display and its IP as configurations: tests/board_designs/repos/vivado_ip),
-//! `my_game`, a final project without a bot (tests/board_designs/game), and the examples;
+//! `my_game`, a final project without a bot (tests/board_designs/game), `my_console`, one with
+//! the board's UART and keyboard (tests/board_designs/console), and the examples;
 //! the README's own picture is what its first command draws.
 
 use std::path::Path;
@@ -76,6 +77,7 @@ fn workspace() -> (tempfile::TempDir, tempfile::TempDir) {
     std::os::unix::fs::symlink(clone.path(), dir.path().join("my_clone")).unwrap();
     std::os::unix::fs::symlink(root().join("examples"), dir.path().join("examples")).unwrap();
     std::os::unix::fs::symlink(root().join(common::game::GAME), dir.path().join("my_game")).unwrap();
+    std::os::unix::fs::symlink(root().join("tests/board_designs/console"), dir.path().join("my_console")).unwrap();
     (dir, clone)
 }
 
@@ -123,6 +125,7 @@ fn the_guides_commands_run_on_a_repository_of_its_shape() {
         "firmware.txt",
         "firmware.profile.txt",
         "game_frames/frame_00005.png",
+        "console.txt",
     ] {
         assert!(d.join(f).exists(), "{f}");
     }

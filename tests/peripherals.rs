@@ -45,15 +45,15 @@ fn codes_shown(leds: &[u16]) -> Vec<u8> {
 }
 
 const GREETING: &str = "botsim console\r\n";
-const TYPED: &str = "3ms uart \"hi!\\r\"\n5ms key KeyA 3ms\n10ms key ArrowUp 3ms\n";
+/// The scan codes of tests/board_designs/console/typing.txt (A, then the up arrow; it sends
+/// "hi!\r" to the UART first).
 const CODES: [u8; 8] = [0x1C, 0xF0, 0x1C, 0xE0, 0x75, 0xE0, 0xF0, 0x75];
 
 #[test]
 fn the_console_greets_echoes_and_counts_the_keys_at_the_pins() {
     let dir = tempfile::tempdir().unwrap();
     let p = |n: &str| dir.path().join(n);
-    let typed = p("typed.txt");
-    std::fs::write(&typed, TYPED).unwrap();
+    let typed = design("console/typing.txt");
     let mut logs = Vec::new();
     for ff in [true, false] {
         let (uart, display, csv) = (p(&format!("{ff}.bin")), p(&format!("{ff}.txt")), p(&format!("{ff}.csv")));

@@ -416,3 +416,44 @@ fn a_program_that_does_not_assemble_shows_its_errors_and_counts_its_warnings() {
     assert!(!e.contains("warning:"), "{e}");
     assert!(e.contains("warnings)") || e.contains("warning)"), "{e}");
 }
+
+/// A final project's clone as committed (tests/board_designs/repos/final_project: a Vivado
+/// project for the Nexys4 DDR, no bot, two PicoBlazes, the board's UART, keyboard,
+/// accelerometer and audio on the DDR's pin names, an older top in backup/): `botsim board .`
+/// finds the project, says each peripheral, and the design hears the keys, the text and the
+/// tilt, and plays its note.
+#[test]
+fn a_final_projects_clone_runs_with_the_boards_peripherals() {
+    let clone = clone_of("final_project");
+    let c = clone.path();
+    std::fs::write(c.join("typing.txt"), "0 switches 8005\n3ms uart \"hey\\r\"\n5ms key KeyA 3ms\n").unwrap();
+    let args = ["--seconds", "0.03", "--stimulus", "typing.txt", "--tilt", "-0.5,0,0.87", "--uart", "u.bin"];
+    let (s, said) = run(c, &[&["."], &args[..], &["--audio", "a.wav"]].concat());
+    assert_eq!(s["top"], "final_top", "{said}");
+    assert!(said.contains("botsim board: the project labyrinth/labyrinth.xpr"), "{said}");
+    assert!(said.contains("no bot (the board alone)"), "{said}");
+    for line in [
+        "the board's USB-UART: UART_TXD_IN, UART_RXD_OUT",
+        "the board's keyboard (PS/2): PS2_CLK, PS2_DATA",
+        "the board's accelerometer (ADXL362): ACL_SCLK, ACL_MOSI, ACL_MISO, ACL_CSN",
+        "the board's audio: AUD_PWM, AUD_SD",
+    ] {
+        assert!(said.contains(line), "{line}: {said}");
+    }
+    assert!(
+        said.contains(
+            "took labyrinth/labyrinth.srcs/sources_1/new/final_top.v:8 (the project's) over backup/final_top_old.v:8"
+        ),
+        "{said}"
+    );
+    assert_eq!(std::fs::read(c.join("u.bin")).unwrap(), b"botsim console\r\nhey\r");
+    // LEDs 15-8: x = -0.5 g (-500 mg: 8-bit E0 at +-2 g); 7-0: A's break code, then A.
+    assert_eq!(s["leds"].as_u64(), Some(0xE01C), "{s}");
+    assert_eq!(s["display"], "    0001", "{s}");
+    let wav = std::fs::read(c.join("a.wav")).unwrap();
+    assert_eq!(wav.len(), 44 + 2 * 48 * 30);
+    // The note: a square wave of 440 Hz changes sign 880 times a second (26 in 30 ms).
+    let x: Vec<i16> = wav[44..].chunks(2).map(|b| i16::from_le_bytes([b[0], b[1]])).collect();
+    let crossings = x[48 * 2..].windows(2).filter(|w| (w[0] < 0) != (w[1] < 0)).count();
+    assert!((23..=26).contains(&crossings), "{crossings} sign changes");
+}

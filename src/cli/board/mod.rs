@@ -81,7 +81,7 @@ pub struct Args {
     stimulus: Option<PathBuf>,
     /// The board's tilt from power-up, in g, as its accelerometer measures it [default: 0,0,1,
     /// lying flat]
-    #[arg(long, value_name = "X,Y,Z", allow_negative_numbers = true)]
+    #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
     tilt: Option<String>,
     /// The USB-UART's rate in baud [default: measured from what the design sends, 115200
     /// before it has sent anything]

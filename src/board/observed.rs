@@ -1040,6 +1040,15 @@ mod tests {
                 "trace",
                 "eventsPending",
                 "nextTimeSlot",
+                // What the host sends the peripherals.
+                "uart_push",
+                "ps2_push",
+                "push_n",
+                "push_bytes",
+                "uart_div",
+                "tilt_x",
+                "tilt_y",
+                "tilt_z",
             ]
             .contains(&r);
             let vga = ["vga_r", "vga_g", "vga_b", "hsync", "vsync"].contains(&r);

@@ -1,8 +1,9 @@
 //! botsim's course `debounce` and `sevensegment` (rtl/board/course/) against spec board.md
-//! §2.1, clock by clock: a behavioural model of the spec's words (below, written from the
-//! spec, not from the Verilog) and the Verilog under Icarus (a four-state simulator: an
-//! uninitialised register is `x` there, and fails) see the same random inputs, and every
-//! output pin must agree at every clock.
+//! §2.1, and its Xilinx logic primitives (rtl/board/xilinx.v: LUTs, flip-flops, shift
+//! registers, the carry chain) against their library guides' descriptions, clock by clock: a
+//! behavioural model of the words (below, written from them, not from the Verilog) and the
+//! Verilog under Icarus (a four-state simulator: an uninitialised register is `x` there, and
+//! fails) see the same random inputs, and every output pin must agree at every clock.
 
 use std::process::Command;
 
@@ -121,6 +122,11 @@ impl SevenSegment {
 /// Run `tb` (a testbench module `tb` reading `in.mem`, one hex word per clock, and printing
 /// one hex line per clock) with the course file `module` under Icarus; `None` without Icarus.
 fn icarus(tb: &str, module: &str, inputs: &[String]) -> Option<Vec<String>> {
+    icarus_with(tb, &[&format!("rtl/board/course/{module}")], inputs)
+}
+
+/// The same with botsim's files `files` (paths from the repository's root).
+fn icarus_with(tb: &str, files: &[&str], inputs: &[String]) -> Option<Vec<String>> {
     if Command::new("iverilog").arg("-V").output().is_err() {
         assert!(std::env::var_os("BOTSIM_REQUIRE_TOOLS").is_none(), "iverilog is not installed (scripts/setup.sh)");
         eprintln!("note: iverilog is not installed; skipped");
@@ -135,7 +141,7 @@ fn icarus(tb: &str, module: &str, inputs: &[String]) -> Option<Vec<String>> {
         .arg(&sim)
         .args(["-s", "tb"])
         .arg(dir.path().join("tb.v"))
-        .arg(root().join("rtl/board/course").join(module))
+        .args(files.iter().map(|f| root().join(f)))
         .output()
         .unwrap();
     assert!(o.status.success(), "iverilog: {}", String::from_utf8_lossy(&o.stderr));
@@ -315,4 +321,169 @@ fn every_digit_code_shows_the_spec_glyph() {
     assert_eq!(seg_of(24) & 0x7F, !0b111_0110 & 0x7F, "H: bcefg");
     assert_eq!(seg_of(23), 0x7F, "23: blank, its point lit");
     assert_eq!(seg_of(17), 0x7F & !0b10, "17: segment b alone, point lit");
+}
+
+/// The logic primitives' inputs, bit by bit, in one word a clock.
+mod bits {
+    pub const LUT: u32 = 0; // I0-I5: 0-5
+    pub const F7: u32 = 6; // I0, I1, S: 6-8
+    pub const CI: u32 = 9;
+    pub const DI: u32 = 10; // 10-13
+    pub const S: u32 = 14; // 14-17
+    pub const CE: u32 = 18;
+    pub const D: u32 = 19;
+    pub const R: u32 = 20;
+    pub const SET: u32 = 21;
+    pub const CLR: u32 = 22;
+    pub const PRE: u32 = 23;
+    pub const A16: u32 = 24; // 24-27
+    pub const A32: u32 = 28; // 28-32
+}
+
+/// The libraries guides' words: a LUT's output is INIT's bit its inputs address (I0 the
+/// least significant; LUT6_2's O5 the lower half by I0-I4); MUXF7 and MUXCY pick I1 (CI)
+/// when S is high, XORCY is CI xor LI; CARRY4's carry into bit n is the last bit's CO
+/// (CI | CYINIT for bit 0), CO[n] that carry where S[n] else DI[n], O = S xor the carries in;
+/// FD takes D, FDRE/FDSE take D while CE with R/S over it, FDCE/FDPE likewise with CLR/PRE
+/// at once; SRL16E/SRLC32E shift D in at bit 0 while CE, Q the addressed bit, Q31 the last;
+/// every register starts at INIT.
+struct Primitives {
+    lut6: u64,
+    lut62: u64,
+    lut3: u8,
+    fd: bool,
+    fdre: bool,
+    fdse: bool,
+    fdce: bool,
+    fdpe: bool,
+    srl16: u16,
+    srl32: u32,
+}
+
+impl Primitives {
+    /// One clock: the inputs `v` set, the rising edge, the outputs then.
+    fn clock(&mut self, v: u64) -> u64 {
+        use bits::*;
+        let b = |k: u32| v >> k & 1 == 1;
+        // At the edge (the asynchronous clear and preset act as soon as they are set).
+        let (ce, d) = (b(CE), b(D));
+        self.fd = d;
+        self.fdre = if b(R) {
+            false
+        } else if ce {
+            d
+        } else {
+            self.fdre
+        };
+        self.fdse = if b(SET) {
+            true
+        } else if ce {
+            d
+        } else {
+            self.fdse
+        };
+        self.fdce = if b(CLR) {
+            false
+        } else if ce {
+            d
+        } else {
+            self.fdce
+        };
+        self.fdpe = if b(PRE) {
+            true
+        } else if ce {
+            d
+        } else {
+            self.fdpe
+        };
+        if ce {
+            self.srl16 = self.srl16 << 1 | d as u16;
+            self.srl32 = self.srl32 << 1 | d as u32;
+        }
+        // After it.
+        let i6 = v & 0x3F;
+        let lut6 = self.lut6 >> i6 & 1;
+        let (o6, o5) = (self.lut62 >> i6 & 1, self.lut62 >> (i6 & 0x1F) & 1);
+        let lut3 = (self.lut3 >> (v & 7)) as u64 & 1;
+        let f7 = if b(F7 + 2) { b(F7 + 1) } else { b(F7) } as u64;
+        let muxcy = if b(S) { b(CI) } else { b(DI) } as u64;
+        let xorcy = (b(CI) ^ b(S)) as u64;
+        let (mut carry, mut co, mut o) = (b(CI), 0u64, 0u64);
+        for n in 0..4 {
+            o |= ((b(S + n) ^ carry) as u64) << n;
+            carry = if b(S + n) { carry } else { b(DI + n) };
+            co |= (carry as u64) << n;
+        }
+        let srl16 = (self.srl16 >> (v >> A16 & 0xF)) as u64 & 1;
+        let srl32 = (self.srl32 >> (v >> A32 & 0x1F)) as u64 & 1;
+        let q31 = (self.srl32 >> 31) as u64;
+        let flops = [self.fd, self.fdre, self.fdse, self.fdce, self.fdpe]
+            .iter()
+            .enumerate()
+            .fold(0, |a, (k, f)| a | (*f as u64) << k);
+        lut6 | o6 << 1
+            | o5 << 2
+            | lut3 << 3
+            | f7 << 4
+            | muxcy << 5
+            | xorcy << 6
+            | co << 7
+            | o << 11
+            | flops << 15
+            | srl16 << 20
+            | srl32 << 21
+            | q31 << 22
+    }
+}
+
+#[test]
+fn the_xilinx_logic_primitives_follow_their_library_guides_at_every_clock() {
+    for seed in [1u64, 2, 3] {
+        let mut rng = Rng(0x9E37_79B9_7F4A_7C15 ^ seed.wrapping_mul(0x1234_5678_9ABC_DEF1));
+        let (lut6, lut62, lut3) = (rng.next(), rng.next(), rng.next() as u8);
+        let (srl16, srl32) = (rng.next() as u16, rng.next() as u32);
+        let body = format!(
+            "    wire [22:0] out;
+    LUT6 #(.INIT(64'h{lut6:016X})) L6 (.O(out[0]), .I0(in[0]), .I1(in[1]), .I2(in[2]), .I3(in[3]), .I4(in[4]), .I5(in[5]));
+    LUT6_2 #(.INIT(64'h{lut62:016X})) L62 (.O6(out[1]), .O5(out[2]), .I0(in[0]), .I1(in[1]), .I2(in[2]), .I3(in[3]), .I4(in[4]), .I5(in[5]));
+    LUT3 #(.INIT(8'h{lut3:02X})) L3 (.O(out[3]), .I0(in[0]), .I1(in[1]), .I2(in[2]));
+    MUXF7 M7 (.O(out[4]), .I0(in[6]), .I1(in[7]), .S(in[8]));
+    MUXCY MC (.O(out[5]), .CI(in[9]), .DI(in[10]), .S(in[14]));
+    XORCY XC (.O(out[6]), .CI(in[9]), .LI(in[14]));
+    CARRY4 C4 (.CO(out[10:7]), .O(out[14:11]), .CI(in[9]), .CYINIT(1'b0), .DI(in[13:10]), .S(in[17:14]));
+    FD F0 (.Q(out[15]), .C(clk), .D(in[19]));
+    FDRE F1 (.Q(out[16]), .C(clk), .CE(in[18]), .D(in[19]), .R(in[20]));
+    FDSE F2 (.Q(out[17]), .C(clk), .CE(in[18]), .D(in[19]), .S(in[21]));
+    FDCE F3 (.Q(out[18]), .C(clk), .CE(in[18]), .D(in[19]), .CLR(in[22]));
+    FDPE F4 (.Q(out[19]), .C(clk), .CE(in[18]), .D(in[19]), .PRE(in[23]));
+    SRL16E #(.INIT(16'h{srl16:04X})) S16 (.Q(out[20]), .A0(in[24]), .A1(in[25]), .A2(in[26]), .A3(in[27]), .CE(in[18]), .CLK(clk), .D(in[19]));
+    SRLC32E #(.INIT(32'h{srl32:08X})) S32 (.Q(out[21]), .Q31(out[22]), .A(in[32:28]), .CE(in[18]), .CLK(clk), .D(in[19]));
+"
+        );
+        let tb = testbench(33, &body, "", "\"%h\", out");
+        // Mostly quiet resets, so the registers hold and shift.
+        let v: Vec<u64> = (0..3000)
+            .map(|_| {
+                let mut x = rng.next() & ((1 << 33) - 1);
+                for k in [bits::R, bits::SET, bits::CLR, bits::PRE] {
+                    if rng.below(8) != 0 {
+                        x &= !(1 << k);
+                    }
+                }
+                x
+            })
+            .collect();
+        let text: Vec<String> = v.iter().map(|x| format!("{x:09X}")).collect();
+        let Some(got) = icarus_with(&tb, &["rtl/board/xilinx.v", "rtl/board/botsim_clkgen.v"], &text) else { return };
+        let mut p =
+            Primitives { lut6, lut62, lut3, fd: false, fdre: false, fdse: true, fdce: false, fdpe: true, srl16, srl32 };
+        for (k, (x, line)) in v.iter().zip(&got).enumerate() {
+            let want = p.clock(*x);
+            assert_eq!(
+                u64::from_str_radix(line.trim(), 16).ok(),
+                Some(want),
+                "seed {seed}, clock {k}: inputs {x:09X}, got {line}, want {want:06X}"
+            );
+        }
+    }
 }

@@ -186,3 +186,54 @@ fn the_uart_and_ps2_lines_idle_high_and_an_open_collector_pulls_low() {
         assert_eq!(v["leds"].as_u64(), Some(want), "switches {switches}: {v}");
     }
 }
+
+/// A block built of Xilinx primitives by hand, as the KCPSM6 package's UART macros are
+/// (tests/board_designs/primitives: an SRLC32E ring pulsing every 32 clocks steps a counter of
+/// FDREs and CARRY4s; a LUT6 and a MUXF7 of the switches): the counter steps exactly every 32
+/// clocks, the LUT and the multiplexer follow the switches, and the fast-forward (the design
+/// repeats every 8,192 clocks) records what every edge does.
+#[test]
+fn a_block_of_xilinx_primitives_runs_as_their_library_guides_say() {
+    let dir = tempfile::tempdir().unwrap();
+    let design = root().join("tests/board_designs/primitives");
+    std::fs::write(dir.path().join("s.txt"), "0 switches 003F\n300us switches 0181\n").unwrap();
+    let mut logs = Vec::new();
+    for ff in [true, false] {
+        let pins = dir.path().join(format!("{ff}.csv"));
+        let mut args = vec![design.to_str().unwrap(), "--seconds", "0.003", "--stimulus", "s.txt", "--json"];
+        args.extend(["--pins", pins.to_str().unwrap()]);
+        if !ff {
+            args.push("--no-fast-forward");
+        }
+        let o = board_in(dir.path(), &args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+        assert_eq!(v["fast_forward"]["skips"].as_u64().is_some_and(|s| s > 0), ff, "{v}");
+        logs.push(std::fs::read_to_string(&pins).unwrap());
+    }
+    assert!(logs[0] == logs[1], "the fast-forward differs from every edge");
+    let rows: Vec<(u64, u16)> = logs[0]
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            (f[0].parse().unwrap(), u16::from_str_radix(f[4], 16).unwrap())
+        })
+        .collect();
+    // The counter's steps (the first row is the board at power-up): one every 32 clocks.
+    let mut steps: Vec<(u64, u8)> = Vec::new();
+    for w in rows.windows(2) {
+        if w[1].1 as u8 != w[0].1 as u8 {
+            steps.push((w[1].0, w[1].1 as u8));
+        }
+    }
+    for w in steps.windows(2) {
+        assert_eq!((w[1].0 - w[0].0, w[1].1), (320_000, w[0].1.wrapping_add(1)), "the counter at {} ps", w[1].0);
+    }
+    for &(t, led) in &rows {
+        // Switches 5-0 all on: the LUT's bit 63; then 000001: off; MUXF7: S = 1 picks sw[7].
+        let (lut, mux) = if t < 300_000_000 { (true, false) } else { (false, true) };
+        assert_eq!((led >> 15 == 1, led >> 14 & 1 == 1), (lut, mux), "LEDs {led:04X} at {t} ps");
+    }
+    assert!(steps.len() > 9000, "{} steps", steps.len());
+}

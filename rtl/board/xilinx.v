@@ -311,3 +311,148 @@ module DCM_SP #(
     assign {PSDONE, STATUS} = 9'd0;
     wire unused_ok = &{1'b0, CLKFB, DSSEN, PSCLK, PSEN, PSINCDEC, 1'b0};
 endmodule
+
+// ---- Logic primitives (7-series and Spartan-6 libraries), as designs instantiate them by
+// hand: the KCPSM6 package's UART macros, teams' own optimised blocks. Each as its library
+// guide describes it: a LUT's output is the bit of INIT its inputs address (I0 the least
+// significant); a flip-flop takes D at C's rising edge (CE enabling it; R/S synchronous,
+// CLR/PRE asynchronous, each over CE) and starts at INIT; an SRL shifts D in at bit 0 while
+// CE and outputs the bit its address selects (Q31: the last); the wide multiplexers pick I1
+// when S is high; CARRY4 is the slice's carry chain. The IS_*_INVERTED attributes of the
+// 7-series flip-flops invert that pin.
+
+module LUT1 #(parameter [1:0] INIT = 2'h0) (output wire O, input wire I0);
+    assign O = INIT[I0];
+endmodule
+module LUT2 #(parameter [3:0] INIT = 4'h0) (output wire O, input wire I0, I1);
+    assign O = INIT[{I1, I0}];
+endmodule
+module LUT3 #(parameter [7:0] INIT = 8'h0) (output wire O, input wire I0, I1, I2);
+    assign O = INIT[{I2, I1, I0}];
+endmodule
+module LUT4 #(parameter [15:0] INIT = 16'h0) (output wire O, input wire I0, I1, I2, I3);
+    assign O = INIT[{I3, I2, I1, I0}];
+endmodule
+module LUT5 #(parameter [31:0] INIT = 32'h0) (output wire O, input wire I0, I1, I2, I3, I4);
+    assign O = INIT[{I4, I3, I2, I1, I0}];
+endmodule
+module LUT6 #(parameter [63:0] INIT = 64'h0) (output wire O, input wire I0, I1, I2, I3, I4, I5);
+    assign O = INIT[{I5, I4, I3, I2, I1, I0}];
+endmodule
+// O6 from all 64 bits; O5 from the lower 32 by I0-I4 (I5 ignored).
+module LUT6_2 #(parameter [63:0] INIT = 64'h0) (output wire O6, O5, input wire I0, I1, I2, I3, I4, I5);
+    assign O6 = INIT[{I5, I4, I3, I2, I1, I0}];
+    assign O5 = INIT[{1'b0, I4, I3, I2, I1, I0}];
+endmodule
+
+module MUXF7 (output wire O, input wire I0, I1, S);
+    assign O = S ? I1 : I0;
+endmodule
+module MUXF8 (output wire O, input wire I0, I1, S);
+    assign O = S ? I1 : I0;
+endmodule
+// Spartan-6 / Virtex-5 carry elements.
+module MUXCY (output wire O, input wire CI, DI, S);
+    assign O = S ? CI : DI;
+endmodule
+module XORCY (output wire O, input wire CI, LI);
+    assign O = CI ^ LI;
+endmodule
+// The 7-series carry chain: bit n propagates the carry where S[n] is high, else takes DI[n];
+// O[n] = S[n] xor the carry into it; the carry in is CI or CYINIT.
+module CARRY4 (output wire [3:0] CO, O, input wire CI, CYINIT, input wire [3:0] DI, S);
+    wire c0 = CI | CYINIT;
+    assign CO[0] = S[0] ? c0 : DI[0];
+    assign CO[1] = S[1] ? CO[0] : DI[1];
+    assign CO[2] = S[2] ? CO[1] : DI[2];
+    assign CO[3] = S[3] ? CO[2] : DI[3];
+    assign O = S ^ {CO[2:0], c0};
+endmodule
+
+// Flip-flops with a synchronous reset or set (R/S over CE).
+module FD #(parameter [0:0] INIT = 1'b0) (output reg Q = INIT, input wire C, D);
+    always @(posedge C) Q <= D;
+endmodule
+module FDE #(parameter [0:0] INIT = 1'b0) (output reg Q = INIT, input wire C, CE, D);
+    always @(posedge C) if (CE) Q <= D;
+endmodule
+module FDR #(parameter [0:0] INIT = 1'b0) (output reg Q = INIT, input wire C, D, R);
+    always @(posedge C) Q <= R ? 1'b0 : D;
+endmodule
+module FDS #(parameter [0:0] INIT = 1'b1) (output reg Q = INIT, input wire C, D, S);
+    always @(posedge C) Q <= S ? 1'b1 : D;
+endmodule
+module FDRE #(
+    parameter [0:0] INIT = 1'b0,
+    parameter [0:0] IS_C_INVERTED = 1'b0,
+    parameter [0:0] IS_D_INVERTED = 1'b0,
+    parameter [0:0] IS_R_INVERTED = 1'b0
+) (output reg Q = INIT, input wire C, CE, D, R);
+    wire c = C ^ IS_C_INVERTED;
+    always @(posedge c) begin
+        if (R ^ IS_R_INVERTED) Q <= 1'b0;
+        else if (CE) Q <= D ^ IS_D_INVERTED;
+    end
+endmodule
+module FDSE #(
+    parameter [0:0] INIT = 1'b1,
+    parameter [0:0] IS_C_INVERTED = 1'b0,
+    parameter [0:0] IS_D_INVERTED = 1'b0,
+    parameter [0:0] IS_S_INVERTED = 1'b0
+) (output reg Q = INIT, input wire C, CE, D, S);
+    wire c = C ^ IS_C_INVERTED;
+    always @(posedge c) begin
+        if (S ^ IS_S_INVERTED) Q <= 1'b1;
+        else if (CE) Q <= D ^ IS_D_INVERTED;
+    end
+endmodule
+// Flip-flops with an asynchronous clear or preset.
+module FDC #(parameter [0:0] INIT = 1'b0) (output reg Q = INIT, input wire C, CLR, D);
+    always @(posedge C or posedge CLR) Q <= CLR ? 1'b0 : D;
+endmodule
+module FDP #(parameter [0:0] INIT = 1'b1) (output reg Q = INIT, input wire C, D, PRE);
+    always @(posedge C or posedge PRE) Q <= PRE ? 1'b1 : D;
+endmodule
+module FDCE #(
+    parameter [0:0] INIT = 1'b0,
+    parameter [0:0] IS_C_INVERTED = 1'b0,
+    parameter [0:0] IS_CLR_INVERTED = 1'b0,
+    parameter [0:0] IS_D_INVERTED = 1'b0
+) (output reg Q = INIT, input wire C, CE, CLR, D);
+    wire c = C ^ IS_C_INVERTED, clr = CLR ^ IS_CLR_INVERTED;
+    always @(posedge c or posedge clr) begin
+        if (clr) Q <= 1'b0;
+        else if (CE) Q <= D ^ IS_D_INVERTED;
+    end
+endmodule
+module FDPE #(
+    parameter [0:0] INIT = 1'b1,
+    parameter [0:0] IS_C_INVERTED = 1'b0,
+    parameter [0:0] IS_D_INVERTED = 1'b0,
+    parameter [0:0] IS_PRE_INVERTED = 1'b0
+) (output reg Q = INIT, input wire C, CE, D, PRE);
+    wire c = C ^ IS_C_INVERTED, pre = PRE ^ IS_PRE_INVERTED;
+    always @(posedge c or posedge pre) begin
+        if (pre) Q <= 1'b1;
+        else if (CE) Q <= D ^ IS_D_INVERTED;
+    end
+endmodule
+
+// Shift registers in a LUT.
+module SRL16E #(parameter [15:0] INIT = 16'h0, parameter [0:0] IS_CLK_INVERTED = 1'b0) (
+    output wire Q, input wire A0, A1, A2, A3, CE, CLK, D
+);
+    reg [15:0] data = INIT;
+    wire c = CLK ^ IS_CLK_INVERTED;
+    always @(posedge c) if (CE) data <= {data[14:0], D};
+    assign Q = data[{A3, A2, A1, A0}];
+endmodule
+module SRLC32E #(parameter [31:0] INIT = 32'h0, parameter [0:0] IS_CLK_INVERTED = 1'b0) (
+    output wire Q, Q31, input wire [4:0] A, input wire CE, CLK, D
+);
+    reg [31:0] data = INIT;
+    wire c = CLK ^ IS_CLK_INVERTED;
+    always @(posedge c) if (CE) data <= {data[30:0], D};
+    assign Q = data[A];
+    assign Q31 = data[31];
+endmodule

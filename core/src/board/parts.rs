@@ -16,8 +16,10 @@ pub const OWN_MODULES: [(&str, &str); 5] = [
 ];
 
 /// The Xilinx primitives rtl/board/xilinx.v models, with the output ports of each in the
-/// bit order of its `BOTSIM_USED_<NAME>` mask (empty: not a clock manager).
-pub const PRIMITIVES: [(&str, &[&str]); 10] = [
+/// bit order of its `BOTSIM_USED_<NAME>` mask (empty: not a clock manager): buffers, clock
+/// managers, and the logic primitives designs instantiate by hand (the KCPSM6 package's UART
+/// macros are built of LUTs, flip-flops and shift registers).
+pub const PRIMITIVES: [(&str, &[&str]); 34] = [
     ("BUFG", &[]),
     ("BUFH", &[]),
     ("IBUF", &[]),
@@ -28,6 +30,30 @@ pub const PRIMITIVES: [(&str, &[&str]); 10] = [
     ("PLLE2_ADV", &["CLKOUT0", "CLKOUT1", "CLKOUT2", "CLKOUT3", "CLKOUT4", "CLKOUT5", "CLKOUT6", "CLKFBOUT"]),
     ("PLLE2_BASE", &["CLKOUT0", "CLKOUT1", "CLKOUT2", "CLKOUT3", "CLKOUT4", "CLKOUT5", "CLKOUT6", "CLKFBOUT"]),
     ("DCM_SP", &["CLK0", "CLK90", "CLK180", "CLK270", "CLK2X", "CLK2X180", "CLKDV", "CLKFX"]),
+    ("LUT1", &[]),
+    ("LUT2", &[]),
+    ("LUT3", &[]),
+    ("LUT4", &[]),
+    ("LUT5", &[]),
+    ("LUT6", &[]),
+    ("LUT6_2", &[]),
+    ("MUXF7", &[]),
+    ("MUXF8", &[]),
+    ("MUXCY", &[]),
+    ("XORCY", &[]),
+    ("CARRY4", &[]),
+    ("FD", &[]),
+    ("FDE", &[]),
+    ("FDR", &[]),
+    ("FDS", &[]),
+    ("FDRE", &[]),
+    ("FDSE", &[]),
+    ("FDC", &[]),
+    ("FDP", &[]),
+    ("FDCE", &[]),
+    ("FDPE", &[]),
+    ("SRL16E", &[]),
+    ("SRLC32E", &[]),
 ];
 
 /// botsim's own building blocks (rtl/board/xilinx.v, botsim_clkgen.v) that the Verilog it

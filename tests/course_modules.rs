@@ -401,7 +401,7 @@ impl Primitives {
             self.srl32 = self.srl32 << 1 | d as u32;
         }
         // After it.
-        let i6 = v & 0x3F;
+        let i6 = v >> LUT & 0x3F;
         let lut6 = self.lut6 >> i6 & 1;
         let (o6, o5) = (self.lut62 >> i6 & 1, self.lut62 >> (i6 & 0x1F) & 1);
         let lut3 = (self.lut3 >> (v & 7)) as u64 & 1;

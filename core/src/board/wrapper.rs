@@ -324,7 +324,7 @@ mod tests {
 
     /// The assignments of the board's outputs (the bot's and the peripherals' aside).
     fn assigns(v: &str) -> Vec<&str> {
-        let aside = ["bot_", "uart_", "ps2_", "amp_"];
+        let aside = ["bot_", "uart_", "ps2_", "lines"];
         v.lines().map(str::trim).filter(|l| l.starts_with("assign ") && !aside.iter().any(|a| l.contains(a))).collect()
     }
 

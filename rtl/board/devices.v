@@ -171,7 +171,7 @@ endmodule
 // range in bits 7:6, output data rate in bits 2:0), POWER_CTL (2D: bits 1:0 = 10 measures)
 // and INTMAP1/2 (2A/2B: bit 0 maps DATA_READY, bit 7 makes the pin active low) act. While
 // measuring, the data registers take the board's tilt (`x_mg`, `y_mg`, `z_mg`, in mg) at the
-// output data rate (12.5 Hz << ODR, 400 Hz at most; the first sample within one period of the
+// output data rate (12.5 Hz << ODR, 400 Hz at most; the first sample one period after the
 // start), scaled by the range (1, 2 or 4 mg a
 // bit) and limited to 12 bits; before the first sample they read 0. The temperature reads 0.
 // The clock and select are sampled on the board's clock: a design's SPI clock up to 25 MHz.
@@ -190,13 +190,15 @@ module botsim_adxl362 (
     reg [7:0] cfg[0:15];  // 20-2F
     reg [11:0] x = 12'd0, y = 12'd0, z = 12'd0;
     reg ready = 1'b0;  // STATUS bit 0
-    // The output data rate as 400 Hz ticks (a wrap counter of 250,000 clocks) per sample.
-    reg [17:0] tick_count = 18'd0;
-    reg [4:0] ticks = 5'd0;  // ticks since the last sample
+    // Clocks since the last sample (or since measuring began): a sample is due at the end
+    // of the output data rate's period, each period's end a comparison of its own, so that
+    // between samples the counter only counts (the fast-forward skips from one to the next).
+    reg [22:0] since = 23'd0;
     reg sck_q = 1'b0;
     reg [6:0] shift_in = 7'd0;
     reg [7:0] shift_out = 8'd0, command = 8'd0, addr = 8'd0;
-    reg [15:0] nbits = 16'd0;  // rising clock edges in this transaction
+    reg [2:0] bitn = 3'd0;  // rising clock edges into the byte
+    reg [1:0] phase = 2'd0;  // the byte: 0 the command, 1 the address, 2 data
     integer i;
     initial begin
         for (i = 0; i < 16; i = i + 1) cfg[i] = 8'd0;
@@ -205,8 +207,9 @@ module botsim_adxl362 (
 
     wire measuring = cfg[4'hD][1:0] == 2'b10;
     wire [2:0] odr = cfg[4'hC][2:0] > 3'd5 ? 3'd5 : cfg[4'hC][2:0];
-    wire [5:0] odr_ticks = 6'd32 >> odr;  // 12.5 Hz << odr
-    wire tick = tick_count == 18'd249999;
+    wire [5:0] ends = {since == 23'd249999, since == 23'd499999, since == 23'd999999,
+                       since == 23'd1999999, since == 23'd3999999, since == 23'd7999999};
+    wire due = ends[odr];  // 12.5 Hz << odr
     wire [1:0] range = cfg[4'hC][7:6];
     // One axis in the range's units, limited to 12 bits.
     function [11:0] scaled(input [15:0] mg, input [1:0] r);
@@ -246,30 +249,29 @@ module botsim_adxl362 (
     always @(posedge clk) begin
         sck_q <= sck;
         // Samples at the output data rate while measuring.
-        tick_count <= tick ? 18'd0 : tick_count + 18'd1;
         if (!measuring) begin
-            ticks <= 5'd0;
-        end else if (tick) begin
-            if ({1'b0, ticks} + 6'd1 >= odr_ticks) begin
-                ticks <= 5'd0;
-                x <= scaled(x_mg, range);
-                y <= scaled(y_mg, range);
-                z <= scaled(z_mg, range);
-                ready <= 1'b1;
-            end else begin
-                ticks <= ticks + 5'd1;
-            end
+            since <= 23'd0;
+        end else if (due) begin
+            since <= 23'd0;
+            x <= scaled(x_mg, range);
+            y <= scaled(y_mg, range);
+            z <= scaled(z_mg, range);
+            ready <= 1'b1;
+        end else begin
+            since <= since + 23'd1;
         end
         if (cs_n) begin
-            nbits <= 16'd0;
+            bitn <= 3'd0;
+            phase <= 2'd0;
             miso <= 1'b0;
         end else if (rising) begin
             shift_in <= byte_in[6:0];
-            nbits <= nbits + 16'd1;
-            if (nbits[2:0] == 3'd7) begin
-                if (nbits[15:3] == 13'd0) begin
+            bitn <= bitn + 3'd1;
+            if (bitn == 3'd7) begin
+                if (phase != 2'd2) phase <= phase + 2'd1;
+                if (phase == 2'd0) begin
                     command <= byte_in;
-                end else if (nbits[15:3] == 13'd1) begin
+                end else if (phase == 2'd1) begin
                     addr <= byte_in;
                 end else begin
                     if (command == 8'h0A) begin
@@ -286,8 +288,8 @@ module botsim_adxl362 (
                     addr <= addr + 8'd1;
                 end
             end
-        end else if (falling && command == 8'h0B && nbits >= 16'd16) begin
-            if (nbits[2:0] == 3'd0) begin
+        end else if (falling && command == 8'h0B && phase == 2'd2) begin
+            if (bitn == 3'd0) begin
                 miso <= reg_out[7];
                 shift_out <= {reg_out[6:0], 1'b0};
             end else begin

@@ -192,6 +192,39 @@ pub fn board_top(plan: &Plan, params: &[(String, String)]) -> String {
     )
 }
 
+/// The instances of botsim's peripheral models in the wrapper, with what each is to a user.
+const DEVICES: [(&str, &str); 3] = [
+    ("uart_in", "the board's USB-UART"),
+    ("keyboard", "the board's keyboard"),
+    ("accelerometer", "the board's accelerometer"),
+];
+
+/// What of botsim's board a variable of the wrapper (Verilator's name) is part of: a
+/// peripheral's model or its queue's status, the peripherals' lines; `None` for the user's
+/// design and the rest of the wrapper.
+///
+/// ```
+/// use botsim_core::board::wrapper::board_part;
+/// assert_eq!(board_part("botsim_board__DOT__accelerometer__DOT__since"), Some("the board's accelerometer"));
+/// assert_eq!(board_part("uart_room"), Some("the board's USB-UART"));
+/// assert_eq!(board_part("botsim_board__DOT__user__DOT__count"), None);
+/// ```
+pub fn board_part(verilator_name: &str) -> Option<&'static str> {
+    let name = verilator_name.strip_prefix("botsim_board__DOT__").unwrap_or(verilator_name);
+    if name.starts_with("user__DOT__") {
+        return None;
+    }
+    match name {
+        "uart_room" | "uart_pending" | "uart_line" => return Some(DEVICES[0].1),
+        "ps2_room" | "ps2_pending" | "ps2_clk_line" | "ps2_data_line" | "kbd_clk_low" | "kbd_data_low" => {
+            return Some(DEVICES[1].1)
+        }
+        "lines" => return Some("the board's peripheral lines"),
+        _ => {}
+    }
+    DEVICES.iter().find(|(inst, _)| name.starts_with(&format!("{inst}__DOT__"))).map(|(_, what)| *what)
+}
+
 /// The peripherals the design's pins reach (rtl/board/devices.v), as Verilog before the user's
 /// instance, and the wrapper outputs they drive. The PS/2 lines of an inout port are the
 /// board's: pulled up, the keyboard and the design each pulling low; of an input port, the
@@ -210,7 +243,10 @@ fn devices(plan: &Plan) -> (String, Vec<(&'static str, String)>) {
     if pin(Role::UartRx).is_some() {
         v.push_str("    // The USB-UART bridge's line into the FPGA.\n    wire uart_line;\n");
         let q = queue("uart", "uart_room", "uart_pending", &mut v);
-        v.push_str(&format!("    botsim_uart_source uart_in (.clk(clk), .div(uart_div), {q}, .line(uart_line));\n"));
+        v.push_str(&format!(
+            "    botsim_uart_source {} (.clk(clk), .div(uart_div), {q}, .line(uart_line));\n",
+            DEVICES[0].0
+        ));
     }
     if has(Peripheral::Keyboard) {
         v.push_str("    // The keyboard, open collector on the board's pulled-up PS/2 lines.\n    wire kbd_clk_low, kbd_data_low;\n");
@@ -226,13 +262,15 @@ fn devices(plan: &Plan) -> (String, Vec<(&'static str, String)>) {
         }
         let q = queue("ps2", "ps2_room", "ps2_pending", &mut v);
         v.push_str(&format!(
-            "    botsim_ps2_keyboard keyboard (.clk(clk), {q}, .clk_line(ps2_clk_line), .data_line(ps2_data_line), .clk_low(kbd_clk_low), .data_low(kbd_data_low));\n"
+            "    botsim_ps2_keyboard {} (.clk(clk), {q}, .clk_line(ps2_clk_line), .data_line(ps2_data_line), .clk_low(kbd_clk_low), .data_low(kbd_data_low));\n",
+            DEVICES[1].0
         ));
     }
     if has(Peripheral::Accelerometer) {
         let line = |r: Role, idle: &str| pin(r).map_or(idle.to_string(), |p| format!("user_{p}[0]"));
         v.push_str(&format!(
-            "    // The accelerometer, tilted as the board is.\n    wire acl_miso, acl_int1, acl_int2;\n    botsim_adxl362 accelerometer (.clk(clk), .sck({}), .mosi({}), .cs_n({}), .miso(acl_miso), .int1(acl_int1), .int2(acl_int2), .x_mg(tilt_x), .y_mg(tilt_y), .z_mg(tilt_z));\n",
+            "    // The accelerometer, tilted as the board is.\n    wire acl_miso, acl_int1, acl_int2;\n    botsim_adxl362 {} (.clk(clk), .sck({}), .mosi({}), .cs_n({}), .miso(acl_miso), .int1(acl_int1), .int2(acl_int2), .x_mg(tilt_x), .y_mg(tilt_y), .z_mg(tilt_z));\n",
+            DEVICES[2].0,
             line(Role::AclSck, "1'b0"),
             line(Role::AclMosi, "1'b0"),
             line(Role::AclSs, "1'b1"),

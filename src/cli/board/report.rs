@@ -26,6 +26,18 @@ pub struct Busy {
 impl Busy {
     pub fn of(p: &Prepared, verilator_name: &str, times: u64) -> Busy {
         use botsim_core::board::locate::{declared, design_path};
+        use botsim_core::board::wrapper::board_part;
+        if let (None, Some(part)) = (design_path(verilator_name), board_part(verilator_name)) {
+            // botsim's own part of the board, named as the user knows it.
+            let inner = verilator_name.trim_start_matches("botsim_board__DOT__").replace("__DOT__", ".");
+            return Busy {
+                path: inner,
+                module: Some(format!("{part}, botsim's model")),
+                file: None,
+                line: None,
+                times,
+            };
+        }
         match design_path(verilator_name).and_then(|path| declared(&p.design, &p.plan.top, &path)) {
             Some(d) => Busy { path: d.path, module: Some(d.module), file: Some(d.file), line: Some(d.line), times },
             None => Busy {
@@ -38,10 +50,12 @@ impl Busy {
         }
     }
 
-    /// `SSB.refresh` (module sevenseg, src/ssb.v:14)
+    /// `SSB.refresh` (module sevenseg, src/ssb.v:14), or `uart_in.left` (the board's
+    /// USB-UART, botsim's model)
     pub fn describe(&self) -> String {
         match (&self.module, &self.file, self.line) {
             (Some(m), Some(f), Some(l)) => format!("`{}` (module {m}, {}:{l})", self.path, f.display()),
+            (Some(m), None, None) => format!("`{}` ({m})", self.path),
             _ => format!("`{}`", self.path),
         }
     }

@@ -1,9 +1,10 @@
 //! The fast-forward on random board designs (tests/common/random_design.rs): each design's
-//! run under random switch changes, presses and a CPU reset must record exactly what the run
+//! run under random switch changes, presses and a CPU reset (and, for a design with the
+//! board's UART or keyboard, text and keys at random times) must record exactly what the run
 //! that simulates every edge records (every pin change of the display and the LEDs, the bot's
-//! samples, the display as read), with the pins asked for and without them (the display
-//! decoder then takes the skipped periods whole); and a design the generator knows to repeat
-//! within reach must skip at least 95 % of its run.
+//! samples, the display as read, every change of the peripherals' lines), with the pins asked
+//! for and without them (the display decoder then takes the skipped periods whole); and a
+//! design the generator knows to repeat within reach must skip at least 95 % of its run.
 //!
 //! `BOTSIM_RANDOM_DESIGNS` (default 3) designs from seed `BOTSIM_RANDOM_SEED` (default 1) on;
 //! each design is kept in target/random-designs/<seed>/ (its parts listed in parts.txt).
@@ -22,6 +23,7 @@ fn env(name: &str, default: u64) -> u64 {
 /// What one run recorded.
 struct Run {
     pins: Option<String>,
+    lines: String,
     trace: String,
     display: String,
     summary: serde_json::Value,
@@ -29,7 +31,7 @@ struct Run {
 
 fn run(d: &Design, dir: &Path, name: &str, fast_forward: bool, pins: bool) -> Run {
     let file = |n: &str| dir.join(format!("{name}.{n}")).to_str().unwrap().to_string();
-    let (pins_f, trace, display) = (file("pins.csv"), file("trace.csv"), file("display.txt"));
+    let (pins_f, trace, display, lines) = (file("pins.csv"), file("trace.csv"), file("display.txt"), file("lines.csv"));
     let simulate = format!("SIMULATE={}", d.simulate as u8);
     let seconds = d.seconds.to_string();
     let mut args = vec![
@@ -44,6 +46,8 @@ fn run(d: &Design, dir: &Path, name: &str, fast_forward: bool, pins: bool) -> Ru
         &trace,
         "--display",
         &display,
+        "--lines",
+        &lines,
         "--json",
     ];
     if pins {
@@ -63,6 +67,7 @@ fn run(d: &Design, dir: &Path, name: &str, fast_forward: bool, pins: bool) -> Ru
     let read = |p: &str| std::fs::read_to_string(p).unwrap();
     Run {
         pins: pins.then(|| read(&pins_f)),
+        lines: read(&lines),
         trace: read(&trace),
         display: read(&display),
         summary: serde_json::from_slice(&o.stdout).unwrap(),
@@ -106,6 +111,7 @@ fn check_one(seed: u64) -> f64 {
         ("--trace-csv (with --pins)", &every.trace, &fast_pins.trace),
         ("--display", &every.display, &fast.display),
         ("--display (with --pins)", &every.display, &fast_pins.display),
+        ("--lines", &every.lines, &fast.lines),
     ] {
         assert!(a == b, "{what}: {}\n{}", first_difference(a, b), about());
     }

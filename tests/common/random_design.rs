@@ -59,6 +59,10 @@ pub struct Design {
     pub reach: Result<u64, String>,
     /// One line per part, for a failure's message.
     pub parts: Vec<String>,
+    /// The board's peripherals the design has: a UART receiver on RsRx, a PS/2 receiver on
+    /// PS2_CLK/PS2_DATA (their modules from tests/board_designs/console).
+    pub uart: bool,
+    pub keyboard: bool,
 }
 
 impl Design {
@@ -68,6 +72,12 @@ impl Design {
         std::fs::write(dir.join("teampgm.psm"), &self.program).unwrap();
         std::fs::write(dir.join("stimulus.txt"), &self.stimulus).unwrap();
         std::fs::write(dir.join("parts.txt"), self.parts.join("\n") + "\n").unwrap();
+        let console = super::root().join("tests/board_designs/console");
+        for (on, file) in [(self.uart, "uart_rx.v"), (self.keyboard, "ps2_rx.v")] {
+            if on {
+                std::fs::copy(console.join(file), dir.join(file)).unwrap();
+            }
+        }
     }
 }
 
@@ -321,8 +331,52 @@ pub fn generate(seed: u64) -> Design {
         writeln!(in_mux, "            8'h{:02X}: in_port <= {}[7:0];", 0x20 + i, p.value).unwrap();
     }
 
-    // Whether the generator knows the design to repeat within reach.
-    let reach = reach(&parts, &clocks, simulate, kind, vga.is_some() && vga_on_led);
+    // The board's peripherals, drawn from a stream of their own (a seed's other parts are as
+    // they were before designs had them): received bytes and scan codes shown on the LEDs.
+    let mut pr = Rng::new(seed ^ 0x50_4552_4955_u64);
+    let (uart, keyboard) = (pr.chance(35), pr.chance(35));
+    let mut periph_ports = String::new();
+    let mut periph_verilog = String::new();
+    let mut periph_xor = String::new();
+    if uart {
+        periph_ports.push_str("    input  wire        RsRx,\n");
+        periph_verilog.push_str(
+            "    // A UART receiver (115200 baud): the last byte received on LEDs 7-0.
+    wire [7:0] rx_data;
+    wire rx_valid;
+    reg [7:0] rx_last = 8'd0;
+    uart_rx RX (.clk(clk), .rx(RsRx), .data(rx_data), .valid(rx_valid), .errors());
+    always @(posedge clk) if (rx_valid) rx_last <= rx_data;
+",
+        );
+        periph_xor.push_str(" ^ {8'd0, rx_last}");
+        parts_text.push("a UART receiver on RsRx, its last byte on LEDs 7-0".into());
+    }
+    if keyboard {
+        periph_ports.push_str("    inout  wire        PS2_CLK, PS2_DATA,\n");
+        periph_verilog.push_str(
+            "    // A PS/2 receiver (switch 14 inhibits the keyboard): the last code on LEDs 15-8.
+    wire [7:0] kbd_data;
+    wire kbd_valid;
+    reg [7:0] key_last = 8'd0;
+    ps2_rx KBD (.clk(clk), .inhibit(db_sw[14]), .ps2_clk(PS2_CLK), .ps2_data(PS2_DATA), .data(kbd_data),
+        .valid(kbd_valid), .errors());
+    always @(posedge clk) if (kbd_valid) key_last <= kbd_data;
+",
+        );
+        periph_xor.push_str(" ^ {key_last, 8'd0}");
+        parts_text.push("a PS/2 receiver on PS2_CLK/PS2_DATA (switch 14 inhibits), its last code on LEDs 15-8".into());
+    }
+
+    // Whether the generator knows the design to repeat within reach (the peripherals' traffic
+    // at random times aside).
+    let reach = match (uart || keyboard, reach(&parts, &clocks, simulate, kind, vga.is_some() && vga_on_led)) {
+        (false, r) => r,
+        (true, Ok(p)) => {
+            Err(format!("the peripherals' traffic comes at random times (the rest repeats every {p} clocks)"))
+        }
+        (true, Err(why)) => Err(format!("the peripherals' traffic comes at random times, and {why}")),
+    };
     parts_text.push(match &reach {
         Ok(p) => format!("periodic within reach: {p} clocks"),
         Err(why) => format!("not known to be periodic within reach: {why}"),
@@ -385,7 +439,7 @@ module nexys4fpga #(
     output wire [15:0] led,
     output wire [ 6:0] seg,
     output wire        dp,
-{vga_ports}    output wire [ 7:0] an
+{vga_ports}{periph_ports}    output wire [ 7:0] an
 );
 {clocking}
     // The course's debounce: bit 0 the CPU reset button (active low).
@@ -469,7 +523,8 @@ module nexys4fpga #(
         .d7({d7}), .d6({d6}), .d5({d5}), .d4({d4}), .d3({d3}), .d2({d2}), .d1({d1}), .d0({d0}),
         .dp({{{points}}}), .seg({{dp, seg}}), .an(an), .digits_out());
 
-    assign led = {{{leds}}};
+{periph_verilog}
+    assign led = {{{leds}}}{periph_xor};
 endmodule
 ",
         d7 = digits[7],
@@ -503,8 +558,20 @@ endmodule
         at += r.range(8, 45) as f64 + r.range(0, 999) as f64 / 1000.0;
     }
     writeln!(stimulus, "{:.3}ms press btnCpuReset {}ms", seconds * 500.0, r.range(1, 20)).unwrap();
+    // The peripherals' traffic: text to the UART, keys held a while.
+    let mut at = 3.0 + pr.range(0, 10) as f64;
+    while (uart || keyboard) && at < seconds * 1000.0 - 15.0 {
+        if uart && (!keyboard || pr.chance(50)) {
+            let text: String = (0..pr.range(1, 6)).map(|_| format!("\\x{:02X}", pr.range(0, 256))).collect();
+            writeln!(stimulus, "{at:.3}ms uart \"{text}\"").unwrap();
+        } else {
+            let key = pr.pick(&["KeyA", "Digit7", "Space", "ArrowUp", "Enter", "F5", "ArrowLeft"]);
+            writeln!(stimulus, "{at:.3}ms key {key} {}ms", pr.range(1, 12)).unwrap();
+        }
+        at += pr.range(6, 30) as f64 + pr.range(0, 999) as f64 / 1000.0;
+    }
 
-    Design { seed, top, program, simulate, stimulus, seconds, reach, parts: parts_text }
+    Design { seed, top, program, simulate, stimulus, seconds, reach, parts: parts_text, uart, keyboard }
 }
 
 /// The team program's kind.

@@ -12,7 +12,10 @@
 //!   the same direction, directly or through Verilator's delayed copy (`__Vdly__x`); or
 //! - sets it to a constant (a reset, a wrap at a terminal count),
 //!
-//! and whose every other read needs only some of its bits or compares it with a constant, as
+//! and whose every other read needs only some of its bits or compares it with a constant (or,
+//! plus a constant, with another root variable: a tone generator's `count + 1 >= half`; that
+//! variable is the counter's [`Counter::bounds`], read by the harness at the mark, and must
+//! hold while the counter counts), as
 //! [`super::demand`] finds for any expression around the read: a shift then a mask
 //! (`7U & (x >> 0xfU)`: bits 15-17), a value stored into fewer bits (a port's read mux into
 //! an 8-bit register: bits 0-7), a comparison with a constant (`0x7a11fU == x`). A read of
@@ -59,6 +62,10 @@ pub struct Counter {
     pub split: Option<u32>,
     /// The lowest bit a read above the split sees, if any read does.
     pub split_shift: Option<u32>,
+    /// The root variables it is compared with, each with the constant added to the counter
+    /// first (`(x + 1) >= half`: `("half", 1)`): while one holds, its value tells the
+    /// counter apart only there (and where the sum wraps).
+    pub bounds: Vec<(String, u64)>,
 }
 
 /// The smallest bit `e` (0 < e < bits) at which every shifted or masked read's bits
@@ -123,6 +130,7 @@ pub fn find(
                 consts: s.consts.into_iter().collect::<std::collections::BTreeSet<_>>().into_iter().collect(),
                 split: cut.map(|(e, _)| e),
                 split_shift: cut.and_then(|(_, lo)| lo),
+                bounds: s.bounds.into_iter().collect::<std::collections::BTreeSet<_>>().into_iter().collect(),
             }
         })
         .collect()
@@ -138,6 +146,8 @@ struct Seen {
     consts: Vec<u64>,
     /// The bits each shifted or masked read sees (`lo..=hi`).
     reads: Vec<(u32, u32)>,
+    /// The root variables it is compared with, and the constant added to it first.
+    bounds: Vec<(String, u64)>,
 }
 
 /// The root's scalar integer variables (`CData`..`QData`, not ports) and their widths, from
@@ -182,6 +192,15 @@ fn port_widths(root: &str) -> BTreeMap<String, u32> {
         }
     }
     out
+}
+
+/// The low `bits` bits.
+fn mask(bits: u32) -> u64 {
+    if bits >= 64 {
+        u64::MAX
+    } else {
+        (1u64 << bits) - 1
+    }
 }
 
 /// A number Verilator writes (`0x3ffffU`, `15U`, `1ULL`), if it is one.
@@ -304,6 +323,16 @@ fn scan(
         let bits = widths[name];
         match reads.get(&i) {
             Some(Demand::Compare(c)) => s.consts.push(*c),
+            // Compared with another root variable (not itself): the sum must wrap no sooner
+            // than the counter does.
+            Some(&Demand::CompareVar { bound_at, offset, wrap }) => match use_at(bound_at) {
+                Some((bound, 3)) if bound != name && wrap >= mask(bits) => {
+                    s.bounds.push((bound.to_string(), offset & mask(bits)))
+                }
+                _ => {
+                    spoiled.insert(name.to_string());
+                }
+            },
             Some(Demand::Bits(m)) => {
                 let m = m & if bits >= 64 { u64::MAX } else { (1u64 << bits) - 1 };
                 let (lo, hi) = (m.trailing_zeros(), 63 - m.leading_zeros().min(63));
@@ -588,6 +617,25 @@ mod tests {
             // Its top bits shown (15..17) stay above the split.
             assert_eq!((r.shift, r.split, r.split_shift), (Some(0), Some(8), Some(15)), "{read}");
         }
+    }
+
+    #[test]
+    fn a_counter_compared_with_a_register_is_bounded_by_it() {
+        // A tone generator's shape: `if (refresh + 1 >= copy) ...`: `copy` bounds the counter
+        // (with the 1 added first), and is read whole itself. A sum that wraps sooner than the
+        // counter, or a comparison with the counter itself, spoils it.
+        let read = |cmp: &str| {
+            let nba = NBA.replacen("    vlSelf->seg", &format!("    vlSelf->an = ({cmp});\n    vlSelf->seg"), 1);
+            found(&nba).into_iter().find(|c| c.name.ends_with("refresh"))
+        };
+        let r = read("(0x3ffffU & ((IData)(1U) + vlSelf->top__DOT__refresh)) >= vlSelf->top__DOT__copy").unwrap();
+        assert_eq!(r.bounds, [("top__DOT__copy".to_string(), 1)]);
+        assert_eq!(
+            read("vlSelf->top__DOT__copy == vlSelf->top__DOT__refresh").unwrap().bounds,
+            [("top__DOT__copy".to_string(), 0)]
+        );
+        assert!(read("(0xffU & ((IData)(1U) + vlSelf->top__DOT__refresh)) >= vlSelf->top__DOT__copy").is_none());
+        assert!(read("vlSelf->top__DOT__refresh == vlSelf->top__DOT__refresh").is_none());
     }
 
     #[test]

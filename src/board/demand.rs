@@ -36,6 +36,10 @@ pub enum Demand {
     /// Whether it equals, or is above or below, this constant (all its bits, but only the
     /// constant tells it apart).
     Compare(u64),
+    /// Whether it plus `offset` (taken modulo `wrap` + 1) equals, or is above or below, the
+    /// root variable read at token `bound_at`: only that variable's value (and the sum's wrap)
+    /// tells it apart, while the variable holds.
+    CompareVar { bound_at: usize, offset: u64, wrap: u64 },
 }
 
 /// Every read of a variable in `toks` (a function body) whose statement the parser knows, by
@@ -338,9 +342,13 @@ impl<'a, 't> Parser<'a, 't> {
                 "==" | "!=" | "<" | ">" | "<=" | ">=" => match (constant(a), constant(b)) {
                     (Some(c), None) => self.compare(b, c),
                     (None, Some(c)) => self.compare(a, c),
+                    // Each side a counter the other may bound (or all of it).
                     _ => {
-                        self.demand(a, u64::MAX);
-                        self.demand(b, u64::MAX);
+                        for (x, bound) in [(a, b), (b, a)] {
+                            if !self.compare_var(x, bound) {
+                                self.demand(x, u64::MAX);
+                            }
+                        }
                     }
                 },
                 _ => {
@@ -358,6 +366,23 @@ impl<'a, 't> Parser<'a, 't> {
             Expr::Cast(bits, x) if matches!(**x, Expr::Var(..)) && c <= mask(*bits) => self.compare(x, c),
             _ => self.demand(e, u64::MAX),
         }
+    }
+
+    /// `e` (a variable, plus a constant, masked or cast) compared with `bound` (a root
+    /// variable, under casts): recorded as such when it is one (the bound's own read is the
+    /// other side's business).
+    fn compare_var(&mut self, e: &Expr, bound: &Expr) -> bool {
+        let mut b = bound;
+        while let Expr::Cast(_, x) = b {
+            b = x;
+        }
+        let Expr::Var(bound_at, name) = b else { return false };
+        if self.locals.contains_key(name.as_str()) || (self.width)(name).is_none() {
+            return false;
+        }
+        let Some((at, offset, wrap)) = offset_of(e) else { return false };
+        self.record(at, Demand::CompareVar { bound_at: *bound_at, offset, wrap });
+        true
     }
 
     fn record(&mut self, at: usize, d: Demand) {
@@ -500,6 +525,36 @@ impl<'a, 't> Parser<'a, 't> {
 }
 
 /// The constant an expression is (under casts), if it is one.
+/// A variable plus a constant, under masks of low bits and casts: the variable's read, the
+/// constant, and the mask of the sum (`u64::MAX`: none).
+fn offset_of(e: &Expr) -> Option<(usize, u64, u64)> {
+    match e {
+        Expr::Var(at, _) => Some((*at, 0, u64::MAX)),
+        Expr::Cast(bits, x) => offset_of(x).map(|(at, k, w)| (at, k, w & mask(*bits))),
+        Expr::Bin("&", a, b) => {
+            let (m, x) = match (constant(a), constant(b)) {
+                (Some(m), None) => (m, b),
+                (None, Some(m)) => (m, a),
+                _ => return None,
+            };
+            // Only a mask of low bits keeps the sum a sum.
+            if m == 0 || m & m.wrapping_add(1) != 0 {
+                return None;
+            }
+            offset_of(x).map(|(at, k, w)| (at, k, w & m))
+        }
+        Expr::Bin("+", a, b) => {
+            let (k, x) = match (constant(a), constant(b)) {
+                (Some(k), None) => (k, b),
+                (None, Some(k)) => (k, a),
+                _ => return None,
+            };
+            offset_of(x).map(|(at, k0, w)| (at, k0.wrapping_add(k), w))
+        }
+        _ => None,
+    }
+}
+
 fn constant(e: &Expr) -> Option<u64> {
     match e {
         Expr::Num(n) => Some(*n),
@@ -544,9 +599,30 @@ mod tests {
         assert_eq!(of_x("vlSelf->an = ((IData)(1U) + vlSelf->x);", &w), [Demand::Bits(0xff)]);
         // A mask, either side.
         assert_eq!(of_x("vlSelf->wide = (vlSelf->x & 0x80000U);", &w), [Demand::Bits(0x80000)]);
+        // Plus a constant, masked, compared with another root variable: that variable bounds it.
+        let toks = crate::board::cpp::tokens(
+            "if (((0xffffffU & ((IData)(1U) + vlSelf->x)) >= vlSelf->half)) { vlSelf->an = 0U; }",
+        )
+        .unwrap();
+        let widths = |n: &str| (n == "x" || n == "half" || n == "an").then_some(24);
+        let d = demands(&toks, &widths);
+        let at = |name: &str| toks.iter().position(|t| *t == Tok::Id(name)).unwrap() - 2;
+        assert_eq!(d.get(&at("x")), Some(&Demand::CompareVar { bound_at: at("half"), offset: 1, wrap: 0xffffff }));
+        assert_eq!(d.get(&at("half")), Some(&Demand::Bits(0xffffff)));
+        // Two variables: each bounds the other.
+        let toks = crate::board::cpp::tokens("vlSelf->an = (vlSelf->x == vlSelf->half);").unwrap();
+        let d = demands(&toks, &widths);
+        assert_eq!(d.get(&2), None);
+        assert_eq!(d.get(&5), Some(&Demand::CompareVar { bound_at: 9, offset: 0, wrap: u64::MAX }));
+        assert_eq!(d.get(&9), Some(&Demand::CompareVar { bound_at: 5, offset: 0, wrap: u64::MAX }));
         // Compared with a constant (under a cast), or with a variable.
         assert_eq!(of_x("vlSelf->an = (0x16eb4eU == (IData)(vlSelf->x));", &w), [Demand::Compare(0x16eb4e)]);
-        assert_eq!(of_x("vlSelf->an = (vlSelf->x < vlSelf->y);", &w), [Demand::Bits((1 << 27) - 1)]);
+        assert_eq!(
+            of_x("vlSelf->an = (vlSelf->x < vlSelf->y);", &w),
+            [Demand::CompareVar { bound_at: 9, offset: 0, wrap: u64::MAX }]
+        );
+        // With something that is not a root variable: all of it.
+        assert_eq!(of_x("vlSelf->an = (vlSelf->x < (vlSelf->y + vlSelf->an));", &w), [Demand::Bits((1 << 27) - 1)]);
         // In a condition, a call, an index: all of it.
         assert_eq!(of_x("if (vlSelf->x) { vlSelf->an = 1U; }", &w), [Demand::Bits((1 << 27) - 1)]);
         assert_eq!(of_x("vlSelf->an = VL_REDXOR_32(vlSelf->x);", &w), [Demand::Bits((1 << 27) - 1)]);

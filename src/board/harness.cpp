@@ -35,11 +35,17 @@ struct BoardMember {
     bool observed;
     const char* name;
 };
+// A variable a counter is compared with: its bytes, and the constant added to the counter
+// first (`count + 1 >= half`).
+struct BoardBound {
+    size_t off, len;
+    uint64_t offset;
+};
 // A counter the fast-forward moves on by arithmetic (src/board/counters.rs): its bytes, its
 // width in bits, whether it counts down, its largest step, the lowest bit a shifted read sees
 // (64: none), the constants it is compared with, the bit below which only masks read it
-// (64: none; the low part then repeats while the rest counts) and the lowest bit a read
-// above that split sees (64: none).
+// (64: none; the low part then repeats while the rest counts), the lowest bit a read
+// above that split sees (64: none) and the variables it is compared with.
 struct BoardCounter {
     size_t off, len;
     uint32_t bits;
@@ -48,6 +54,7 @@ struct BoardCounter {
     uint32_t shift;
     std::vector<uint64_t> consts;
     uint32_t split, split_shift;
+    std::vector<BoardBound> bounds;
 };
 #include "botsim_observed.h"
 
@@ -219,6 +226,7 @@ struct Counting {
     int turns = 0;                           // in a row so
     bool trial = false;                      // tried as state for a longer period
     int tried = 0;                           // trials that did not pay
+    std::vector<uint64_t> bound_values;      // the compared variables' values at the mark
 };
 
 // Where a clock is in its period at a moment `t`: its next edges after `t` (the fractions of a
@@ -646,19 +654,36 @@ inline uint64_t counter_after(const Counting& k, uint64_t x, uint64_t n) {
     return (k.c.down ? x - n * k.drift : x + n * k.drift) & k.mask;
 }
 
+// A compared variable's value in the root image `at`.
+inline uint64_t bound_value(const uint8_t* at, const BoardBound& v) {
+    uint64_t x = 0;
+    std::memcpy(&x, at + v.off, std::min<size_t>(v.len, 8));
+    return x;
+}
+
 // The values around `x` that no read of the design tells apart from it: the same bits at and
-// above the lowest shifted read, the same side of every compared constant (and not it), no
-// wrap. At level 1 only the shifted reads above the split count (the bits below it are
-// compared as state); at level 2 the whole counter is state.
-void counter_interval(Counting& k, uint64_t x) {
+// above the lowest shifted read, the same side of every compared constant (and not it), and of
+// every compared variable's value in the root image `at` (and not it, nor where the sum with
+// the constant added first wraps; the variable must then hold: counter_inside), no wrap. At
+// level 1 only the shifted reads above the split count (the bits below it are compared as
+// state); at level 2 the whole counter is state.
+void counter_interval(Counting& k, uint64_t x, const uint8_t* at) {
     const BoardCounter& c = k.c;
+    k.bound_values.clear();
     if (k.level == 2) {
         k.lo = 0;
         k.width = ~0ull;
         return;
     }
+    std::vector<uint64_t> consts = c.consts;
+    for (const BoardBound& v : c.bounds) {
+        const uint64_t value = bound_value(at, v);
+        k.bound_values.push_back(value);
+        consts.push_back((value - v.offset) & k.mask);
+        if (v.offset & k.mask) consts.push_back((0 - v.offset) & k.mask);
+    }
     const uint32_t shift = k.level == 1 ? c.split_shift : c.shift;
-    if (shift >= c.bits && c.consts.empty()) {
+    if (shift >= c.bits && consts.empty()) {
         // Nothing reads it (above the split): it may even wrap.
         k.lo = 0;
         k.width = ~0ull;
@@ -670,7 +695,7 @@ void counter_interval(Counting& k, uint64_t x) {
         below = std::min(below, x & low);
         above = std::min(above, low - (x & low));
     }
-    for (uint64_t v : c.consts) {
+    for (uint64_t v : consts) {
         if (v > k.mask) continue;  // never reached
         if (v == x) {
             below = above = 0;
@@ -684,9 +709,12 @@ void counter_interval(Counting& k, uint64_t x) {
     k.width = below + above == ~0ull ? ~0ull : below + above + 1;
 }
 
-// Every counter is still in its interval.
+// A counter is still in its interval, and the variables it is compared with hold.
 inline bool counter_inside(const Counting& k, const uint8_t* root) {
-    return k.width == ~0ull || ((counter_value(root, k) - k.lo) & k.mask) < k.width;
+    if (k.width == ~0ull) return true;
+    for (size_t i = 0; i < k.bound_values.size(); i++)
+        if (bound_value(root, k.c.bounds[i]) != k.bound_values[i]) return false;
+    return ((counter_value(root, k) - k.lo) & k.mask) < k.width;
 }
 inline bool counters_inside(const FastForward& f, const uint8_t* root) {
     for (const Counting& k : f.counters)
@@ -715,7 +743,7 @@ void ff_mark(Board* b, uint64_t t, bool drifting = false) {
     std::memcpy(f.mark.data(), (const void*)b->top->rootp, f.mark.size());
     f.drifting = drifting;
     for (Counting& k : f.counters) {
-        counter_interval(k, counter_value(f.mark.data(), k));
+        counter_interval(k, counter_value(f.mark.data(), k), f.mark.data());
         if (!drifting) k.drift = 0;
     }
     FF_TRACE("ff %.6f ms: mark%s, patience %llu clocks\n", t / 1e9, drifting ? " (drifting)" : "",
@@ -775,7 +803,7 @@ __attribute__((noinline)) uint64_t ff_counter_moved(Board* b, uint64_t t) {
                 if (!counter_inside(k, root)) FF_TRACE("ff %.6f ms: counter at %zu is state\n", t / 1e9, k.c.off);
                 while (!counter_inside(k, root)) {
                     set_level(k, k.level == 0 && k.c.split < k.c.bits ? 1 : 2);
-                    counter_interval(k, counter_value(f.mark.data(), k));
+                    counter_interval(k, counter_value(f.mark.data(), k), f.mark.data());
                 }
             }
             f.drifting = false;

@@ -382,12 +382,18 @@ pub fn header(members: &Result<Vec<Member>, String>, counters: &[Counter], trigg
     h.push_str("}\n");
     // The counters (super::counters): each one's bytes, width, direction, largest step, the
     // lowest bit a shifted read sees (64: none), the constants it is compared with, the bit
-    // where no read straddles (64: none) and the lowest bit a read above it sees (64: none).
+    // where no read straddles (64: none), the lowest bit a read above it sees (64: none) and
+    // the variables it is compared with (their bytes and the constant added to it first).
     h.push_str("static void botsim_counters(const Vboard___024root* r, std::vector<BoardCounter>& out) {\n");
     for c in counters {
         let consts: Vec<String> = c.consts.iter().map(|k| format!("{k}ull")).collect();
+        let bounds: Vec<String> = c
+            .bounds
+            .iter()
+            .map(|(v, k)| format!("{{(size_t)((const char*)&r->{v} - (const char*)r), sizeof(r->{v}), {k}ull}}"))
+            .collect();
         h.push_str(&format!(
-            "    out.push_back({{(size_t)((const char*)&r->{n} - (const char*)r), sizeof(r->{n}), {bits}, {down}, {step}ull, {shift}, {{{consts}}}, {split}, {split_shift}}});\n",
+            "    out.push_back({{(size_t)((const char*)&r->{n} - (const char*)r), sizeof(r->{n}), {bits}, {down}, {step}ull, {shift}, {{{consts}}}, {split}, {split_shift}, {{{bounds}}}}});\n",
             n = c.name,
             bits = c.bits,
             down = c.down,
@@ -395,7 +401,8 @@ pub fn header(members: &Result<Vec<Member>, String>, counters: &[Counter], trigg
             shift = c.shift.unwrap_or(64),
             consts = consts.join(", "),
             split = c.split.unwrap_or(64),
-            split_shift = c.split_shift.unwrap_or(64)
+            split_shift = c.split_shift.unwrap_or(64),
+            bounds = bounds.join(", ")
         ));
     }
     h.push_str("}\n");

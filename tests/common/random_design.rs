@@ -261,12 +261,18 @@ pub fn generate(seed: u64) -> Design {
     // The parts.
     let mut parts: Vec<Part> = Vec::new();
     let n = r.range(2, 7) as usize;
+    let mut held_stream = Rng::new(seed ^ 0x484F_4C44);
     for i in 0..n {
         let clock = if clocks.len() > 1 && r.chance(40) { r.range(1, clocks.len() as u64 - 1) as usize } else { 0 };
         // Enabled by an earlier part's one-bit output (its tick, its toggle), sometimes.
         let enable =
             (i > 0 && r.chance(25)).then(|| r.range(0, i as u64 - 1) as usize).filter(|&j| parts[j].clock == clock);
-        let part = make_part(&mut r, i, clock, enable.map(|j| &parts[j]), simulate, tame);
+        // Whether a wrap counter's terminal count is held in a register (compared as
+        // `count == limit` or `count + 1 >= limit`, as tone generators do) rather than
+        // written as a constant: from a stream of its own, so a seed's parts are otherwise
+        // as they were.
+        let held = held_stream.chance(40);
+        let part = make_part(&mut r, i, clock, enable.map(|j| &parts[j]), simulate, tame, held);
         parts_text.push(format!("part {i} on {}: {}", clocks[clock].net, part.text));
         parts.push(part);
     }
@@ -675,9 +681,32 @@ fn program_period(kind: Program) -> u64 {
     }
 }
 
+/// A wrap counter's terminal count: the constant, or (`held`) a register `lim{i}` that holds
+/// it (set again at every reset), and the register's Verilog.
+fn held_limit(i: usize, clk: &str, width: u32, top: u64, held: bool) -> (String, String) {
+    if !held {
+        return (format!("{width}'d{top}"), String::new());
+    }
+    (
+        format!("lim{i}"),
+        format!(
+            "    reg [{w1}:0] lim{i} = {width}'d{top};\n    always @(posedge {clk}) if (sysreset) lim{i} <= {width}'d{top};\n",
+            w1 = width - 1
+        ),
+    )
+}
+
 /// One random part, number `i`, on clock `clock` (its nets are `@CLK{clock}@` until the
 /// clocks are named), enabled by `enable`'s one-bit output when given.
-fn make_part(r: &mut Rng, i: usize, clock: usize, enable: Option<&Part>, simulate: bool, tame: bool) -> Part {
+fn make_part(
+    r: &mut Rng,
+    i: usize,
+    clock: usize,
+    enable: Option<&Part>,
+    simulate: bool,
+    tame: bool,
+    held: bool,
+) -> Part {
     let clk = format!("@CLK{clock}@");
     let reset = r.chance(40);
     let en = enable.map_or("1'b1".to_string(), |p| p.bit.clone());
@@ -713,9 +742,10 @@ fn make_part(r: &mut Rng, i: usize, clock: usize, enable: Option<&Part>, simulat
             } else {
                 r.range(0, bits as u64 - 1)
             } as u32;
-            let body = format!("p{i} <= (p{i} == {width}'d{top}) ? {width}'d0 : p{i} + {width}'d1;");
+            let (limit, hold) = held_limit(i, &clk, width, top, held);
+            let body = format!("p{i} <= (p{i} == {limit}) ? {width}'d0 : p{i} + {width}'d1;");
             let verilog = format!(
-                "    reg [{w1}:0] p{i} = {width}'d0;\n    always @(posedge {clk}) begin {} end\n    wire p{i}_tick = p{i} == {width}'d{top};\n",
+                "{hold}    reg [{w1}:0] p{i} = {width}'d0;\n    always @(posedge {clk}) begin {} end\n    wire p{i}_tick = p{i} == {width}'d{top};\n",
                 guard(&body),
                 w1 = width - 1
             );
@@ -727,7 +757,8 @@ fn make_part(r: &mut Rng, i: usize, clock: usize, enable: Option<&Part>, simulat
                 widen(&format!("p{i}"), width),
                 shape,
                 format!(
-                    "wrap counter to {top} ({width} bits), shows {}",
+                    "wrap counter to {top} ({width} bits{}), shows {}",
+                    if held { ", the count held in a register" } else { "" },
                     if by_bit { format!("bit {k}") } else { "its tick".into() }
                 ),
             )
@@ -760,11 +791,17 @@ fn make_part(r: &mut Rng, i: usize, clock: usize, enable: Option<&Part>, simulat
             // A divider: a wrap counter and a toggle that flips at its tick.
             let top = count(r);
             let width = (64 - top.leading_zeros()).min(32);
-            let body = format!(
-                "if (c{i} == {width}'d{top}) begin c{i} <= {width}'d0; p{i} <= ~p{i}; end else c{i} <= c{i} + {width}'d1;"
-            );
+            // Held: `c + 1 >= top + 1` (the sum one bit wider), the same turn.
+            let (limit, hold) = held_limit(i, &clk, width + 1, top + 1, held);
+            let turn = if held {
+                format!("{{1'b0, c{i}}} + {w}'d1 >= {limit}", w = width + 1)
+            } else {
+                format!("c{i} == {width}'d{top}")
+            };
+            let body =
+                format!("if ({turn}) begin c{i} <= {width}'d0; p{i} <= ~p{i}; end else c{i} <= c{i} + {width}'d1;");
             let verilog = format!(
-                "    reg [{w1}:0] c{i} = {width}'d0;\n    reg p{i} = 1'b0;\n    always @(posedge {clk}) begin {} end\n",
+                "{hold}    reg [{w1}:0] c{i} = {width}'d0;\n    reg p{i} = 1'b0;\n    always @(posedge {clk}) begin {} end\n",
                 guard(&body).replace(&format!("p{i} <= 0;"), &format!("p{i} <= 1'b0; c{i} <= {width}'d0;")),
                 w1 = width - 1
             );
@@ -782,7 +819,11 @@ fn make_part(r: &mut Rng, i: usize, clock: usize, enable: Option<&Part>, simulat
                 format!("p{i}"),
                 format!("{{c{i}[3:0], p{i}}}"),
                 shape,
-                format!("divider by {} (toggle)", 2 * (top + 1)),
+                format!(
+                    "divider by {} (toggle{})",
+                    2 * (top + 1),
+                    if held { ", `c + 1 >= limit` with the limit held in a register" } else { "" }
+                ),
             )
         }
         3 => {

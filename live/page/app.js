@@ -466,6 +466,7 @@ function onMessage(ev) {
       if (peripherals.keyboard) {
         $("board-hint").textContent = "Click the board and type: keys go to the design's keyboard. Buttons are pressed while the mouse is down (shift-click holds one down).";
       }
+      if (m.tilt) [tilt.x, tilt.y, tilt.z] = m.tilt;
       showTilt();
       if (mode === "bot") {
         $("save").textContent = "Save motors";

@@ -26,7 +26,7 @@ use botsim_core::board::audio::RATE;
 use botsim_core::board::display::Display;
 use botsim_core::board::keyboard::{self, Key};
 use botsim_core::board::pins::{Peripheral, Role};
-use botsim_core::board::stimulus::{parse_tilt, KeyPress, Press, Stimulus, POWER_ON_RESET_PS};
+use botsim_core::board::stimulus::{parse_tilt, KeyPress, Press, Stimulus, FLAT, POWER_ON_RESET_PS};
 use botsim_core::board::vga::Capture;
 use botsim_live::protocol::{BoardView, BotView, Button, Command};
 use serde_json::json;
@@ -164,6 +164,8 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
     let sources: Vec<String> = a.sources.iter().map(|s| s.display().to_string()).collect();
     let has_vga = p.plan.pins.iter().any(|(_, r)| *r == Role::Vsync);
     let has = |x: Peripheral| p.plan.pins.iter().any(|(_, r)| r.peripheral() == Some(x));
+    // (prepare checked it.)
+    let tilt = a.tilt.as_deref().and_then(|t| parse_tilt(t).ok());
     let hello = json!({
         "vga": has_vga,
         "peripherals": {
@@ -172,6 +174,7 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
             "accelerometer": has(Peripheral::Accelerometer),
             "audio": has(Peripheral::Audio),
         },
+        "tilt": tilt.unwrap_or(FLAT).map(|mg| mg as f64 / 1000.0),
         "design": {"top": p.plan.top, "sources": sources.join(" ")},
         "world": p.plan.bot_path.as_ref().map(|_| world_json(&p.world)),
         "mode": "board",
@@ -189,8 +192,7 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
         inputs.initial_switches = u16::from_str_radix(h.trim_start_matches("0x"), 16)
             .map_err(|_| format!("--switches {h}: expected up to four hexadecimal digits"))?;
     }
-    // (prepare checked it.)
-    if let Some(t) = a.tilt.as_deref().and_then(|t| parse_tilt(t).ok()) {
+    if let Some(t) = tilt {
         inputs.tilts.push((0, t));
     }
     let mut b = Board {

@@ -237,3 +237,43 @@ fn a_block_of_xilinx_primitives_runs_as_their_library_guides_say() {
     }
     assert!(steps.len() > 9000, "{} steps", steps.len());
 }
+
+/// A counter compared with a register that does not hold (tests/board_designs/bounds: a
+/// limit alternating every clock between 60,000 and 30,001): the fast-forward skips what
+/// repeats and records what every edge does, LED 0 toggling every 30,002 clocks (a
+/// fast-forward that took the register for a constant would skip past 30,001). The tone
+/// player (tests/peripherals.rs) has a register that holds.
+#[test]
+fn a_counter_compared_with_a_register_that_changes_keeps_every_edge() {
+    let dir = tempfile::tempdir().unwrap();
+    let design = root().join("tests/board_designs/bounds");
+    std::fs::write(dir.path().join("s.txt"), "20ms switches 0001\n").unwrap();
+    let mut logs = Vec::new();
+    for ff in [true, false] {
+        let pins = dir.path().join(format!("{ff}.csv"));
+        let mut args = vec![design.to_str().unwrap(), "--seconds", "0.04", "--stimulus", "s.txt", "--json"];
+        args.extend(["--pins", pins.to_str().unwrap()]);
+        if !ff {
+            args.push("--no-fast-forward");
+        }
+        let o = board_in(dir.path(), &args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+        if ff {
+            assert!(v["fast_forward"]["skipped_fraction"].as_f64() > Some(0.5), "{v}");
+        }
+        logs.push(std::fs::read_to_string(&pins).unwrap());
+    }
+    assert!(logs[0] == logs[1], "the fast-forward differs from every edge");
+    let mut last = 0u16;
+    let mut toggles = Vec::new();
+    for l in logs[1].lines().skip(1) {
+        let f: Vec<&str> = l.split(',').collect();
+        let led = u16::from_str_radix(f[4], 16).unwrap() & 1;
+        if led != last {
+            toggles.push(f[0].parse::<u64>().unwrap() / 10_000);
+            last = led;
+        }
+    }
+    assert!(toggles.len() > 100 && toggles.windows(2).all(|w| w[1] - w[0] == 30_002), "{toggles:?}");
+}

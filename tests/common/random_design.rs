@@ -271,7 +271,11 @@ pub fn generate(seed: u64) -> Design {
         // `count == limit` or `count + 1 >= limit`, as tone generators do) rather than
         // written as a constant: from a stream of its own, so a seed's parts are otherwise
         // as they were.
-        let held = held_stream.chance(40);
+        let held = match (held_stream.chance(40), held_stream.chance(25)) {
+            (false, _) => Held::No,
+            (true, false) => Held::Constant,
+            (true, true) => Held::Alternating,
+        };
         let part = make_part(&mut r, i, clock, enable.map(|j| &parts[j]), simulate, tame, held);
         parts_text.push(format!("part {i} on {}: {}", clocks[clock].net, part.text));
         parts.push(part);
@@ -681,19 +685,38 @@ fn program_period(kind: Program) -> u64 {
     }
 }
 
-/// A wrap counter's terminal count: the constant, or (`held`) a register `lim{i}` that holds
-/// it (set again at every reset), and the register's Verilog.
-fn held_limit(i: usize, clk: &str, width: u32, top: u64, held: bool) -> (String, String) {
-    if !held {
-        return (format!("{width}'d{top}"), String::new());
-    }
-    (
-        format!("lim{i}"),
-        format!(
-            "    reg [{w1}:0] lim{i} = {width}'d{top};\n    always @(posedge {clk}) if (sysreset) lim{i} <= {width}'d{top};\n",
-            w1 = width - 1
+/// Where a wrap counter's terminal count comes from.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Held {
+    /// A constant in the comparison.
+    No,
+    /// A register that holds it (set again at every reset): a tone generator's shape.
+    Constant,
+    /// A register that alternates between it and another count at every clock (the counter
+    /// is then compared with a variable that does not hold: the fast-forward must notice).
+    Alternating,
+}
+
+/// A wrap counter's terminal count: the constant, or a register `lim{i}` as `held` says, and
+/// the register's Verilog.
+fn held_limit(i: usize, clk: &str, width: u32, top: u64, held: Held) -> (String, String) {
+    let w1 = width - 1;
+    let other = top / 2 + 1;
+    match held {
+        Held::No => (format!("{width}'d{top}"), String::new()),
+        Held::Constant => (
+            format!("lim{i}"),
+            format!(
+                "    reg [{w1}:0] lim{i} = {width}'d{top};\n    always @(posedge {clk}) if (sysreset) lim{i} <= {width}'d{top};\n"
+            ),
         ),
-    )
+        Held::Alternating => (
+            format!("lim{i}"),
+            format!(
+                "    reg [{w1}:0] lim{i} = {width}'d{top};\n    always @(posedge {clk}) lim{i} <= (lim{i} == {width}'d{top}) ? {width}'d{other} : {width}'d{top};\n"
+            ),
+        ),
+    }
 }
 
 /// One random part, number `i`, on clock `clock` (its nets are `@CLK{clock}@` until the
@@ -705,7 +728,7 @@ fn make_part(
     enable: Option<&Part>,
     simulate: bool,
     tame: bool,
-    held: bool,
+    held: Held,
 ) -> Part {
     let clk = format!("@CLK{clock}@");
     let reset = r.chance(40);
@@ -750,7 +773,11 @@ fn make_part(
                 w1 = width - 1
             );
             let bit = if by_bit { format!("p{i}[{k}]") } else { format!("p{i}_tick") };
-            let shape = counter(width, Some(top), by_bit.then_some(k));
+            let shape = if held == Held::Alternating {
+                Shape::Unknown("its terminal count alternates every clock")
+            } else {
+                counter(width, Some(top), by_bit.then_some(k))
+            };
             (
                 verilog,
                 bit,
@@ -758,7 +785,11 @@ fn make_part(
                 shape,
                 format!(
                     "wrap counter to {top} ({width} bits{}), shows {}",
-                    if held { ", the count held in a register" } else { "" },
+                    match held {
+                        Held::No => "",
+                        Held::Constant => ", the count held in a register",
+                        Held::Alternating => ", the count alternating every clock with another",
+                    },
                     if by_bit { format!("bit {k}") } else { "its tick".into() }
                 ),
             )
@@ -792,8 +823,9 @@ fn make_part(
             let top = count(r);
             let width = (64 - top.leading_zeros()).min(32);
             // Held: `c + 1 >= top + 1` (the sum one bit wider), the same turn.
+            let held = if held == Held::No { Held::No } else { Held::Constant };
             let (limit, hold) = held_limit(i, &clk, width + 1, top + 1, held);
-            let turn = if held {
+            let turn = if held != Held::No {
                 format!("{{1'b0, c{i}}} + {w}'d1 >= {limit}", w = width + 1)
             } else {
                 format!("c{i} == {width}'d{top}")
@@ -822,7 +854,7 @@ fn make_part(
                 format!(
                     "divider by {} (toggle{})",
                     2 * (top + 1),
-                    if held { ", `c + 1 >= limit` with the limit held in a register" } else { "" }
+                    if held == Held::No { "" } else { ", `c + 1 >= limit` with the limit held in a register" }
                 ),
             )
         }

@@ -407,6 +407,8 @@ fn the_page_tilts_the_board_and_plays_its_sound() {
     mouse(&tab, Input::DispatchMouseEventTypeOption::MouseReleased, cx + r, cy);
     devices_until(&tab, "x 1 g", |d| d["tilt"] == "x 1.00 g, y 0.00 g, z 0.00 g");
     until(&tab, "x 1 g on the LEDs", |p| p["leds"] == 0x3E00);
+    let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
+    std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-tilt-page.png"), &shot).unwrap();
     drop(tab);
     drop(_browser);
     drop(live);

@@ -187,6 +187,39 @@ fn the_uart_and_ps2_lines_idle_high_and_an_open_collector_pulls_low() {
     }
 }
 
+/// `design` run for `seconds` with the stimulus `stimulus` (written to s.txt) with and without
+/// the fast-forward: their `--pins` logs must be equal. The fast run's summary, and the log as
+/// (time in clocks of 100 MHz, LEDs) rows.
+fn pins_both_ways(dir: &Path, design: &str, seconds: &str, stimulus: &str) -> (Value, Vec<(u64, u16)>) {
+    let design = root().join(design);
+    std::fs::write(dir.join("s.txt"), stimulus).unwrap();
+    let mut runs = Vec::new();
+    for ff in [true, false] {
+        let pins = dir.join(format!("{ff}.csv"));
+        let mut args = vec![design.to_str().unwrap(), "--seconds", seconds, "--stimulus", "s.txt", "--json"];
+        args.extend(["--pins", pins.to_str().unwrap()]);
+        if !ff {
+            args.push("--no-fast-forward");
+        }
+        let o = board_in(dir, &args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let v: Value = serde_json::from_slice(&o.stdout).unwrap();
+        runs.push((v, std::fs::read_to_string(&pins).unwrap()));
+    }
+    assert!(runs[0].1 == runs[1].1, "the fast-forward differs from every edge");
+    assert_eq!(runs[1].0["fast_forward"]["skips"], 0);
+    let rows = runs[0]
+        .1
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            (f[0].parse::<u64>().unwrap() / 10_000, u16::from_str_radix(f[4], 16).unwrap())
+        })
+        .collect();
+    (runs.swap_remove(0).0, rows)
+}
+
 /// A block built of Xilinx primitives by hand, as the KCPSM6 package's UART macros are
 /// (tests/board_designs/primitives: an SRLC32E ring pulsing every 32 clocks steps a counter of
 /// FDREs and CARRY4s; a LUT6 and a MUXF7 of the switches): the counter steps exactly every 32
@@ -195,31 +228,9 @@ fn the_uart_and_ps2_lines_idle_high_and_an_open_collector_pulls_low() {
 #[test]
 fn a_block_of_xilinx_primitives_runs_as_their_library_guides_say() {
     let dir = tempfile::tempdir().unwrap();
-    let design = root().join("tests/board_designs/primitives");
-    std::fs::write(dir.path().join("s.txt"), "0 switches 003F\n300us switches 0181\n").unwrap();
-    let mut logs = Vec::new();
-    for ff in [true, false] {
-        let pins = dir.path().join(format!("{ff}.csv"));
-        let mut args = vec![design.to_str().unwrap(), "--seconds", "0.003", "--stimulus", "s.txt", "--json"];
-        args.extend(["--pins", pins.to_str().unwrap()]);
-        if !ff {
-            args.push("--no-fast-forward");
-        }
-        let o = board_in(dir.path(), &args);
-        assert!(o.status.success(), "{}", stderr(&o));
-        let v: Value = serde_json::from_slice(&o.stdout).unwrap();
-        assert_eq!(v["fast_forward"]["skips"].as_u64().is_some_and(|s| s > 0), ff, "{v}");
-        logs.push(std::fs::read_to_string(&pins).unwrap());
-    }
-    assert!(logs[0] == logs[1], "the fast-forward differs from every edge");
-    let rows: Vec<(u64, u16)> = logs[0]
-        .lines()
-        .skip(1)
-        .map(|l| {
-            let f: Vec<&str> = l.split(',').collect();
-            (f[0].parse().unwrap(), u16::from_str_radix(f[4], 16).unwrap())
-        })
-        .collect();
+    let stimulus = "0 switches 003F\n300us switches 0181\n";
+    let (fast, rows) = pins_both_ways(dir.path(), "tests/board_designs/primitives", "0.003", stimulus);
+    assert!(fast["fast_forward"]["skips"].as_u64() > Some(0), "{fast}");
     // The counter's steps (the first row is the board at power-up): one every 32 clocks.
     let mut steps: Vec<(u64, u8)> = Vec::new();
     for w in rows.windows(2) {
@@ -228,12 +239,12 @@ fn a_block_of_xilinx_primitives_runs_as_their_library_guides_say() {
         }
     }
     for w in steps.windows(2) {
-        assert_eq!((w[1].0 - w[0].0, w[1].1), (320_000, w[0].1.wrapping_add(1)), "the counter at {} ps", w[1].0);
+        assert_eq!((w[1].0 - w[0].0, w[1].1), (32, w[0].1.wrapping_add(1)), "the counter at clock {}", w[1].0);
     }
     for &(t, led) in &rows {
         // Switches 5-0 all on: the LUT's bit 63; then 000001: off; MUXF7: S = 1 picks sw[7].
-        let (lut, mux) = if t < 300_000_000 { (true, false) } else { (false, true) };
-        assert_eq!((led >> 15 == 1, led >> 14 & 1 == 1), (lut, mux), "LEDs {led:04X} at {t} ps");
+        let (lut, mux) = if t < 30_000 { (true, false) } else { (false, true) };
+        assert_eq!((led >> 15 == 1, led >> 14 & 1 == 1), (lut, mux), "LEDs {led:04X} at clock {t}");
     }
     assert!(steps.len() > 9000, "{} steps", steps.len());
 }
@@ -246,33 +257,14 @@ fn a_block_of_xilinx_primitives_runs_as_their_library_guides_say() {
 #[test]
 fn a_counter_compared_with_a_register_that_changes_keeps_every_edge() {
     let dir = tempfile::tempdir().unwrap();
-    let design = root().join("tests/board_designs/bounds");
-    std::fs::write(dir.path().join("s.txt"), "20ms switches 0001\n").unwrap();
-    let mut logs = Vec::new();
-    for ff in [true, false] {
-        let pins = dir.path().join(format!("{ff}.csv"));
-        let mut args = vec![design.to_str().unwrap(), "--seconds", "0.04", "--stimulus", "s.txt", "--json"];
-        args.extend(["--pins", pins.to_str().unwrap()]);
-        if !ff {
-            args.push("--no-fast-forward");
-        }
-        let o = board_in(dir.path(), &args);
-        assert!(o.status.success(), "{}", stderr(&o));
-        let v: Value = serde_json::from_slice(&o.stdout).unwrap();
-        if ff {
-            assert!(v["fast_forward"]["skipped_fraction"].as_f64() > Some(0.5), "{v}");
-        }
-        logs.push(std::fs::read_to_string(&pins).unwrap());
-    }
-    assert!(logs[0] == logs[1], "the fast-forward differs from every edge");
+    let (fast, rows) = pins_both_ways(dir.path(), "tests/board_designs/bounds", "0.04", "20ms switches 0001\n");
+    assert!(fast["fast_forward"]["skipped_fraction"].as_f64() > Some(0.5), "{fast}");
     let mut last = 0u16;
     let mut toggles = Vec::new();
-    for l in logs[1].lines().skip(1) {
-        let f: Vec<&str> = l.split(',').collect();
-        let led = u16::from_str_radix(f[4], 16).unwrap() & 1;
-        if led != last {
-            toggles.push(f[0].parse::<u64>().unwrap() / 10_000);
-            last = led;
+    for &(t, led) in &rows {
+        if led & 1 != last {
+            toggles.push(t);
+            last = led & 1;
         }
     }
     assert!(toggles.len() > 100 && toggles.windows(2).all(|w| w[1] - w[0] == 30_002), "{toggles:?}");

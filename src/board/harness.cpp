@@ -675,15 +675,9 @@ void counter_interval(Counting& k, uint64_t x, const uint8_t* at) {
         k.width = ~0ull;
         return;
     }
-    std::vector<uint64_t> consts = c.consts;
-    for (const BoardBound& v : c.bounds) {
-        const uint64_t value = bound_value(at, v);
-        k.bound_values.push_back(value);
-        consts.push_back((value - v.offset) & k.mask);
-        if (v.offset & k.mask) consts.push_back((0 - v.offset) & k.mask);
-    }
+    for (const BoardBound& v : c.bounds) k.bound_values.push_back(bound_value(at, v));
     const uint32_t shift = k.level == 1 ? c.split_shift : c.shift;
-    if (shift >= c.bits && consts.empty()) {
+    if (shift >= c.bits && c.consts.empty() && c.bounds.empty()) {
         // Nothing reads it (above the split): it may even wrap.
         k.lo = 0;
         k.width = ~0ull;
@@ -695,8 +689,9 @@ void counter_interval(Counting& k, uint64_t x, const uint8_t* at) {
         below = std::min(below, x & low);
         above = std::min(above, low - (x & low));
     }
-    for (uint64_t v : consts) {
-        if (v > k.mask) continue;  // never reached
+    // A value the design tells apart: the interval stops short of it.
+    auto apart = [&](uint64_t v) {
+        if (v > k.mask) return;  // never reached
         if (v == x) {
             below = above = 0;
         } else if (v > x) {
@@ -704,6 +699,12 @@ void counter_interval(Counting& k, uint64_t x, const uint8_t* at) {
         } else {
             below = std::min(below, x - v - 1);
         }
+    };
+    for (uint64_t v : c.consts) apart(v);
+    for (size_t i = 0; i < c.bounds.size(); i++) {
+        const uint64_t offset = c.bounds[i].offset & k.mask;
+        apart((k.bound_values[i] - offset) & k.mask);
+        if (offset) apart((0 - offset) & k.mask);  // where the sum wraps
     }
     k.lo = x - below;
     k.width = below + above == ~0ull ? ~0ull : below + above + 1;

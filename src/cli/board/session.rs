@@ -256,6 +256,9 @@ struct Session<'a> {
     bot_stop: Option<BreakStop>,
     /// The bytes waiting for the design's UART and keyboard.
     feeder: Feeder,
+    /// When the stimulus changes an input (`stops` also holds the waveform's marks and the
+    /// feeder's retries).
+    input_times: BTreeSet<u64>,
 }
 
 impl<'a> Session<'a> {
@@ -292,7 +295,8 @@ impl<'a> Session<'a> {
             (None, None) => 1_000_000_000_000,
         };
         let sample_limit = a.samples.map_or(u64::MAX, |n| n.saturating_add(1));
-        let mut stops: BTreeSet<u64> = p.stimulus.change_times().into_iter().collect();
+        let input_times: BTreeSet<u64> = p.stimulus.change_times().into_iter().collect();
+        let mut stops = input_times.clone();
         if a.vcd.is_some() {
             for m in [Some(p.vcd_from), p.vcd_to].into_iter().flatten() {
                 if let Mark::Time(t) = m {
@@ -334,6 +338,7 @@ impl<'a> Session<'a> {
             blocked_now: false,
             bot_stop: None,
             feeder,
+            input_times,
         })
     }
 
@@ -420,7 +425,7 @@ impl<'a> Session<'a> {
             ));
         }
         if self.stops.contains(&t) {
-            if p.stimulus.change_times().binary_search(&t).is_ok() {
+            if self.input_times.contains(&t) {
                 let (r, b, sw) = p.stimulus.inputs_at(t);
                 self.model.set_inputs(r, b, sw);
                 let [x, y, z] = p.stimulus.tilt_at(t);

@@ -315,6 +315,46 @@ impl Pool {
         false
     }
 
+    /// The refusal of a design of the MIPSfpga era (board.md §8) that `top` reaches: the
+    /// Rojobot 3.1 IP, its application CPU a MIPS microAptiv core. botsim runs neither yet;
+    /// one line names both where they are, before anything else is said of the design.
+    fn mips_era(&self, top: &str) -> Option<BoardError> {
+        let mut seen = BTreeSet::new();
+        let mut stack = vec![top.to_string()];
+        let (mut ip, mut mips) = (None, None);
+        while let Some(n) = stack.pop() {
+            if !seen.insert(n.clone()) {
+                continue;
+            }
+            for d in self.definitions(&n) {
+                for inst in &self.module(d).instances {
+                    if ip.is_none() && is_rojobot31_ip(inst) {
+                        ip = Some((d, inst.clone()));
+                    }
+                    if mips.is_none() && inst.module == MIPS_CORE {
+                        mips = Some(format!("{}:{}:{}", self.path(d).display(), inst.line, inst.col));
+                    }
+                    stack.push(inst.module.clone());
+                }
+            }
+        }
+        let (d, inst) = ip?;
+        let core = match mips {
+            Some(at) => format!("its MIPS microAptiv core (`{MIPS_CORE}`, {at})"),
+            None => "the MIPS microAptiv SoC of that era".to_string(),
+        };
+        Some(BoardError::at(
+            self.path(d),
+            inst.line,
+            inst.col,
+            format!(
+                "`{}` (instance `{}`) is the Rojobot 3.1 IP (rojobot31) of the MIPSfpga era, driven by {core}: \
+                 botsim does not run Rojobot 3.1 with a MIPS SoC yet (it runs BotSim 2.0 and PicoBlaze designs)",
+                inst.module, inst.name
+            ),
+        ))
+    }
+
     fn ages(&self) -> &Ages {
         self.ages.get_or_init(|| Ages::of(&self.root))
     }
@@ -377,6 +417,10 @@ impl Pool {
                 .map(|n| n.to_string())
                 .collect()
         };
+        // A design of the MIPSfpga era is said as such, whatever else could be its top.
+        if let Some(e) = pick(&boards).iter().find_map(|n| self.mips_era(n)) {
+            return Err(e);
+        }
         let mut candidates = pick(&with_bot);
         if candidates.is_empty() {
             candidates = pick(&boards);
@@ -525,6 +569,9 @@ impl Pool {
             }
         }
         let top = self.top(opts, project)?;
+        if let Some(e) = self.mips_era(&top) {
+            return Err(e);
+        }
         let mut walk = Walk::new(self, opts, repo, &listed);
         walk.run(&top)?;
         notes.append(&mut walk.notes);
@@ -558,6 +605,8 @@ struct Missing {
     parent: String,
     at: String,
     hint: String,
+    /// The option that gets past it (`--stub NAME`, `--clock NAME.PORT=FREQ ...`), if one does.
+    step: Option<String>,
 }
 
 struct Walk<'a> {
@@ -833,17 +882,17 @@ impl<'a> Walk<'a> {
         } else if let Some(d) = pool.defs.get(name).and_then(|v| v.first()) {
             format!("only a black box declares it ({}); add its file, or tie it off with --stub {name}", pool.at(*d))
         } else if looks_like_clock_core(inst) {
-            let outs: Vec<&str> = inst
-                .connections
-                .iter()
-                .map(|(p, _)| p.as_str())
-                .filter(|p| p.to_ascii_lowercase().contains("out") || p.to_ascii_lowercase().starts_with("clk_o"))
-                .collect();
-            let example = outs.first().copied().unwrap_or("clk_out1");
-            format!(
-                "a clock core with no configuration (ports {}): give its frequencies with --clock {name}.{example}=25MHz (one per output), or add its .xci",
-                inst.connections.iter().map(|(p, _)| p.as_str()).collect::<Vec<_>>().join(", ")
-            )
+            let clocks = clock_options(inst);
+            let hint = format!(
+                "a clock core with no configuration (ports {}): give its frequencies with {} (one --clock per output), or add its .xci",
+                inst.connections.iter().map(|(p, _)| p.as_str()).collect::<Vec<_>>().join(", "),
+                clocks
+            );
+            self.missing(inst, parent, file, hint);
+            if let Some(m) = self.missing.last_mut() {
+                m.step = Some(clocks);
+            }
+            return None;
         } else {
             format!("add its file, or tie it off with --stub {name}")
         };
@@ -933,6 +982,7 @@ impl<'a> Walk<'a> {
                     parent: String::new(),
                     at: e.location.clone().unwrap_or_default(),
                     hint: e.message,
+                    step: None,
                 });
                 // Recorded as missing: nothing stands for it.
                 Some(Choice::Own)
@@ -946,6 +996,7 @@ impl<'a> Walk<'a> {
             instance: inst.name.clone(),
             parent: parent.to_string(),
             at: format!("{}:{}:{}", file.display(), inst.line, inst.col),
+            step: hint.contains(&format!("--stub {}", inst.module)).then(|| format!("--stub {}", inst.module)),
             hint,
         });
     }
@@ -999,18 +1050,7 @@ impl<'a> Walk<'a> {
                 };
                 msg.push_str(&format!("\n  {}: `{}`{place}: {}", m.at, m.module, m.hint));
             }
-            // Every one inside one module of the team's (an icon module holding its ROM
-            // cores): tying that module off is the one option that gets past them all.
-            let parents: BTreeSet<&str> = self.missing.iter().map(|m| m.parent.as_str()).collect();
-            if let (true, Some(&parent), 1) = (n > 1, parents.first(), parents.len()) {
-                let defs = self.pool.definitions(parent);
-                if parent != top && !defs.is_empty() {
-                    let at = defs.iter().map(|d| self.pool.at(*d)).next().unwrap_or_default();
-                    msg.push_str(&format!(
-                        "\n  all {n} are instantiated in `{parent}` ({at}): --stub {parent} ties off that module (its outputs 0) instead"
-                    ));
-                }
-            }
+            msg.push_str(&self.way_past(&top));
             return Err(BoardError::plain(msg));
         }
         // The user's files: each with the modules chosen from it, the rest blanked.
@@ -1047,6 +1087,44 @@ impl<'a> Walk<'a> {
         Ok(Design { top, project, sources: user, include_dirs, notes: self.notes, generated })
     }
 
+    /// The line after the missing modules that gets past them all in one step, when a module
+    /// of the team's (not the top) holds several of them (an icon module holding its ROM
+    /// cores): `--stub` that module, beside each other missing module's own option.
+    fn way_past(&self, top: &str) -> String {
+        let n = self.missing.len();
+        let mut held: BTreeMap<&str, usize> = BTreeMap::new();
+        for m in &self.missing {
+            *held.entry(m.parent.as_str()).or_default() += 1;
+        }
+        let stubbed = |parent: &str| {
+            held.get(parent).is_some_and(|&k| k > 1) && parent != top && !self.pool.definitions(parent).is_empty()
+        };
+        let at = |parent: &str| self.pool.definitions(parent).first().map(|d| self.pool.at(*d)).unwrap_or_default();
+        let mut steps: Vec<String> = Vec::new();
+        for m in &self.missing {
+            let step = if stubbed(&m.parent) { Some(format!("--stub {}", m.parent)) } else { m.step.clone() };
+            let Some(step) = step else { return String::new() };
+            if !steps.contains(&step) {
+                steps.push(step);
+            }
+        }
+        let groups: Vec<(&str, usize)> = held.iter().filter(|(p, _)| stubbed(p)).map(|(p, k)| (*p, *k)).collect();
+        match groups.as_slice() {
+            [] => String::new(),
+            [(parent, k)] if *k == n => format!(
+                "\n  all {n} are instantiated in `{parent}` ({}): --stub {parent} ties off that module (its outputs 0) instead",
+                at(parent)
+            ),
+            _ => {
+                let why: Vec<String> = groups
+                    .iter()
+                    .map(|(p, k)| format!("{k} are instantiated in `{p}` ({}), which --stub {p} ties off (its outputs 0)", at(p)))
+                    .collect();
+                format!("\n  {}: {} gets past all {n}", why.join("; "), steps.join(" "))
+            }
+        }
+    }
+
     /// Rewrite what Vivado accepts and Verilator refuses in the compiled parts of `s`, and
     /// say so.
     fn lenient(&mut self, s: &mut Source) {
@@ -1067,7 +1145,8 @@ impl<'a> Walk<'a> {
             ));
         }
         for (at, name, ..) in &unnamed {
-            s.replace(*at..*at, &format!("{name} "));
+            // Spaces on both sides: `bot(` has none between the module and its `(`.
+            s.replace(*at..*at, &format!(" {name} "));
         }
         let kept = |at: &std::ops::Range<usize>| !s.dropped.iter().any(|d| d.start <= at.start && at.end <= d.end);
         let fixes: Vec<scan::Oversized> =
@@ -1164,6 +1243,62 @@ impl Walk<'_> {
 }
 
 /// An instance whose connections look like a Clocking Wizard's (`clk_in1`, `clk_out1`, ...).
+/// The module name of the MIPS microAptiv core (MIPSfpga's `m14k_top`): a licensed RTL that
+/// teams' repositories instantiate and rarely commit.
+const MIPS_CORE: &str = "m14k_top";
+
+/// An instance of the Rojobot 3.1 IP (board.md §8): the bot's motor input beside a world-map
+/// port (its map is outside it), whatever the component's name.
+fn is_rojobot31_ip(inst: &Instance) -> bool {
+    let connects = |p: &str| inst.connections.iter().any(|(c, _)| c == p);
+    connects("MotCtl_in") && connects("worldmap_addr") && connects("worldmap_data")
+}
+
+/// The `--clock` options for a clock core's instance: one per output port it connects (a port
+/// not an input, reset or status by its name), each at the frequency its name gives
+/// (`CLK_75MHZ`: 75 MHz), else 25 MHz as an example.
+fn clock_options(inst: &Instance) -> String {
+    let outputs: Vec<&str> = inst
+        .connections
+        .iter()
+        .map(|(p, _)| p.as_str())
+        .filter(|p| {
+            let l = p.to_ascii_lowercase();
+            !p.starts_with('#')
+                && ![
+                    "in", "rst", "reset", "lock", "power", "pwr", "psen", "psincdec", "psclk", "daddr", "den", "dwe",
+                    "di",
+                ]
+                .iter()
+                .any(|w| l.starts_with(w) || l.contains(&format!("_{w}")))
+                && !l.contains("clkin")
+                && !l.contains("clkfb")
+        })
+        .collect();
+    let outputs = if outputs.is_empty() { vec!["clk_out1"] } else { outputs };
+    outputs
+        .iter()
+        .map(|p| format!("--clock {}.{p}={}", inst.module, frequency_in_name(p).unwrap_or_else(|| "25MHz".into())))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// The frequency a port's name gives, as `--clock` takes it: `CLK_75MHZ` 75MHz,
+/// `clk_6_25MHz` 6.25MHz, `clk100mhz` 100MHz; `None` for a name without one.
+fn frequency_in_name(port: &str) -> Option<String> {
+    let l = port.to_ascii_lowercase();
+    let end = l.find("mhz").or_else(|| l.find("khz"))?;
+    let unit = if l[end..].starts_with("mhz") { "MHz" } else { "kHz" };
+    let digits: String = l[..end].chars().rev().take_while(|c| c.is_ascii_digit() || *c == '_' || *c == 'p').collect();
+    let digits: String = digits.chars().rev().collect::<String>().trim_matches('_').to_string();
+    if !digits.starts_with(|c: char| c.is_ascii_digit()) {
+        return None;
+    }
+    // `6_25` and `6p25` are 6.25; a `_` between thousands is not written in a clock's name.
+    let value = digits.replacen(['_', 'p'], ".", 1).replace(['_', 'p'], "");
+    value.parse::<f64>().ok().filter(|v| *v > 0.0).map(|_| format!("{value}{unit}"))
+}
+
 fn looks_like_clock_core(inst: &Instance) -> bool {
     let ports: Vec<String> = inst.connections.iter().map(|(p, _)| p.to_ascii_lowercase()).collect();
     ports.iter().any(|p| p.starts_with("clk_in") || p == "clkin")
@@ -1259,7 +1394,7 @@ mod tests {
         let e = resolve(&[t.path().to_path_buf()], &Options::default()).unwrap_err().to_string();
         let lines: Vec<&str> = e.lines().collect();
         assert_eq!(lines[0], "3 modules of the design are missing:");
-        assert!(lines[1].ends_with("top.v:2:3: `clk_wiz_0` (instance `cw` in `top`): a clock core with no configuration (ports clk_in1, clk_out1, locked): give its frequencies with --clock clk_wiz_0.clk_out1=25MHz (one per output), or add its .xci"), "{e}");
+        assert!(lines[1].ends_with("top.v:2:3: `clk_wiz_0` (instance `cw` in `top`): a clock core with no configuration (ports clk_in1, clk_out1, locked): give its frequencies with --clock clk_wiz_0.clk_out1=25MHz (one --clock per output), or add its .xci"), "{e}");
         assert!(
             lines[2]
                 .contains("top.v:3:3: `uart` (instance `u` in `top`): add its file, or tie it off with --stub uart"),
@@ -1274,6 +1409,78 @@ mod tests {
         let d = resolve(&[t.path().to_path_buf()], &opts).unwrap();
         let made: Vec<&str> = d.generated.iter().map(|r| r.module.as_str()).collect();
         assert_eq!(made, ["clk_wiz_0", "spi", "uart"]);
+    }
+
+    #[test]
+    fn a_clock_cores_options_use_its_own_output_names_and_the_frequencies_they_give() {
+        let inst = |ports: &[&str]| Instance {
+            module: "cw".into(),
+            name: "u".into(),
+            line: 1,
+            col: 1,
+            connections: ports.iter().map(|p| (p.to_string(), "x".into())).collect(),
+            params: vec![],
+            unnamed_at: None,
+        };
+        assert_eq!(
+            clock_options(&inst(&["clk_in1", "CLK_75MHZ", "CLK_25MHZ", "reset", "locked"])),
+            "--clock cw.CLK_75MHZ=75MHz --clock cw.CLK_25MHZ=25MHz"
+        );
+        assert_eq!(clock_options(&inst(&["CLK_IN1", "CLK_OUT1", "RESET", "LOCKED"])), "--clock cw.CLK_OUT1=25MHz");
+        assert_eq!(
+            clock_options(&inst(&["clk_in1", "clk_6_25MHz", "clk100mhz"])),
+            "--clock cw.clk_6_25MHz=6.25MHz --clock cw.clk100mhz=100MHz"
+        );
+        assert_eq!(frequency_in_name("clk_out1"), None);
+        assert_eq!(frequency_in_name("pix_clk_65MHz"), Some("65MHz".into()));
+        for o in
+            clock_options(&inst(&["clk_in1", "CLK_75MHZ", "clk_6_25MHz"])).split("--clock ").filter(|o| !o.is_empty())
+        {
+            ClockSpec::parse(o.trim()).unwrap_or_else(|e| panic!("{o}: {e}"));
+        }
+    }
+
+    #[test]
+    fn missing_modules_mostly_in_one_team_module_are_passed_with_its_stub_and_the_others_steps_in_one_line() {
+        let t = tree(&[
+            ("top.v", "module top(input clk);\n  clk_wiz_0 cw (.clk_in1(clk), .clk_out1(c25), .locked(l));\n  icon i (.clk(c25));\n  bot b (.clk(clk));\nendmodule\n"),
+            ("icon.v", "module icon(input clk);\n  rom_a a (.clka(clk));\n  rom_b b (.clka(clk));\n  rom_c c (.clka(clk));\nendmodule\n"),
+        ]);
+        let e = resolve(&[t.path().to_path_buf()], &Options::default()).unwrap_err().to_string();
+        let last = e.lines().last().unwrap();
+        assert!(e.starts_with("4 modules of the design are missing:"), "{e}");
+        assert!(last.contains("3 are instantiated in `icon` ("), "{e}");
+        assert!(last.ends_with("--clock clk_wiz_0.clk_out1=25MHz --stub icon gets past all 4"), "{e}");
+        // The line's options do get past them all.
+        let opts = Options {
+            stubs: vec!["icon".into()],
+            clocks: vec![ClockSpec::parse("clk_wiz_0.clk_out1=25MHz").unwrap()],
+            ..Options::default()
+        };
+        resolve(&[t.path().to_path_buf()], &opts).unwrap();
+    }
+
+    #[test]
+    fn a_design_of_the_mipsfpga_era_is_refused_in_one_line_naming_the_rojobot31_ip_and_the_mips_core() {
+        // The Rojobot 3.1 IP under any component name, the MIPS core not committed; another
+        // module with a clock pin beside the top (which would make "several tops").
+        let top = "module mfp_nexys4_ddr(input CLK100MHZ, output [15:0] LED);\n  mfp_sys sys (.SI_ClkIn(CLK100MHZ));\n  rojobot31_upper_0 robot(.MotCtl_in(m), .LocX_reg(x), .worldmap_addr(a), .worldmap_data(d), .clk_in(CLK100MHZ), .Bot_Config_reg(8'h0));\nendmodule\n";
+        let sys = "module mfp_sys(input SI_ClkIn);\n  m14k_top top (.SI_ClkIn(SI_ClkIn));\nendmodule\n";
+        let other = "module debounce(input clk, input [5:0] pbtn_in, output [5:0] pbtn_db);\nendmodule\n";
+        let t = tree(&[("hw/mfp_nexys4_ddr.v", top), ("hw/mfp_sys.v", sys), ("hw/debounce.v", other)]);
+        let e = resolve(&[t.path().to_path_buf()], &Options::default()).unwrap_err().to_string();
+        assert_eq!(e.lines().count(), 1, "{e}");
+        assert!(
+            e.contains(
+                "mfp_nexys4_ddr.v:3:3: `rojobot31_upper_0` (instance `robot`) is the Rojobot 3.1 IP (rojobot31)"
+            ),
+            "{e}"
+        );
+        assert!(e.contains("its MIPS microAptiv core (`m14k_top`, ") && e.contains("mfp_sys.v:2:3)"), "{e}");
+        // Named as the top, the same.
+        let opts = Options { top: Some("mfp_nexys4_ddr".into()), ..Options::default() };
+        let named = resolve(&[t.path().to_path_buf()], &opts).unwrap_err().to_string();
+        assert_eq!(named, e);
     }
 
     #[test]

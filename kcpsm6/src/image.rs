@@ -264,93 +264,189 @@ fn parse_init_strings(text: &str) -> Option<Result<Image, (usize, String)>> {
     Some(Ok(img))
 }
 
+/// The INIT strings of a template in text order, read token by token (comments blanked), so
+/// an attribute written over several lines, with comments between its parts or none of the
+/// usual spaces (`.INIT_00 (\n 256'h...)`, `.INIT_00(256'h...)`) reads as the usual form.
 fn scan_init_strings(text: &str) -> Vec<InitString> {
+    let code = blank_comments(text);
+    let b = code.as_bytes();
     let mut out = Vec::new();
     let mut block = 0;
     let mut width = 18;
-    for (ln, line) in text.lines().enumerate() {
-        let code = line.split("//").next().unwrap_or("");
-        for prim in ["RAMB18E1", "RAMB36E1", "RAMB16BWER", "RAMB18", "RAMB36", "RAMB16"] {
-            if code.contains(prim) {
-                block += 1;
-                width = 18;
-                break;
-            }
+    let line_of = |at: usize| code[..at].bytes().filter(|&c| c == b'\n').count() + 1;
+    // The first token after `at` past white space, `(`, `=` and `.`.
+    let value_after = |mut at: usize| {
+        while at < b.len() && (b[at].is_ascii_whitespace() || b"(=.".contains(&b[at])) {
+            at += 1;
         }
-        if let Some(i) = code.find("READ_WIDTH_A").or_else(|| code.find("DATA_WIDTH_A")) {
-            let digits: String =
-                code[i + 12..].chars().skip_while(|c| !c.is_ascii_digit()).take_while(|c| c.is_ascii_digit()).collect();
+        let end = (at..b.len()).find(|&k| !(b[k].is_ascii_alphanumeric() || b[k] == b'_' || b[k] == b'\'')).unwrap_or(b.len());
+        &code[at..end]
+    };
+    let mut i = 0;
+    while i < b.len() {
+        let c = b[i];
+        if c == b'"' {
+            i = code[i + 1..].find('"').map_or(b.len(), |k| i + k + 2);
+            continue;
+        }
+        if !(c.is_ascii_alphanumeric() || c == b'_' || c == b'$') {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        while i < b.len() && (b[i].is_ascii_alphanumeric() || b[i] == b'_' || b[i] == b'$' || b[i] == b'\'') {
+            i += 1;
+        }
+        if c.is_ascii_digit() {
+            continue; // a number (`256'h...`): its letters are no names
+        }
+        let word = &code[start..i];
+        if ["RAMB18E1", "RAMB36E1", "RAMB16BWER", "RAMB18", "RAMB36", "RAMB16"].contains(&word) {
+            block += 1;
+            width = 18;
+        } else if word == "READ_WIDTH_A" || word == "DATA_WIDTH_A" {
+            let digits: String = value_after(i).chars().take_while(|c| c.is_ascii_digit()).collect();
             if let Ok(w) = digits.parse() {
                 width = w;
                 for s in out.iter_mut().filter(|s: &&mut InitString| s.block == block) {
                     s.width = w;
                 }
             }
-        }
-        let bytes = code.as_bytes();
-        let mut i = 0;
-        while let Some(off) = code[i..].find("INIT") {
-            let start = i + off;
-            i = start + 4;
-            if start > 0 && (bytes[start - 1].is_ascii_alphanumeric() || bytes[start - 1] == b'_') {
+        } else if let Some((parity, hex)) =
+            word.strip_prefix("INITP_").map(|h| (true, h)).or_else(|| word.strip_prefix("INIT_").map(|h| (false, h)))
+        {
+            let Some(index) = (hex.len() == 2).then(|| usize::from_str_radix(hex, 16).ok()).flatten() else { continue };
+            let mut at = i;
+            while at < b.len() && b[at].is_ascii_whitespace() {
+                at += 1;
+            }
+            if !(at < b.len() && (b[at] == b'(' || b[at] == b'=')) {
                 continue;
             }
-            let rest = &code[start + 4..];
-            let (parity, rest) = match rest.strip_prefix("P_") {
-                Some(r) => (true, r),
-                None => match rest.strip_prefix('_') {
-                    Some(r) => (false, r),
-                    None => continue,
-                },
-            };
-            let Some(index) = rest.get(..2).and_then(|h| usize::from_str_radix(h, 16).ok()) else { continue };
-            let after = rest[2..].trim_start();
-            let Some(after) = after.strip_prefix('(').or_else(|| after.strip_prefix('=')) else { continue };
-            let after = after.trim_start();
-            let Some(hex) = after.strip_prefix("256'h").or_else(|| after.strip_prefix("256'H")) else { continue };
-            let digits: String = hex.chars().take_while(|c| c.is_ascii_hexdigit()).collect();
-            if digits.len() != 64 {
+            let value = value_after(at);
+            let Some(digits) = value.strip_prefix("256'h").or_else(|| value.strip_prefix("256'H")) else { continue };
+            if digits.len() != 64 || !digits.bytes().all(|c| c.is_ascii_hexdigit()) {
                 continue;
             }
-            let mut b = [0u8; 32];
-            for (k, byte) in b.iter_mut().enumerate() {
+            let mut bytes = [0u8; 32];
+            for (k, byte) in bytes.iter_mut().enumerate() {
                 let pos = 62 - 2 * k;
                 *byte = u8::from_str_radix(&digits[pos..pos + 2], 16).unwrap_or(0);
             }
-            out.push(InitString { parity, index, bytes: b, width, block, line: ln + 1 });
+            out.push(InitString { parity, index, bytes, width, block, line: line_of(start) });
         }
+    }
+    out
+}
+
+/// `text` with its comments replaced by spaces (line breaks kept, so lines and offsets stay).
+fn blank_comments(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while !rest.is_empty() {
+        let line = rest.find("//");
+        let block = rest.find("/*");
+        let quote = rest.find('"');
+        let first = [line, block, quote].into_iter().flatten().min();
+        let Some(at) = first else {
+            out.push_str(rest);
+            break;
+        };
+        out.push_str(&rest[..at]);
+        rest = &rest[at..];
+        let end = if Some(at) == quote {
+            // A string is kept whole: a `//` inside it is no comment.
+            let end = rest[1..].find('"').map_or(rest.len(), |k| k + 2);
+            out.push_str(&rest[..end]);
+            rest = &rest[end..];
+            continue;
+        } else if Some(at) == line {
+            rest.find('\n').unwrap_or(rest.len())
+        } else {
+            rest[2..].find("*/").map_or(rest.len(), |k| k + 4)
+        };
+        out.extend(rest[..end].chars().map(|c| if c == '\n' { '\n' } else { ' ' }));
+        rest = &rest[end..];
     }
     out
 }
 
 /// Our behavioural ROM: lines `rom[10'hAAA] = 18'hWWWWW;` (and an optional fill value).
 fn parse_behavioural(path: &Path, text: &str) -> Option<Result<Image, Diagnostic>> {
+    // Read token by token (comments blanked): `rom[10'h01A] = 18'h2D515;` and `fill = 18'h0;`
+    // however they are spaced or broken over lines.
+    let code = blank_comments(text);
+    let b = code.as_bytes();
     let mut img = Image::zeroed();
     let mut any = false;
-    for (ln, line) in text.lines().enumerate() {
-        let t = line.trim();
-        if let Some(fill) = t.strip_prefix("fill = 18'h").and_then(|r| r.strip_suffix(';')) {
-            match parse_word(fill) {
-                Ok(w) => img.words.iter_mut().for_each(|x| *x = w),
-                Err(m) => return Some(Err(Diagnostic::error(Loc::new(path, ln + 1, 1), m))),
-            }
-            continue;
+    let line_of = |at: usize| code[..at].bytes().filter(|&c| c == b'\n').count() + 1;
+    let skip_ws = |mut at: usize| {
+        while at < b.len() && b[at].is_ascii_whitespace() {
+            at += 1;
         }
-        let Some(rest) = t.strip_prefix("rom[") else { continue };
-        let rest = rest.split_once("'h").map_or("", |(width, r)| if width.parse::<u8>().is_ok() { r } else { "" });
-        let parsed = rest.split_once("] = 18'h").and_then(|(a, w)| {
-            let w = w.strip_suffix(';')?;
-            Some((usize::from_str_radix(a, 16).ok()?, w))
-        });
-        match parsed {
-            Some((a, w)) if a < ROM_WORDS => match parse_word(w) {
-                Ok(w) => {
-                    img.words[a] = w;
-                    any = true;
+        at
+    };
+    // A sized hex literal at `at` (`18'h2D515`): its width, digits and end.
+    let literal = |at: usize| -> Option<(&str, &str, usize)> {
+        let w_end = (at..b.len()).find(|&k| !b[k].is_ascii_digit())?;
+        let rest = code[w_end..].strip_prefix("'h").or_else(|| code[w_end..].strip_prefix("'H"))?;
+        let d_start = b.len() - rest.len();
+        let d_end = (d_start..b.len()).find(|&k| !(b[k].is_ascii_hexdigit() || b[k] == b'_')).unwrap_or(b.len());
+        Some((&code[at..w_end], &code[d_start..d_end], d_end))
+    };
+    let name_at = |at: usize, name: &str| {
+        code[at..].starts_with(name)
+            && (at == 0 || !(b[at - 1].is_ascii_alphanumeric() || b[at - 1] == b'_'))
+            && b.get(at + name.len()).is_none_or(|c| !(c.is_ascii_alphanumeric() || *c == b'_'))
+    };
+    // `= 18'hWWWWW ;` at `at`: the word.
+    let assigned = |at: usize| -> Option<Result<u32, String>> {
+        let at = skip_ws(at);
+        (b.get(at) == Some(&b'=')).then_some(())?;
+        let (width, digits, end) = literal(skip_ws(at + 1))?;
+        (width == "18" && b.get(skip_ws(end)) == Some(&b';')).then_some(())?;
+        Some(parse_word(&digits.replace('_', "")))
+    };
+    let mut i = 0;
+    while i < b.len() {
+        if name_at(i, "fill") {
+            if let Some(w) = assigned(i + 4) {
+                match w {
+                    Ok(w) => img.words.iter_mut().for_each(|x| *x = w),
+                    Err(m) => return Some(Err(Diagnostic::error(Loc::new(path, line_of(i), 1), m))),
                 }
-                Err(m) => return Some(Err(Diagnostic::error(Loc::new(path, ln + 1, 1), m))),
-            },
-            _ => return Some(Err(Diagnostic::error(Loc::new(path, ln + 1, 1), format!("cannot read ROM line '{t}'")))),
+            }
+            i += 4;
+        } else if name_at(i, "rom") && b.get(skip_ws(i + 3)) == Some(&b'[') {
+            let at = skip_ws(skip_ws(i + 3) + 1);
+            // `rom[i] = fill` in the template's loop and the declaration `rom [0:WORDS-1]`:
+            // not words of the program.
+            if literal(at).is_some() {
+                let parsed = literal(at).and_then(|(width, a, end)| {
+                    width.parse::<u8>().ok()?;
+                    let close = skip_ws(end);
+                    (b.get(close) == Some(&b']')).then_some(())?;
+                    Some((usize::from_str_radix(&a.replace('_', ""), 16).ok()?, assigned(close + 1)?))
+                });
+                let line = line_of(i);
+                match parsed {
+                    Some((a, Ok(w))) if a < ROM_WORDS => {
+                        img.words[a] = w;
+                        any = true;
+                    }
+                    Some((_, Err(m))) => return Some(Err(Diagnostic::error(Loc::new(path, line, 1), m))),
+                    _ => {
+                        let statement = code[i..].split(';').next().unwrap_or("").split_whitespace().collect::<Vec<_>>().join(" ");
+                        return Some(Err(Diagnostic::error(
+                            Loc::new(path, line, 1),
+                            format!("cannot read ROM line '{statement};'"),
+                        )));
+                    }
+                }
+            }
+            i += 3;
+        } else {
+            i += 1;
         }
     }
     any.then_some(Ok(img))

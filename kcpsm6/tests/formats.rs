@@ -94,6 +94,24 @@ fn xilinx_template_18bit_init_strings_decode() {
 }
 
 #[test]
+fn init_strings_over_several_lines_with_comments_between_or_no_spaces_decode_the_same() {
+    let plain = template_18bit();
+    let want = Image::parse_verilog(Path::new("bot_pgm.v"), &plain).unwrap();
+    let spread = plain
+        .replace(".INIT_00(", ". INIT_00 /* word 0 */ (\n  // the first\n  ")
+        .replace(".INITP_00(256'h", ".INITP_00\n(\n256'h")
+        .replace("), ", ") ,\n")
+        .replace("READ_WIDTH_A(18)", "READ_WIDTH_A\n ( 18 )");
+    let tight = plain.replace(",\n    ", ",").replace(" #(", "#(");
+    for text in [spread, tight] {
+        assert_eq!(Image::parse_verilog(Path::new("bot_pgm.v"), &text).unwrap(), want, "{text}");
+    }
+    // An INIT string in a comment or a string is none.
+    let commented = plain.replace(".INIT_01(", "// .INIT_01(256'h1111111111111111111111111111111111111111111111111111111111111111)\n .INIT_01(");
+    assert_eq!(Image::parse_verilog(Path::new("bot_pgm.v"), &commented).unwrap(), want);
+}
+
+#[test]
 fn xilinx_template_9bit_split_decodes() {
     // Word 0 = 2D056 = 10_1101_0000_0101_0110: low 9 bits 0x056 -> byte 56, bit8 0;
     // high 9 bits (>>9) = 0x168 -> byte 68, bit8 1. Word 33 = 3FFFF: both halves 1FF.
@@ -125,6 +143,16 @@ fn behavioural_rom_round_trips_and_is_one_cycle() {
     assert!(v.contains("module bot_pgm #("));
     assert!(v.contains("instruction <= rom[address[9:0]];"));
     assert_eq!(Image::parse_verilog(Path::new("bot_pgm.v"), &v).unwrap(), p.image);
+    // Re-spaced (all on one line, or each word over lines with comments): the same program.
+    let tight = v.lines().filter(|l| !l.trim_start().starts_with("//")).map(str::trim).collect::<Vec<_>>().join("");
+    let tight = tight.replace(" = ", "=").replace("] =", "]=").replace("`timescale 1ns / 1ps", "");
+    let spread = v.replace("] = 18'h", "]\n  = /* word */ 18'h").replace("rom[", "rom [ ");
+    for text in [tight, spread] {
+        assert_eq!(Image::parse_verilog(Path::new("bot_pgm.v"), &text).unwrap(), p.image, "{text}");
+    }
+    let bad = v.replace("rom[10'h001] = 18'h", "rom[10'h001] = 18'hX");
+    let e = Image::parse_verilog(Path::new("bot_pgm.v"), &bad).unwrap_err().to_string();
+    assert!(e.contains("cannot read ROM line 'rom[10'h001] = 18'hX"), "{e}");
     let e = Image::parse_verilog(Path::new("x.v"), "module x; endmodule\n").unwrap_err().to_string();
     assert!(e.starts_with("x.v: error: no program found"), "{e}");
 }

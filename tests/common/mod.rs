@@ -11,6 +11,7 @@ pub mod lockstep;
 pub mod random_design;
 pub mod repo;
 pub mod strategies;
+pub mod variants;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

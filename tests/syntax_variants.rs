@@ -106,8 +106,16 @@ fn variants_run_as_the_original(name: &str, dir: &Path, inputs: &[&str], args: &
 fn the_tight_variant_writes_what_students_write_and_both_keep_every_token() {
     let src = "`timescale 1ns / 1ps\nmodule m #(parameter N = 8'h0A) (input clk, output reg [3:0] q);\n  // a comment\n  always @(*) q <= (q == 4'b1111) ? 1'b0 : q + 1'b1; /* x */\n  bot (.clk(clk));\n  sub # (.W(2)) u ( .a (b) );\n  assign \\bus[0] = 32'd4_000_000 / 2;\nendmodule\n";
     let tight = variant(src, Style::Tight, 1);
-    assert!(tight.starts_with("`timescale 1ns / 1ps\nmodule m#(parameter N=8'h0A)(input clk,output reg[3:0]q);// a comment\n"), "{tight}");
-    assert!(tight.contains("always@( * )q<=(q==4'b1111)?1'b0:q+1'b1;/* x */bot(.clk(clk));sub#(.W(2))u(.a(b));"), "{tight}");
+    assert!(
+        tight.starts_with(
+            "`timescale 1ns / 1ps\nmodule m#(parameter N=8'h0A)(input clk,output reg[3:0]q);// a comment\n"
+        ),
+        "{tight}"
+    );
+    assert!(
+        tight.contains("always@( * )q<=(q==4'b1111)?1'b0:q+1'b1;/* x */bot(.clk(clk));sub#(.W(2))u(.a(b));"),
+        "{tight}"
+    );
     assert!(tight.contains("assign \\bus[0] =32'd4_000_000/2;endmodule"), "{tight}");
     let loose = variant(src, Style::Loose, 3);
     assert!(loose.contains("(* keep = \"true\" *) always @ ( * )"), "{loose}");
@@ -189,13 +197,20 @@ fn the_corpus_runs_the_same_written_tight_or_loose() {
     let only = std::env::var("BOTSIM_CORPUS_ONLY").ok();
     for repo in list["repo"].as_array().unwrap() {
         let name = repo["name"].as_str().unwrap();
-        if repo["expect"].as_str() == Some("refused") || only.as_deref().is_some_and(|o| !o.split(',').any(|n| n == name)) {
+        if repo["expect"].as_str() == Some("refused")
+            || only.as_deref().is_some_and(|o| !o.split(',').any(|n| n == name))
+        {
             continue;
         }
         let clone = corpus.join(name);
         let run = repo["run"].as_str().unwrap();
-        let mut args: Vec<String> =
-            repo.get("args").and_then(|a| a.as_array()).into_iter().flatten().map(|a| a.as_str().unwrap().to_string()).collect();
+        let mut args: Vec<String> = repo
+            .get("args")
+            .and_then(|a| a.as_array())
+            .into_iter()
+            .flatten()
+            .map(|a| a.as_str().unwrap().to_string())
+            .collect();
         args.extend(["--seconds".into(), "0.01".into()]);
         // SIMULATE=1 where the top has it: tried, and left out when botsim says it has none.
         let probe = board_in(&clone, &[run, "--param", "SIMULATE=1", "--seconds", "0.0001"]);

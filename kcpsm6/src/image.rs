@@ -279,7 +279,9 @@ fn scan_init_strings(text: &str) -> Vec<InitString> {
         while at < b.len() && (b[at].is_ascii_whitespace() || b"(=.".contains(&b[at])) {
             at += 1;
         }
-        let end = (at..b.len()).find(|&k| !(b[k].is_ascii_alphanumeric() || b[k] == b'_' || b[k] == b'\'')).unwrap_or(b.len());
+        let end = (at..b.len())
+            .find(|&k| !(b[k].is_ascii_alphanumeric() || b[k] == b'_' || b[k] == b'\''))
+            .unwrap_or(b.len());
         &code[at..end]
     };
     let mut i = 0;
@@ -436,7 +438,8 @@ fn parse_behavioural(path: &Path, text: &str) -> Option<Result<Image, Diagnostic
                     }
                     Some((_, Err(m))) => return Some(Err(Diagnostic::error(Loc::new(path, line, 1), m))),
                     _ => {
-                        let statement = code[i..].split(';').next().unwrap_or("").split_whitespace().collect::<Vec<_>>().join(" ");
+                        let statement =
+                            code[i..].split(';').next().unwrap_or("").split_whitespace().collect::<Vec<_>>().join(" ");
                         return Some(Err(Diagnostic::error(
                             Loc::new(path, line, 1),
                             format!("cannot read ROM line '{statement};'"),

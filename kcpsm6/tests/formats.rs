@@ -107,7 +107,10 @@ fn init_strings_over_several_lines_with_comments_between_or_no_spaces_decode_the
         assert_eq!(Image::parse_verilog(Path::new("bot_pgm.v"), &text).unwrap(), want, "{text}");
     }
     // An INIT string in a comment or a string is none.
-    let commented = plain.replace(".INIT_01(", "// .INIT_01(256'h1111111111111111111111111111111111111111111111111111111111111111)\n .INIT_01(");
+    let commented = plain.replace(
+        ".INIT_01(",
+        "// .INIT_01(256'h1111111111111111111111111111111111111111111111111111111111111111)\n .INIT_01(",
+    );
     assert_eq!(Image::parse_verilog(Path::new("bot_pgm.v"), &commented).unwrap(), want);
 }
 

@@ -22,11 +22,13 @@ The corpus's code is third-party of unknown licence: nothing of it enters this r
 clones live outside it, and only facts (outcomes, figures, our own messages) reach the table.
 """
 import argparse
+import csv
 import json
 import os
 import re
 import subprocess
 import sys
+import tempfile
 import time
 import tomllib
 
@@ -126,7 +128,17 @@ def base_args(clone, repo, simulate):
     return a
 
 
-def outcome(repo, code, out, err):
+def reached(trace):
+    """The first sample at which the bot stood on the line's end, from a --trace-csv file."""
+    try:
+        with open(trace) as f:
+            rows = list(csv.DictReader(f))
+    except OSError:
+        return None
+    return next((int(r["sample"]) for r in rows if (int(r["loc_x"]), int(r["loc_y"])) == LINE_END), None)
+
+
+def outcome(repo, code, out, err, trace):
     """(verdict, words): the run against the entry's `expect`."""
     expect = repo["expect"]
     if code is None:
@@ -146,11 +158,13 @@ def outcome(repo, code, out, err):
     except json.JSONDecodeError:
         return "FAIL", "no JSON summary"
     if expect == "line-end":
+        # The bot reaches the end: some sample stands on it (a team's follower may turn back).
         end = s.get("end") or {}
         loc = (end.get("loc_x"), end.get("loc_y"))
-        if loc == LINE_END:
-            return "ok", f"at the line's end ({loc[0]}, {loc[1]}) after {s.get('samples')} samples"
-        return "FAIL", f"ended at {loc} after {s.get('samples')} samples"
+        at = reached(trace)
+        if at is not None:
+            return "ok", f"reached the line's end {LINE_END} at sample {at}"
+        return "FAIL", f"never on the line's end {LINE_END}; ended at {loc} after {s.get('samples')} samples"
     if "uart" in repo:
         text = s.get("uart") or ""
         if repo["uart"] not in text:
@@ -159,9 +173,9 @@ def outcome(repo, code, out, err):
     return "ok", "ran"
 
 
-def expect_args(repo):
+def expect_args(repo, trace):
     if repo["expect"] == "line-end":
-        return ["--timing", "fast", "--samples", "2000", "--map", MAP, "--stop-at-line-end", "--json"]
+        return ["--timing", "fast", "--samples", "2000", "--map", MAP, "--stop-at-line-end", "--trace-csv", trace, "--json"]
     if repo["expect"] == "runs":
         return ["--seconds", str(repo.get("seconds", 0.05)), "--json"]
     return []
@@ -211,8 +225,9 @@ def check(args):
             first_verdict = "ok" if (code == 0) == (repo["expect"] != "refused") else "FAIL"
             first_words = "ran" if code == 0 else error_line(err)
         # Then with its one step, against `expect`.
-        code, out, err, secs = run_botsim(base_args(clone, repo, simulate) + repo.get("args", []) + expect_args(repo))
-        verdict, words = outcome(repo, code, out, err)
+        trace = os.path.join(tempfile.gettempdir(), f"corpus-{repo['name']}.csv")
+        code, out, err, secs = run_botsim(base_args(clone, repo, simulate) + repo.get("args", []) + expect_args(repo, trace))
+        verdict, words = outcome(repo, code, out, err, trace)
         entry = {"name": repo["name"], "first": [first_verdict, first_words], "expect": [verdict, words], "seconds": round(secs, 1)}
         if verdict == "ok" and repo["expect"] != "refused" and not args.no_speed:
             entry["speed"] = {str(s): bench(clone, repo, s) for s in ([1, 0] if simulate is not None else [None])}

@@ -96,9 +96,10 @@ pub fn explain(stderr: &str, files: &[File], stands_for: &dyn Fn(&str) -> Option
 }
 
 /// Verilator's width warnings at connections of what botsim built for the design (`-Wwarn-
-/// WIDTH`), in botsim's words: a replacement with another width than the design connects
-/// may be botsim's mistake (a memory core with an address too narrow reads the wrong words).
-/// The design's own widths are its own (Vivado warns as Verilator does): not said.
+/// WIDTH`), in botsim's words: a core built from the design's configuration with another
+/// width than the design connects (an 11-bit address to a 4096-deep memory) runs as Vivado
+/// builds it (upper bits 0, or dropped), said once at the connection. The design's widths
+/// between its own modules are its own (Vivado warns as Verilator does): not said.
 ///
 /// ```
 /// use botsim::board::explain::{replacement_widths, File, Origin, Stand};
@@ -112,7 +113,7 @@ pub fn explain(stderr: &str, files: &[File], stands_for: &dyn Fn(&str) -> Option
 /// let stderr = "%Warning-WIDTH: /r/icon.v:2:29: Input port connection 'addra' expects 8 bits on the pin \
 ///               connection, but pin connection's VARREF 'a12' generates 12 bits.\n";
 /// let said = replacement_widths(stderr, &files, &|m| Some(Stand::Built(format!("botsim's core for `{m}`"))));
-/// assert!(said[0].starts_with("icon.v:2:29: the design connects 12 bits to `addra` of `Icon_Rom`, which botsim's core for `Icon_Rom` takes as 8"));
+/// assert_eq!(said[0], "icon.v:2:29: the design connects 12 bits to `addra` of `Icon_Rom`, which botsim's core for `Icon_Rom` takes as 8: as Vivado builds it, the design's upper 4 bits are dropped");
 /// ```
 pub fn replacement_widths(stderr: &str, files: &[File], stands_for: &dyn Fn(&str) -> Option<Stand>) -> Vec<String> {
     let mut out = Vec::new();
@@ -138,8 +139,20 @@ pub fn replacement_widths(stderr: &str, files: &[File], stands_for: &dyn Fn(&str
         };
         let Some(inst) = instance_at(&file.text, l) else { continue };
         if let Some(Stand::Built(what)) = stands_for(&inst.module) {
+            // The width is the design's configuration's (the core's `.xci`, the ROM's
+            // contents): the mismatch is the design's, built as Vivado builds it.
+            let d = given_bits.abs_diff(takes);
+            let (bits, read, are) =
+                if d == 1 { ("bit".to_string(), "reads", "is") } else { (format!("{d} bits"), "read", "are") };
+            let output = msg.starts_with("Output");
+            let how = match (output, given_bits < takes) {
+                (false, true) => format!("its upper {bits} {read} 0"),
+                (false, false) => format!("the design's upper {bits} {are} dropped"),
+                (true, true) => format!("its upper {bits} {are} dropped"),
+                (true, false) => format!("the design's upper {bits} {read} 0"),
+            };
             out.push(format!(
-                "{}:{l}:{c}: the design connects {given_bits} bits to `{port}` of `{}`, which {what} takes as {takes}: botsim may have built it wrong; {REPORT}",
+                "{}:{l}:{c}: the design connects {given_bits} bits to `{port}` of `{}`, which {what} takes as {takes}: as Vivado builds it, {how}",
                 file.shown, inst.module
             ));
         }

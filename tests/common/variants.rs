@@ -71,8 +71,20 @@ fn lex(src: &str) -> Vec<Tok> {
             let name_end = (i + 1..b.len()).find(|&k| !word(b[k])).unwrap_or(b.len());
             let name = &src[i + 1..name_end];
             let directive = [
-                "timescale", "define", "include", "ifdef", "ifndef", "else", "elsif", "endif", "undef",
-                "default_nettype", "resetall", "celldefine", "endcelldefine", "line",
+                "timescale",
+                "define",
+                "include",
+                "ifdef",
+                "ifndef",
+                "else",
+                "elsif",
+                "endif",
+                "undef",
+                "default_nettype",
+                "resetall",
+                "celldefine",
+                "endcelldefine",
+                "line",
             ]
             .contains(&name);
             if directive {
@@ -94,7 +106,9 @@ fn lex(src: &str) -> Vec<Tok> {
         } else if word(c) || (c == b'\'' && i + 1 < b.len() && b"sSbBoOdDhH".contains(&b[i + 1])) {
             // Identifiers, keywords and numbers: a number's size, base and digits stay one
             // token (`8'h0A`, `'d5`, `4'b10_1x`, `1.5e3`).
-            while i < b.len() && (word(b[i]) || b[i] == b'\'' || b[i] == b'?' || (b[i] == b'.' && b[start].is_ascii_digit())) {
+            while i < b.len()
+                && (word(b[i]) || b[i] == b'\'' || b[i] == b'?' || (b[i] == b'.' && b[start].is_ascii_digit()))
+            {
                 i += 1;
             }
             out.push(Tok::Word(src[start..i].to_string()));
@@ -169,7 +183,8 @@ pub fn variant(src: &str, style: Style, seed: u64) -> String {
     for t in &toks {
         // What must stand alone on its line.
         let own_line = matches!(t, Tok::Directive(_));
-        let after_line = matches!(prev, Some(Tok::Directive(_))) || matches!(prev, Some(Tok::Comment(c)) if c.starts_with("//"));
+        let after_line =
+            matches!(prev, Some(Tok::Directive(_))) || matches!(prev, Some(Tok::Comment(c)) if c.starts_with("//"));
         if let Some(p) = prev {
             if own_line || after_line {
                 out.push('\n');

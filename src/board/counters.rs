@@ -116,7 +116,8 @@ pub fn find(
         };
         scan(&toks, &widths, &ports, observed, &mut seen, &mut spoiled);
     }
-    seen.into_iter()
+    let found: Vec<Counter> = seen
+        .into_iter()
         .filter(|(name, s)| !spoiled.contains(name) && s.step > 0)
         .map(|(name, s)| {
             let bits = widths[&name];
@@ -133,7 +134,18 @@ pub fn find(
                 bounds: s.bounds.into_iter().collect::<std::collections::BTreeSet<_>>().into_iter().collect(),
             }
         })
-        .collect()
+        .collect();
+    // A delayed copy in the root counts with its variable (equal after every evaluation):
+    // moved on by the same amount, it is a counter too.
+    let mut out = Vec::with_capacity(found.len());
+    for c in found {
+        let twin = format!("__Vdly__{}", c.name);
+        if widths.contains_key(&twin) {
+            out.push(Counter { name: twin, ..c.clone() });
+        }
+        out.push(c);
+    }
+    out
 }
 
 /// What the scan found of one variable so far.
@@ -241,6 +253,13 @@ fn scan(
     // Every use of a candidate: `vlSelf->x` (3 tokens) or its delayed copy `__Vdly__x`.
     let use_at = |i: usize| -> Option<(&str, usize)> {
         match (tok(i), tok(i + 1), tok(i + 2)) {
+            // A delayed copy kept in the root (a variable tested in several always blocks):
+            // a use of the variable itself, whose twin it is after every evaluation.
+            (Tok::Id("vlSelf"), Tok::P("->"), Tok::Id(m))
+                if m.strip_prefix("__Vdly__").is_some_and(|v| widths.contains_key(v)) =>
+            {
+                Some((&m["__Vdly__".len()..], 3))
+            }
             (Tok::Id("vlSelf"), Tok::P("->"), Tok::Id(m)) if widths.contains_key(m) => Some((m, 3)),
             (Tok::Id(l), _, _) if i == 0 || tok(i - 1) != Tok::P("->") => {
                 l.strip_prefix("__Vdly__").filter(|m| widths.contains_key(*m)).map(|m| (m, 1))
@@ -434,7 +453,9 @@ fn one_kind(rhs: &[Tok], from: usize, to: usize, name: &str, widths: &BTreeMap<S
     let is_self = |a: usize, b: usize| -> bool {
         let m = |t: &Tok| matches!(t, Tok::Id(x) if *x == name);
         match &rhs[a..b] {
-            [Tok::Id("vlSelf"), Tok::P("->"), x] => m(x),
+            [Tok::Id("vlSelf"), Tok::P("->"), x] => {
+                m(x) || matches!(x, Tok::Id(v) if v.strip_prefix("__Vdly__") == Some(name))
+            }
             [Tok::Id(l)] => l.strip_prefix("__Vdly__") == Some(name),
             _ => false,
         }
@@ -525,6 +546,31 @@ mod tests {
 
     fn found(nba: &str) -> Vec<Counter> {
         find(ROOT, &[nba], &["Vtop___024root___nba_sequent__TOP__0".to_string()], &[], &|_| true)
+    }
+
+    #[test]
+    fn a_delayed_copy_kept_in_the_root_counts_with_its_variable() {
+        // A comparison tested in two always blocks (the Nexys3 release's debounce): Verilator
+        // keeps the delayed copy in the root (`vlSelf->__Vdly__x`), copied from the variable,
+        // stepped, and copied back, in two functions.
+        let root = ROOT.replace(
+            "    IData/*21:0*/ top__DOT__div;\n",
+            "    IData/*21:0*/ top__DOT__div;\n    IData/*21:0*/ __Vdly__top__DOT__div;\n",
+        );
+        let pre = "void Vtop___024root___nba_sequent__TOP__0(Vtop___024root* vlSelf) {\n    vlSelf->__Vdly__top__DOT__div = vlSelf->top__DOT__div;\n    vlSelf->__Vdly__top__DOT__div = ((0x3d0900U == vlSelf->top__DOT__div) ? 0U : (0x3fffffU & ((IData)(1U) + vlSelf->top__DOT__div)));\n    if ((0x3d0900U == vlSelf->top__DOT__div)) {\n        vlSelf->led = (1U & (IData)(vlSelf->d0));\n    }\n}\n";
+        let post = "void Vtop___024root___nba_sequent__TOP__1(Vtop___024root* vlSelf) {\n    vlSelf->top__DOT__div = vlSelf->__Vdly__top__DOT__div;\n}\n";
+        let reached =
+            ["Vtop___024root___nba_sequent__TOP__0".to_string(), "Vtop___024root___nba_sequent__TOP__1".to_string()];
+        let c = find(&root, &[pre, post], &reached, &[], &|_| true);
+        let names: Vec<&str> = c.iter().map(|c| c.name.as_str()).collect();
+        assert_eq!(names, ["__Vdly__top__DOT__div", "top__DOT__div"], "{c:?}");
+        assert!(c.iter().all(|c| (c.bits, c.step, c.consts.clone()) == (22, 1, vec![0x3d0900])), "{c:?}");
+        // A copy of it anywhere else is a read of every bit: state.
+        let read = pre.replace(
+            "vlSelf->led = (1U & (IData)(vlSelf->d0));",
+            "vlSelf->top__DOT__copy = vlSelf->__Vdly__top__DOT__div;",
+        );
+        assert!(find(&root, &[&read, post], &reached, &[], &|_| true).iter().all(|c| !c.name.ends_with("div")));
     }
 
     #[test]

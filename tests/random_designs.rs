@@ -145,3 +145,14 @@ fn random_designs_record_what_every_edge_does_and_skip_what_repeats() {
     let failed: Vec<String> = (first..first + count).filter_map(|seed| check(seed).err()).collect();
     assert!(failed.is_empty(), "{} of {count} designs failed:\n\n{}", failed.len(), failed.join("\n\n"));
 }
+
+/// The parts of `BOTSIM_RANDOM_DESIGNS` designs from `BOTSIM_RANDOM_SEED` on, without running
+/// them: `cargo test --release --test random_designs parts -- --ignored --nocapture`.
+#[test]
+#[ignore = "a listing for developers"]
+fn parts() {
+    let first = env("BOTSIM_RANDOM_SEED", 1);
+    for seed in first..first + env("BOTSIM_RANDOM_DESIGNS", 3) {
+        println!("{}\n", generate(seed).parts.join("\n"));
+    }
+}

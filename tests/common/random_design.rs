@@ -175,6 +175,8 @@ struct Part {
     /// lowest bits): shown on an LED or a point it makes a pin change a clock, which costs the
     /// runs that record every pin more than it tests.
     fast: bool,
+    /// A module of its own it instantiates (written after the top's), if any.
+    module: String,
 }
 
 /// The design for `seed`.
@@ -262,6 +264,9 @@ pub fn generate(seed: u64) -> Design {
     let mut parts: Vec<Part> = Vec::new();
     let n = r.range(2, 7) as usize;
     let mut held_stream = Rng::new(seed ^ 0x484F_4C44);
+    // Parts written as students write them (their own debouncer, Nexys3-release shaped),
+    // from a stream of their own: a seed's other parts are as they were.
+    let mut style_stream = Rng::new(seed ^ 0x5354_594C);
     for i in 0..n {
         let clock = if clocks.len() > 1 && r.chance(40) { r.range(1, clocks.len() as u64 - 1) as usize } else { 0 };
         // Enabled by an earlier part's one-bit output (its tick, its toggle), sometimes.
@@ -276,7 +281,10 @@ pub fn generate(seed: u64) -> Design {
             (true, false) => Held::Constant,
             (true, true) => Held::Alternating,
         };
-        let part = make_part(&mut r, i, clock, enable.map(|j| &parts[j]), simulate, tame, held);
+        let mut part = make_part(&mut r, i, clock, enable.map(|j| &parts[j]), simulate, tame, held);
+        if style_stream.chance(12) {
+            part = team_debouncer(&mut style_stream, i, clock, tame);
+        }
         parts_text.push(format!("part {i} on {}: {}", clocks[clock].net, part.text));
         parts.push(part);
     }
@@ -393,8 +401,10 @@ pub fn generate(seed: u64) -> Design {
     });
 
     let mut verilog_parts = String::new();
+    let mut modules = String::new();
     for p in &parts {
         verilog_parts.push_str(&p.verilog);
+        modules.push_str(&p.module);
     }
     for (i, c) in clocks.iter().enumerate() {
         verilog_parts = verilog_parts.replace(&format!("@CLK{i}@"), &c.net);
@@ -536,7 +546,7 @@ module nexys4fpga #(
 {periph_verilog}
     assign led = {{{leds}}}{periph_xor};
 endmodule
-",
+{modules}",
         d7 = digits[7],
         d6 = digits[6],
         d5 = digits[5],
@@ -932,7 +942,128 @@ fn make_part(
         if reset { ", reset" } else { "" },
         enable.map_or(String::new(), |p| format!(", enabled by {}", p.bit))
     );
-    Part { verilog, bit, value, shape, clock, text, fast }
+    Part { verilog, bit, value, shape, clock, text, fast, module: String::new() }
+}
+
+/// Part `i`: a debouncer of the team's own, shaped as the Nexys3 release's (board.md §2.1) and
+/// written as students write it, with the variations drawn from `r`: a wrap counter whose
+/// terminal count is a `localparam` ternary on a lower-case `simulate` (left 0, or set 1 by
+/// the instance), a `wire` given a constant, or a literal; cleared with `1'b0`, `0` or a sized
+/// zero, sometimes by `reset || count == N`; its comparison tested again in a second always
+/// block that shifts the buttons and switches into registers of 4 or 5 bits, each output set
+/// by a `case` against 4-bit constants.
+fn team_debouncer(r: &mut Rng, i: usize, clock: usize, tame: bool) -> Part {
+    let clk = format!("@CLK{clock}@");
+    let long = if tame { *r.pick(&[99_999u64, 199_999, 399_999]) } else { r.range(60_000, 4_000_000) };
+    let short = if tame { *r.pick(&[2u64, 5, 11]) } else { r.range(1, 30) };
+    let set_simulate = r.chance(30);
+    let top = if set_simulate { short } else { long };
+    let width = (64 - long.leading_zeros()).max(8) + r.range(0, 3) as u32;
+    let w1 = width - 1;
+    let clear = r.pick(&["1'b0".to_string(), "0".to_string(), format!("{width}'d0")]).clone();
+    let one = *r.pick(&["1'b1", "1"]);
+    let with_reset = r.chance(35);
+    let sh = *r.pick(&[4u32, 5]);
+    let (pbs, sws) = (r.range(1, 5) as usize, r.range(1, 8) as usize);
+    let (count_decl, cmp) = match r.range(0, 2) {
+        0 => (
+            format!("    parameter simulate = 0;
+    localparam debounce_cnt = simulate ? {width}'d{short}
+                                       : {width}'d{long};
+"),
+            "debounce_cnt".to_string(),
+        ),
+        1 => (
+            format!("    parameter simulate = 0;
+    wire [{w1}:0] top_cnt = simulate ? {short} : {long};
+"),
+            "top_cnt".to_string(),
+        ),
+        _ => (String::new(), format!("{width}'d{top}")),
+    };
+    let cmp = if cmp.contains('\'') && set_simulate { format!("{width}'d{short}") } else { cmp };
+    let counter = if with_reset {
+        format!("        if (reset || db_count == {cmp})
+            db_count <= {clear};
+        else
+            db_count <= db_count + {one};
+")
+    } else {
+        format!("        if (db_count == {cmp})
+            db_count <= {clear};
+        else
+            db_count <= db_count + {one};
+")
+    };
+    let mut regs = String::new();
+    let mut shifts = String::new();
+    let mut cases = String::new();
+    for (name, ins, n, out) in [("pb", "pbtn_in", pbs, "pbtn_db"), ("sw", "switch_in", sws, "swtch_db")] {
+        for k in 0..n {
+            writeln!(regs, "    reg [{}:0] shift_{name}{k} = {sh}'h0;", sh - 1).unwrap();
+            writeln!(shifts, "            shift_{name}{k} <= (shift_{name}{k} << 1) | {ins}[{k}];").unwrap();
+            writeln!(cases, "        case (shift_{name}{k}) 4'b0000: {out}[{k}] <= 0; 4'b1111: {out}[{k}] <= 1; endcase").unwrap();
+        }
+    }
+    let module = format!(
+        "
+// A team's own debouncer (the Nexys3 release's shape, written as students write it).
+module team_db{i} (
+    input clk,{reset_port}
+    input [4:0] pbtn_in,
+    input [7:0] switch_in,
+    output reg [4:0] pbtn_db = 5'h0,
+    output reg [7:0] swtch_db = 8'h0
+);
+{count_decl}    reg [{w1}:0] db_count = {width}'h0;
+{regs}
+    always @(posedge clk)
+    begin
+{counter}    end
+
+    always @(posedge clk)
+    begin
+        if (db_count == {cmp}) begin
+{shifts}        end
+{cases}    end
+endmodule
+",
+        reset_port = if with_reset { "
+    input reset," } else { "" },
+    );
+    let params = if set_simulate && !count_decl.is_empty() { " #(.simulate(1))" } else { "" };
+    let verilog = format!(
+        "    wire [4:0] tdb{i}_pb;
+    wire [7:0] tdb{i}_sw;
+    team_db{i}{params} TDB{i} (.clk({clk}),{} .pbtn_in({{btnC, btnL, btnU, btnR, btnD}}), .switch_in(sw[7:0]),
+        .pbtn_db(tdb{i}_pb), .swtch_db(tdb{i}_sw));
+",
+        if with_reset { " .reset(sysreset)," } else { "" }
+    );
+    // Between ticks nothing of it changes; its registers move only at a tick, and settle
+    // (0000, 1111, 11111 held) while the inputs hold.
+    let cycle = top + 1;
+    let shape = if cycle <= 64 {
+        periodic(cycle)
+    } else if cycle < 50_000 {
+        Shape::Unknown("a count between short and long")
+    } else {
+        Shape::Known { period: 1, boundary: Some(cycle) }
+    };
+    Part {
+        verilog,
+        bit: format!("tdb{i}_sw[0]"),
+        value: format!("{{tdb{i}_sw[2:0], tdb{i}_pb[1:0]}}"),
+        shape,
+        clock,
+        text: format!(
+            "a team debouncer (Nexys3 shape): ticks every {cycle} clocks{}{}, {pbs} buttons and {sws} switches in {sh}-bit registers",
+            if set_simulate { " (simulate = 1)" } else { "" },
+            if with_reset { ", cleared by reset || count == N" } else { "" }
+        ),
+        fast: false,
+        module,
+    }
 }
 
 /// LFSRs: width and taps (maximal length: 2^width - 1).

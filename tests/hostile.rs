@@ -341,3 +341,33 @@ fn a_core_narrower_than_the_design_connects_is_one_warning_said_as_vivado_builds
     // The width is the design's configuration's: not botsim's to be reported.
     assert!(!e.contains("%Warning") && !e.contains("please report"), "{e}");
 }
+
+#[test]
+fn botsim_keep_generated_keeps_every_file_of_a_build_that_fails() {
+    // A line Verilator cannot parse: the build stops; what botsim wrote for it is kept (the
+    // user's file edited: its unnamed instance named).
+    let d = design(
+        "module nexys4fpga(input clk, output [15:0] led);\n  sub (.a(clk));\n  assign led = 16'h00 +;\nendmodule\nmodule sub(input a);\nendmodule\n",
+        &[],
+    );
+    let keep = tempfile::tempdir().unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_botsim"))
+        .args(["board", "."])
+        .current_dir(d.path())
+        .env("BOTSIM_CACHE", cache())
+        .env("BOTSIM_KEEP_GENERATED", keep.path())
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let kept: Vec<String> = std::fs::read_dir(keep.path())
+        .unwrap()
+        .flatten()
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    for file in ["botsim_board.sv", "harness.cpp", "botsim_kcpsm6.sv"] {
+        assert!(kept.iter().any(|k| k == file), "{file} not kept: {kept:?}");
+    }
+    // The user's file, as botsim compiled it.
+    let user = kept.iter().find(|k| k.contains("top")).unwrap_or_else(|| panic!("{kept:?}"));
+    assert!(std::fs::read_to_string(keep.path().join(user)).unwrap().contains("sub sub_2 ("));
+}

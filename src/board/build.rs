@@ -97,6 +97,30 @@ const VERILATOR_FLAGS: &[&str] = &[
 /// compiles with -Os after CFLAGS; -O2 makes boards about twice as fast (docs/PERFORMANCE.md).
 const MAKE_VARS: &[&str] = &["OPT_FAST=-O2", "OPT_GLOBAL=-O2", "OPT_SLOW=-O1"];
 
+/// `BOTSIM_KEEP_GENERATED=DIR`: every file of a build (the user's files as botsim edited
+/// them, the wrapper and botsim's modules, the cores and stubs made for the design, Verilator's
+/// output so far: `obj/`) copied into DIR, whatever the outcome, for a report or for whoever
+/// teaches the analyses another Verilator's output. A build reused from the cache gives what
+/// it kept (no Verilator output).
+fn keep_generated(build: &Path) {
+    let Some(keep) = std::env::var_os("BOTSIM_KEEP_GENERATED") else { return };
+    fn copy(from: &Path, to: &Path) {
+        let _ = std::fs::create_dir_all(to);
+        for e in std::fs::read_dir(from).into_iter().flatten().flatten() {
+            let (p, q) = (e.path(), to.join(e.file_name()));
+            if p.is_dir() {
+                copy(&p, &q);
+            } else if p.extension().is_none_or(|x| x != "o" && x != "so" && x != "a" && x != "d") {
+                let _ = std::fs::copy(&p, &q);
+            }
+        }
+    }
+    let keep = PathBuf::from(keep);
+    copy(build, &keep);
+    // The analyses' readers expect Verilator's files at the top (as kept before).
+    copy(&build.join("obj"), &keep);
+}
+
 /// A built design.
 #[derive(Clone, Debug)]
 pub struct Built {
@@ -284,6 +308,7 @@ pub fn build(
     let lock = cache_dir().join("locks").join(format!("{}-{key}.lock", plan.top));
     let _lock = if library.exists() { None } else { Some(Lock::take(&lock, quiet)?) };
     if library.exists() {
+        keep_generated(&dir);
         let warnings =
             std::fs::read_to_string(dir.join("warnings.txt")).map(|t| parse_warnings(&t, &f)).unwrap_or_default();
         let delays = std::fs::read_to_string(dir.join(DELAYS_FILE)).ok().filter(|d| !d.is_empty());
@@ -349,6 +374,7 @@ pub fn build(
     }
     cmd.arg("harness.cpp");
     let fail = |e| {
+        keep_generated(&tmp);
         let _ = std::fs::remove_dir_all(&tmp);
         e
     };
@@ -375,14 +401,6 @@ pub fn build(
     // What the harness may assume of the design (BoardModel::load reads the verdicts; the
     // harness compiles in which variables a run observes), then the C++.
     let mut checked = super::checks::Checked::of(&tmp.join("obj"));
-    // For whoever teaches the analyses another Verilator's output: a copy of it.
-    if let Some(keep) = std::env::var_os("BOTSIM_KEEP_GENERATED") {
-        let keep = PathBuf::from(keep);
-        let _ = std::fs::create_dir_all(&keep);
-        for e in std::fs::read_dir(tmp.join("obj")).into_iter().flatten().flatten() {
-            let _ = std::fs::copy(e.path(), keep.join(e.file_name()));
-        }
-    }
     if let Some(at) = &delays {
         // Timed events wait in Verilator's own queue, outside the state the fast-forward
         // compares; every edge is evaluated.
@@ -417,6 +435,7 @@ pub fn build(
         .and_then(|_| std::fs::write(tmp.join(DELAYS_FILE), delays.as_deref().unwrap_or("")))
         .and_then(|_| super::checks::save_unshown(&tmp, &checked.unshown))
         .map_err(|e| BoardError::at(&tmp, 0, 0, format!("cannot keep the build: {e}")))?;
+    keep_generated(&tmp);
     let _ = std::fs::remove_dir_all(tmp.join("obj"));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::rename(&tmp, &dir).map_err(|e| BoardError::at(&dir, 0, 0, format!("cannot keep the build: {e}")))?;

@@ -177,6 +177,8 @@ struct Part {
     fast: bool,
     /// A module of its own it instantiates (written after the top's), if any.
     module: String,
+    /// A debounced button it gives that may reset the bot (a team's debouncer), if any.
+    resets: Option<String>,
 }
 
 /// The design for `seed`.
@@ -288,6 +290,20 @@ pub fn generate(seed: u64) -> Design {
         parts_text.push(format!("part {i} on {}: {}", clocks[clock].net, part.text));
         parts.push(part);
     }
+
+    // The port interface's read mux, as many teams write it: combinational (`always @(*)`),
+    // so what the CPU reads is the logic's value at the edge itself.
+    let comb_mux = style_stream.chance(40);
+    if comb_mux {
+        parts_text.push("the read mux combinational".into());
+    }
+    // A team's debounced button resets the CPU and the bot, as the Nexys3 designs' system
+    // reset does (both then read the debouncer's output at every edge).
+    let bot_reset = parts.iter().find_map(|p| p.resets.clone()).filter(|_| style_stream.chance(60));
+    if let Some(b) = &bot_reset {
+        parts_text.push(format!("the CPU and the bot also reset by {b}"));
+    }
+    let bot_reset = bot_reset.map_or("sysreset".to_string(), |b| format!("sysreset | {b}"));
 
     // The team's program.
     let kind = *r.pick(&[Program::Semaphore, Program::PollSwitches, Program::Countdown(0)]);
@@ -484,7 +500,7 @@ module nexys4fpga #(
         .port_id(port_id), .write_strobe(write_strobe), .k_write_strobe(k_write_strobe),
         .out_port(out_port), .read_strobe(read_strobe), .in_port(in_port),
         .interrupt(interrupt), .interrupt_ack(interrupt_ack), .sleep(1'b0),
-        .reset(sysreset | rdl), .clk(clk));
+        .reset({bot_reset} | rdl), .clk(clk));
     teampgm APPPGM (.enable(bram_enable), .address(address), .instruction(instruction), .rdl(rdl), .clk(clk));
 
     // The bot.
@@ -493,7 +509,7 @@ module nexys4fpga #(
     wire        upd_sysregs;
     bot ROJOBOT (.MotCtl_in(motctl), .LocX_reg(locx), .LocY_reg(locy), .Sensors_reg(sensors),
         .BotInfo_reg(botinfo), .LMDist_reg(lmdist), .RMDist_reg(rmdist),
-        .vid_row(7'd0), .vid_col(7'd0), .vid_pixel_out(), .clk(clk), .reset(sysreset), .upd_sysregs(upd_sysregs));
+        .vid_row(7'd0), .vid_col(7'd0), .vid_pixel_out(), .clk(clk), .reset({bot_reset}), .upd_sysregs(upd_sysregs));
 {interrupt}
     // The parts.
 {verilog_parts}
@@ -591,6 +607,18 @@ endmodule
         at += pr.range(6, 30) as f64 + pr.range(0, 999) as f64 / 1000.0;
     }
 
+    let top = if comb_mux {
+        let registered = "    always @(posedge clk) begin\n        case (port_id)\n            8'h00: in_port <=";
+        assert!(top.contains(registered));
+        let (head, tail) = top.split_once(registered).unwrap();
+        let (mux, rest) = tail.split_once("endcase").unwrap();
+        format!(
+            "{head}    always @(*) begin\n        case (port_id)\n            8'h00: in_port ={}endcase{rest}",
+            mux.replace("in_port <=", "in_port =")
+        )
+    } else {
+        top
+    };
     Design { seed, top, program, simulate, stimulus, seconds, reach, parts: parts_text, uart, keyboard }
 }
 
@@ -942,7 +970,7 @@ fn make_part(
         if reset { ", reset" } else { "" },
         enable.map_or(String::new(), |p| format!(", enabled by {}", p.bit))
     );
-    Part { verilog, bit, value, shape, clock, text, fast, module: String::new() }
+    Part { verilog, bit, value, shape, clock, text, fast, module: String::new(), resets: None }
 }
 
 /// Part `i`: a debouncer of the team's own, shaped as the Nexys3 release's (board.md §2.1) and
@@ -967,33 +995,41 @@ fn team_debouncer(r: &mut Rng, i: usize, clock: usize, tame: bool) -> Part {
     let (pbs, sws) = (r.range(1, 5) as usize, r.range(1, 8) as usize);
     let (count_decl, cmp) = match r.range(0, 2) {
         0 => (
-            format!("    parameter simulate = 0;
+            format!(
+                "    parameter simulate = 0;
     localparam debounce_cnt = simulate ? {width}'d{short}
                                        : {width}'d{long};
-"),
+"
+            ),
             "debounce_cnt".to_string(),
         ),
         1 => (
-            format!("    parameter simulate = 0;
+            format!(
+                "    parameter simulate = 0;
     wire [{w1}:0] top_cnt = simulate ? {short} : {long};
-"),
+"
+            ),
             "top_cnt".to_string(),
         ),
         _ => (String::new(), format!("{width}'d{top}")),
     };
     let cmp = if cmp.contains('\'') && set_simulate { format!("{width}'d{short}") } else { cmp };
     let counter = if with_reset {
-        format!("        if (reset || db_count == {cmp})
+        format!(
+            "        if (reset || db_count == {cmp})
             db_count <= {clear};
         else
             db_count <= db_count + {one};
-")
+"
+        )
     } else {
-        format!("        if (db_count == {cmp})
+        format!(
+            "        if (db_count == {cmp})
             db_count <= {clear};
         else
             db_count <= db_count + {one};
-")
+"
+        )
     };
     let mut regs = String::new();
     let mut shifts = String::new();
@@ -1002,7 +1038,11 @@ fn team_debouncer(r: &mut Rng, i: usize, clock: usize, tame: bool) -> Part {
         for k in 0..n {
             writeln!(regs, "    reg [{}:0] shift_{name}{k} = {sh}'h0;", sh - 1).unwrap();
             writeln!(shifts, "            shift_{name}{k} <= (shift_{name}{k} << 1) | {ins}[{k}];").unwrap();
-            writeln!(cases, "        case (shift_{name}{k}) 4'b0000: {out}[{k}] <= 0; 4'b1111: {out}[{k}] <= 1; endcase").unwrap();
+            writeln!(
+                cases,
+                "        case (shift_{name}{k}) 4'b0000: {out}[{k}] <= 0; 4'b1111: {out}[{k}] <= 1; endcase"
+            )
+            .unwrap();
         }
     }
     let module = format!(
@@ -1028,8 +1068,12 @@ module team_db{i} (
 {cases}    end
 endmodule
 ",
-        reset_port = if with_reset { "
-    input reset," } else { "" },
+        reset_port = if with_reset {
+            "
+    input reset,"
+        } else {
+            ""
+        },
     );
     let params = if set_simulate && !count_decl.is_empty() { " #(.simulate(1))" } else { "" };
     let verilog = format!(
@@ -1063,6 +1107,7 @@ endmodule
         ),
         fast: false,
         module,
+        resets: (clock == 0).then(|| format!("tdb{i}_pb[0]")),
     }
 }
 

@@ -1145,8 +1145,9 @@ impl<'a> Walk<'a> {
             ));
         }
         for (at, name, ..) in &unnamed {
-            // Spaces on both sides: `bot(` has none between the module and its `(`.
-            s.replace(*at..*at, &format!(" {name} "));
+            // A space before it where the text has none (`bot(`), and one after.
+            let spaced = s.text[..*at].ends_with(|c: char| c.is_whitespace() || c == '/');
+            s.replace(*at..*at, &format!("{}{name} ", if spaced { "" } else { " " }));
         }
         let kept = |at: &std::ops::Range<usize>| !s.dropped.iter().any(|d| d.start <= at.start && at.end <= d.end);
         let fixes: Vec<scan::Oversized> =

@@ -19,9 +19,23 @@ const USER: &str = "botsim_board__DOT__user__DOT__";
 /// The path of a variable of the user's design below its top, from Verilator's name; `None`
 /// for the wrapper's and Verilator's own variables.
 pub fn design_path(verilator_name: &str) -> Option<String> {
-    let rest = verilator_name.strip_prefix(USER)?;
+    // A delayed copy kept in the root (`__Vdly__x`) is its variable's.
+    let name = verilator_name.strip_prefix("__Vdly__").unwrap_or(verilator_name);
+    let rest = name.strip_prefix(USER)?;
     let dotted = rest.replace("__DOT__", ".").replace("__BRA__", "[").replace("__KET__", "]");
-    Some(unescape(&dotted))
+    // Verilator's temporaries for an instance's port (`__Vcellout__div0_flop__Q`, an output
+    // it connects; `__Vcellinp__`, an input): the port of that instance, as the user knows it.
+    let named: Vec<String> = dotted
+        .split('.')
+        .map(|part| {
+            let port = part.strip_prefix("__Vcellout__").or_else(|| part.strip_prefix("__Vcellinp__"));
+            match port.and_then(|p| p.rsplit_once("__")) {
+                Some((instance, port)) if !instance.is_empty() && !port.is_empty() => format!("{instance}.{port}"),
+                _ => part.to_string(),
+            }
+        })
+        .collect();
+    Some(unescape(&named.join(".")))
 }
 
 /// Verilator's `__0XX` escapes of characters a C++ name cannot hold.
@@ -70,7 +84,14 @@ pub fn declared(design: &Design, top: &str, path: &str) -> Option<Declared> {
             if let Some(next) = find(&i.module) {
                 (src, module) = next;
             } else {
-                return None;
+                // Not the user's module (a Xilinx primitive, a core botsim made): the instance
+                // where the user wrote it.
+                return Some(Declared {
+                    path: path.to_string(),
+                    module: module.name.clone(),
+                    file: src.path.clone(),
+                    line: i.line,
+                });
             }
         }
     }
@@ -113,5 +134,10 @@ mod tests {
         let d = declared(&design, "top", "mine").unwrap();
         assert_eq!((d.module.as_str(), d.line), ("top", 5));
         assert!(declared(&design, "top", "nosuch.x").is_some_and(|d| d.module == "top"));
+        // A port of an instance of a module not the user's (a primitive): that instance.
+        let top = "module top(input clk);\n  reg d;\n  FD div0_flop (.C(clk), .D(d), .Q());\nendmodule\n";
+        let design = Design { sources: vec![Source::new("top.v", top)], ..design };
+        let d = declared(&design, "top", "div0_flop.Q").unwrap();
+        assert_eq!((d.module.as_str(), d.file, d.line), ("top", PathBuf::from("top.v"), 3));
     }
 }

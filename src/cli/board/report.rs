@@ -42,7 +42,11 @@ impl Busy {
             Some(d) => Busy { path: d.path, module: Some(d.module), file: Some(d.file), line: Some(d.line), times },
             None => Busy {
                 path: design_path(verilator_name).unwrap_or_else(|| verilator_name.to_string()),
-                module: None,
+                // A name of the user's design that no source declares as such, or one of
+                // Verilator's own (its scheduler's, a temporary): said as what it is.
+                module: design_path(verilator_name)
+                    .is_none()
+                    .then(|| "Verilator's own variable, not one of the design's".to_string()),
                 file: None,
                 line: None,
                 times,

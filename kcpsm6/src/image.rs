@@ -399,7 +399,7 @@ fn parse_behavioural(path: &Path, text: &str) -> Option<Result<Image, Diagnostic
     let name_at = |at: usize, name: &str| {
         code[at..].starts_with(name)
             && (at == 0 || !(b[at - 1].is_ascii_alphanumeric() || b[at - 1] == b'_'))
-            && b.get(at + name.len()).is_none_or(|c| !(c.is_ascii_alphanumeric() || *c == b'_'))
+            && !b.get(at + name.len()).is_some_and(|c| c.is_ascii_alphanumeric() || *c == b'_')
     };
     // `= 18'hWWWWW ;` at `at`: the word.
     let assigned = |at: usize| -> Option<Result<u32, String>> {

@@ -110,7 +110,7 @@ fn keep_generated(build: &Path) {
             let (p, q) = (e.path(), to.join(e.file_name()));
             if p.is_dir() {
                 copy(&p, &q);
-            } else if p.extension().is_none_or(|x| x != "o" && x != "so" && x != "a" && x != "d") {
+            } else if !p.extension().is_some_and(|x| x == "o" || x == "so" || x == "a" || x == "d") {
                 let _ = std::fs::copy(&p, &q);
             }
         }

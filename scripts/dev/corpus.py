@@ -10,6 +10,9 @@ corpus as its entry says and writes a table of what happened against what must h
         or without a .git inside). Files a mirror lacks (4 MiB and more, LFS) are left out and
         counted. Restoring again keeps what is there.
 
+    corpus.py table --json FILE [--table FILE]
+        Writes the table again from a check's JSON record.
+
     corpus.py check [--into DIR] [--only NAME,...] [--no-speed] [--table FILE] [--json FILE]
         Runs `botsim board` (target/release/botsim) on each restored clone: first as committed
         (with `--param SIMULATE=1` where the top has it), checked against `first`; then with
@@ -239,6 +242,12 @@ def check(args):
     write_table(args.table, record)
 
 
+def table(args):
+    """The table again from a check's JSON record (`check --json`), without running."""
+    with open(args.json) as f:
+        write_table(args.table, json.load(f))
+
+
 def fmt(v, unit=""):
     return "-" if v is None else f"{v:g}{unit}"
 
@@ -284,8 +293,11 @@ def main():
     c.add_argument("--no-speed", action="store_true")
     c.add_argument("--table", default=os.path.join(ROOT, "docs", "ECOSYSTEM.md"))
     c.add_argument("--json")
+    t = sub.add_parser("table")
+    t.add_argument("--json", required=True)
+    t.add_argument("--table", default=os.path.join(ROOT, "docs", "ECOSYSTEM.md"))
     args = p.parse_args()
-    {"restore": restore, "check": check}[args.cmd](args)
+    {"restore": restore, "check": check, "table": table}[args.cmd](args)
 
 
 if __name__ == "__main__":

@@ -208,6 +208,14 @@ impl Plan {
             let from = defined.get(name).map(|(s, m)| format!("{}:{}", s.path.display(), m.line)).unwrap_or_default();
             if !from.is_empty() && (bot_path.is_some() || used.contains(name)) {
                 replaced.push(Replacement { module: name.to_string(), from, with: format!("botsim's {name}") });
+            } else if from.is_empty() && used.contains(name) {
+                // Not committed (the team relied on the course folder): said, as the course's
+                // other modules are.
+                replaced.push(Replacement {
+                    module: name.to_string(),
+                    from,
+                    with: format!("botsim's {name} (the repository has none)"),
+                });
             }
         }
         for (name, _) in PRIMITIVES {
@@ -536,8 +544,10 @@ mod tests {
         assert_eq!(p.bot_path, None);
         assert_eq!(p.cpus.iter().map(|c| c.path.as_str()).collect::<Vec<_>>(), ["cpu"]);
         assert_eq!(p.roms.iter().map(|r| r.module.as_str()).collect::<Vec<_>>(), ["prog"]);
-        // Nothing of the bot is said to be replaced.
-        assert!(p.replaced.iter().all(|r| r.module == "prog"), "{:?}", p.replaced);
+        // Nothing of the bot is said to be replaced; the KCPSM6 the repository lacks is said.
+        let said: Vec<(&str, &str)> = p.replaced.iter().map(|r| (r.module.as_str(), r.with.as_str())).collect();
+        assert!(said.iter().all(|(m, _)| ["prog", "kcpsm6"].contains(m)), "{said:?}");
+        assert!(said.contains(&("kcpsm6", "botsim's kcpsm6 (the repository has none)")), "{said:?}");
     }
 
     #[test]

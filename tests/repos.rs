@@ -322,6 +322,10 @@ fn a_bot_instance_without_a_name_is_named_said_and_runs() {
     );
     let named = line.rsplit('`').nth(1).unwrap();
     assert!(said.contains(&format!("bot at `nexys4fpga.SYS.{named}`")), "{said}");
+    // The team committed neither kcpsm6.v nor bot.v (it relied on the course folder): said.
+    for m in ["kcpsm6", "bot"] {
+        assert!(said.contains(&format!("replaced {m} with botsim's {m} (the repository has none)")), "{said}");
+    }
     shows_the_bot(&s);
 }
 

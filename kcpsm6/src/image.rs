@@ -397,7 +397,7 @@ fn parse_behavioural(path: &Path, text: &str) -> Option<Result<Image, Diagnostic
         Some((&code[at..w_end], &code[d_start..d_end], d_end))
     };
     let name_at = |at: usize, name: &str| {
-        code[at..].starts_with(name)
+        b[at..].starts_with(name.as_bytes())
             && (at == 0 || !(b[at - 1].is_ascii_alphanumeric() || b[at - 1] == b'_'))
             && !b.get(at + name.len()).is_some_and(|c| c.is_ascii_alphanumeric() || *c == b'_')
     };

@@ -1150,6 +1150,26 @@ impl<'a> Walk<'a> {
             s.replace(*at..*at, &format!("{}{name} ", if spaced { "" } else { " " }));
         }
         let kept = |at: &std::ops::Range<usize>| !s.dropped.iter().any(|d| d.start <= at.start && at.end <= d.end);
+        // A port of an ANSI header declared again as a wire in the body (Vivado reads the
+        // port's declaration): blanked, columns kept.
+        let again: Vec<scan::Redeclared> =
+            scan::redeclared_ansi_ports(&s.text).into_iter().filter(|r| r.blank.iter().all(|b| kept(b))).collect();
+        for r in &again {
+            self.notes.push(format!(
+                "{}:{}:{}: the {} {} of `{}` declared again as {} in its body (Verilog does not allow it; Vivado reads the port's declaration): botsim reads it so",
+                s.path.display(),
+                r.line,
+                r.col,
+                if r.names.len() == 1 { "port" } else { "ports" },
+                r.names.iter().map(|n| format!("`{n}`")).collect::<Vec<_>>().join(", "),
+                r.module,
+                if r.names.len() == 1 { "a wire" } else { "wires" },
+            ));
+            for b in r.blank.iter().rev() {
+                s.text.replace_range(b.clone(), &" ".repeat(b.len()));
+            }
+            s.edited = true;
+        }
         let fixes: Vec<scan::Oversized> =
             scan::oversized_literals(&s.text).into_iter().filter(|o| kept(&o.at)).collect();
         for o in fixes.iter().rev() {
@@ -1482,6 +1502,21 @@ mod tests {
         let opts = Options { top: Some("mfp_nexys4_ddr".into()), ..Options::default() };
         let named = resolve(&[t.path().to_path_buf()], &opts).unwrap_err().to_string();
         assert_eq!(named, e);
+    }
+
+    #[test]
+    fn an_ansi_port_declared_again_as_a_wire_is_read_as_vivado_reads_it_and_said() {
+        let spi = "module spi(input clk, output SS, output SCLK, output MOSI);\n  wire SS, SCLK, MOSI;\n  wire [3:0] n, MOSI2;\n  assign SS = clk;\nendmodule\n";
+        let top = "module nexys4fpga(input clk, output [15:0] led);\n  spi s (.clk(clk), .SS(led[0]));\n  bot b (.clk(clk));\nendmodule\n";
+        let t = tree(&[("top.v", top), ("spi.v", spi)]);
+        let d = resolve(&[t.path().to_path_buf()], &Options::default()).unwrap();
+        let note = d.notes.iter().find(|n| n.contains("declared again")).unwrap_or_else(|| panic!("{:?}", d.notes));
+        assert!(note.ends_with("spi.v:2:3: the ports `SS`, `SCLK`, `MOSI` of `spi` declared again as wires in its body (Verilog does not allow it; Vivado reads the port's declaration): botsim reads it so"), "{note}");
+        let text = &d.sources.iter().find(|s| s.path.ends_with("spi.v")).unwrap().text;
+        assert_eq!(text.lines().nth(1), Some(" ".repeat(22).as_str()));
+        // Other wires, and the line count, as they were.
+        assert_eq!(text.lines().nth(2), Some("  wire [3:0] n, MOSI2;"));
+        assert_eq!(text.lines().count(), spi.lines().count());
     }
 
     #[test]

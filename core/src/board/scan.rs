@@ -976,6 +976,150 @@ pub fn sv_keywords_as_names(src: &str) -> Vec<(Range<usize>, u32, u32, String)> 
         .collect()
 }
 
+/// A port of a module with an ANSI header (`module spi(output SS, ...)`) declared again as a
+/// net in its body (`wire SS, SCLK, MOSI;`), which Vivado accepts and Verilog does not: the
+/// byte ranges to blank (the names, with a comma each, or the whole declaration when every
+/// name is such a port), where the declaration is, and the names.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Redeclared {
+    pub blank: Vec<Range<usize>>,
+    pub line: u32,
+    pub col: u32,
+    pub module: String,
+    pub names: Vec<String>,
+}
+
+/// Every [`Redeclared`] port of `src`.
+///
+/// ```
+/// use botsim_core::board::scan::redeclared_ansi_ports;
+/// let src = "module spi(input clk, output SS, output SCLK);\n  wire SS, x, SCLK;\nendmodule\n";
+/// let r = redeclared_ansi_ports(src);
+/// assert_eq!((r[0].line, r[0].names.clone()), (2, vec!["SS".to_string(), "SCLK".to_string()]));
+/// let mut fixed = src.to_string();
+/// for b in r[0].blank.iter().rev() {
+///     fixed.replace_range(b.clone(), &" ".repeat(b.len()));
+/// }
+/// assert_eq!(fixed.lines().nth(1), Some("  wire     x      ;"));
+/// ```
+pub fn redeclared_ansi_ports(src: &str) -> Vec<Redeclared> {
+    let (t, _) = tokenize(src);
+    let word = |k: usize| match t.get(k).map(|x| &x.tok) {
+        Some(Tok::Ident(w)) => Some(w.as_str()),
+        _ => None,
+    };
+    let punct = |k: usize, c: char| t.get(k).map(|x| &x.tok) == Some(&Tok::Punct(c));
+    let group_end = |from: usize| {
+        let mut depth = 0i32;
+        for (j, x) in t.iter().enumerate().skip(from) {
+            match x.tok {
+                Tok::Punct('(' | '[' | '{') => depth += 1,
+                Tok::Punct(')' | ']' | '}') => {
+                    depth -= 1;
+                    if depth == 0 {
+                        return j + 1;
+                    }
+                }
+                _ => {}
+            }
+        }
+        t.len()
+    };
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < t.len() {
+        if !matches!(word(i), Some("module" | "macromodule")) {
+            i += 1;
+            continue;
+        }
+        let module = word(i + 1).unwrap_or_default().to_string();
+        let mut k = i + 2;
+        if punct(k, '#') && punct(k + 1, '(') {
+            k = group_end(k + 1);
+        }
+        if !punct(k, '(') {
+            i = k;
+            continue;
+        }
+        let header_end = group_end(k);
+        // The header's names, when it declares directions (an ANSI header).
+        let ansi = (k..header_end).any(|j| matches!(word(j), Some("input" | "output" | "inout")));
+        let ports: Vec<&str> = (k..header_end)
+            .filter(|&j| word(j).is_some() && (punct(j + 1, ',') || punct(j + 1, ')')))
+            .filter_map(word)
+            .collect();
+        let mut j = header_end;
+        let mut depth = 0i32;
+        let mut stmt_start = true;
+        while j < t.len() && !matches!(word(j), Some("endmodule" | "module" | "macromodule")) {
+            match word(j) {
+                Some("begin" | "generate" | "function" | "task") => depth += 1,
+                Some("end" | "endgenerate" | "endfunction" | "endtask") => depth -= 1,
+                _ => {}
+            }
+            if ansi && depth == 0 && stmt_start && word(j) == Some("wire") {
+                // `wire [range] a, b, c;`: names and commas only.
+                let mut n = j + 1;
+                if punct(n, '[') {
+                    n = group_end(n);
+                }
+                let mut names = Vec::new();
+                while let Some(w) = word(n) {
+                    names.push((n, w));
+                    if punct(n + 1, ',') {
+                        n += 2;
+                    } else {
+                        n += 1;
+                        break;
+                    }
+                }
+                if punct(n, ';') && !names.is_empty() {
+                    let again: Vec<usize> = (0..names.len()).filter(|&q| ports.contains(&names[q].1)).collect();
+                    if !again.is_empty() {
+                        let span = |a: usize, b: usize| t[a].at..t[b].at + token_len(src, &t[b]);
+                        let blank = if again.len() == names.len() {
+                            vec![span(j, n)]
+                        } else {
+                            again
+                                .iter()
+                                .map(|&q| {
+                                    let at = names[q].0;
+                                    // With the comma after it, or before it for the last.
+                                    if q + 1 < names.len() {
+                                        span(at, at + 1)
+                                    } else {
+                                        span(at - 1, at)
+                                    }
+                                })
+                                .collect()
+                        };
+                        out.push(Redeclared {
+                            blank,
+                            line: t[j].line,
+                            col: t[j].col,
+                            module: module.clone(),
+                            names: again.iter().map(|&q| names[q].1.to_string()).collect(),
+                        });
+                    }
+                }
+            }
+            stmt_start = punct(j, ';') || matches!(word(j), Some("begin" | "end" | "endgenerate" | "generate"));
+            j += 1;
+        }
+        i = j;
+    }
+    out
+}
+
+/// The length of a token's text in `src`.
+fn token_len(src: &str, t: &Token) -> usize {
+    match &t.tok {
+        Tok::Ident(w) | Tok::Num(w) => src[t.at..].find(w.as_str()).map_or(w.len(), |k| k + w.len()),
+        Tok::Punct(_) => 1,
+        Tok::Str => src[t.at + 1..].find('"').map_or(1, |k| k + 2),
+    }
+}
+
 /// The module at `span` of `src` with comments and layout taken out: two copies of a module
 /// that differ in nothing else have the same normalized text.
 pub fn normalized(src: &str, span: Range<usize>) -> String {

@@ -1194,14 +1194,19 @@ impl<'a> Walk<'a> {
                 s.replace(at, &format!("\\{word} "));
             }
         }
-        for o in &fixes {
+        // One line a file: the first, and how many more (an icon table has dozens).
+        if let Some(o) = fixes.first() {
             self.notes.push(format!(
-                "{}:{}:{}: `{}` has more digits than its width holds; Vivado keeps the low bits (`{}`), and so does botsim",
+                "{}:{}:{}: `{}` has more digits than its width holds; Vivado keeps the low bits (`{}`), and so does botsim{}",
                 s.path.display(),
                 o.line,
                 o.col,
                 o.text,
-                o.fixed
+                o.fixed,
+                match fixes.len() {
+                    1 => String::new(),
+                    n => format!(" ({} more in the file, each kept so)", n - 1),
+                }
             ));
         }
     }
@@ -1557,6 +1562,18 @@ mod tests {
         let top = d.sources.iter().find(|s| s.module("top").is_some()).unwrap();
         assert!(top.edited && top.text.contains("assign led = 8'hFF ;"), "{}", top.text);
         assert!(d.notes.iter().any(|n| n.ends_with("top.v:2:16: `8'h1FF` has more digits than its width holds; Vivado keeps the low bits (`8'hFF`), and so does botsim")), "{:?}", d.notes);
+        // Many in one file (an icon table): one line, the first and how many more.
+        let rows: String = (0..12).map(|k| format!("  wire [3:0] r{k} = 4'b1{k:04b};\n")).collect();
+        let t = tree(&[(
+            "top.v",
+            &format!("module top(input clk, output [7:0] led);\n{rows}  bot b (.clk(clk));\nendmodule\n"),
+        )]);
+        let d = resolve(&[t.path().to_path_buf()], &Options::default()).unwrap();
+        let said: Vec<&String> = d.notes.iter().filter(|n| n.contains("more digits")).collect();
+        assert_eq!(said.len(), 1, "{said:?}");
+        assert!(said[0].contains("top.v:2:") && said[0].ends_with("(11 more in the file, each kept so)"), "{said:?}");
+        let top = d.sources.iter().find(|s| s.module("top").is_some()).unwrap();
+        assert!(top.text.contains("r11 = 4'b1011 ;"), "{}", top.text);
     }
 
     #[test]

@@ -261,7 +261,9 @@ def write_table(path, record):
         for key in ("rtl", "real", "skipped"):
             cols.append(" / ".join(fmt(v.get(key), "%" if key == "skipped" else "") for v in sp.values()) or "-")
         busy = "; ".join(v["busy"] for v in sp.values() if v.get("busy"))
-        cell = lambda p: f"{p[0]}: {p[1]}".replace("|", "\\|").replace("\n", " ")[:160]
+        # Paths below the clone, as its team knows them.
+        here = re.compile(r"[^\s(`']*/" + re.escape(e["name"]) + "/")
+        cell = lambda p: here.sub("", f"{p[0]}: {p[1]}").replace("|", "\\|").replace("\n", " ")[:160]
         body += f"| {e['name']} | {cell(e['first'])} | {cell(e['expect'])} | {cols[0]} | {cols[1]} | {cols[2]} | {busy.replace('|', '/')[:120]} |\n"
     table = head + body
     if not os.path.exists(path):

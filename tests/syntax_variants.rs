@@ -218,6 +218,12 @@ fn the_corpus_runs_the_same_written_tight_or_loose() {
             args.extend(["--param".into(), "SIMULATE=1".into()]);
         }
         let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let mut all = vec![run];
+        all.extend(&args);
+        if !board_in(&clone, &all).status.success() {
+            eprintln!("{name}: does not run as committed with its options (docs/ECOSYSTEM.md): left out");
+            continue;
+        }
         let dir = tempfile::tempdir().unwrap();
         copy_tree(&clone, dir.path());
         variants_run_as_the_original(name, dir.path(), &[run], &args);

@@ -440,8 +440,11 @@ impl Parser<'_> {
         if from >= to || to > self.t.len() {
             return String::new();
         }
-        let end = self.t.get(to).map_or(self.src.len(), |t| t.at);
-        let s = &self.src[self.t[from].at..end];
+        // From the first token to the end of the last: a comment before the next token (or
+        // between these) is no part of the text (`.instruction(instruction /* x */)`).
+        let last = &self.t[to - 1];
+        let end = last.at + token_len(self.src, last);
+        let s = without_comments(&self.src[self.t[from].at..end]);
         s.split_whitespace().collect::<Vec<_>>().join(" ")
     }
 }
@@ -1111,6 +1114,33 @@ pub fn redeclared_ansi_ports(src: &str) -> Vec<Redeclared> {
     out
 }
 
+/// `text` with its comments replaced by a space (strings kept whole).
+fn without_comments(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(at) = rest.find(['/', '"']) {
+        out.push_str(&rest[..at]);
+        rest = &rest[at..];
+        let end = if rest.starts_with("//") {
+            out.push(' ');
+            rest.find('\n').unwrap_or(rest.len())
+        } else if rest.starts_with("/*") {
+            out.push(' ');
+            rest[2..].find("*/").map_or(rest.len(), |k| k + 4)
+        } else if rest.starts_with('"') {
+            let k = rest[1..].find('"').map_or(rest.len(), |k| k + 2);
+            out.push_str(&rest[..k]);
+            k
+        } else {
+            out.push('/');
+            1
+        };
+        rest = &rest[end..];
+    }
+    out.push_str(rest);
+    out
+}
+
 /// The length of a token's text in `src`.
 fn token_len(src: &str, t: &Token) -> usize {
     match &t.tok {
@@ -1201,6 +1231,15 @@ fn truncated_literal(text: &str) -> Option<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_connections_text_leaves_out_the_comments_around_and_inside_it() {
+        let m = scan("module t(input clk);\n  rom r (.instruction(instruction /* x */), .address( // y\n  a[11:0] /* z */ + 1 ), .s(\"//\"));\nendmodule\n");
+        let c = &m[0].instances[0].connections;
+        assert_eq!(c[0], ("instruction".to_string(), "instruction".to_string()));
+        assert_eq!(c[1], ("address".to_string(), "a[11:0] + 1".to_string()));
+        assert_eq!(c[2], ("s".to_string(), "\"//\"".to_string()));
+    }
 
     #[test]
     fn non_ansi_ports_keep_their_order_and_widths() {

@@ -1153,7 +1153,7 @@ impl<'a> Walk<'a> {
         // A port of an ANSI header declared again as a wire in the body (Vivado reads the
         // port's declaration): blanked, columns kept.
         let again: Vec<scan::Redeclared> =
-            scan::redeclared_ansi_ports(&s.text).into_iter().filter(|r| r.blank.iter().all(|b| kept(b))).collect();
+            scan::redeclared_ansi_ports(&s.text).into_iter().filter(|r| r.blank.iter().all(&kept)).collect();
         for r in &again {
             self.notes.push(format!(
                 "{}:{}:{}: the {} {} of `{}` declared again as {} in its body (Verilog does not allow it; Vivado reads the port's declaration): botsim reads it so",

@@ -1124,11 +1124,11 @@ fn without_comments(text: &str) -> String {
         let end = if rest.starts_with("//") {
             out.push(' ');
             rest.find('\n').unwrap_or(rest.len())
-        } else if rest.starts_with("/*") {
+        } else if let Some(body) = rest.strip_prefix("/*") {
             out.push(' ');
-            rest[2..].find("*/").map_or(rest.len(), |k| k + 4)
-        } else if rest.starts_with('"') {
-            let k = rest[1..].find('"').map_or(rest.len(), |k| k + 2);
+            body.find("*/").map_or(rest.len(), |k| k + 4)
+        } else if let Some(body) = rest.strip_prefix('"') {
+            let k = body.find('"').map_or(rest.len(), |k| k + 2);
             out.push_str(&rest[..k]);
             k
         } else {

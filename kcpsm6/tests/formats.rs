@@ -302,6 +302,17 @@ proptest! {
         let _ = assemble_str(&src);
     }
 
+    // The ROM readers on any text, multi-byte characters among the words they look for.
+    #[test]
+    fn a_rom_reader_never_panics(parts in proptest::collection::vec(prop_oneof![
+        Just("rom[10'h01A] = 18'h2D515;".to_string()), Just("fill = 18'h0;".to_string()),
+        Just(".INIT_00(256'h".to_string()), Just("RAMB18E1".to_string()), Just("READ_WIDTH_A(9)".to_string()),
+        Just("/*".to_string()), Just("*/".to_string()), Just("//".to_string()), Just("\"".to_string()),
+        "\\PC{0,8}", "[0-9a-fA-F]{0,64}",
+    ], 0..40)) {
+        let _ = Image::parse_verilog(Path::new("x.v"), &parts.concat());
+    }
+
     /// Lines built from real syntax pieces: never a panic, and errors carry line numbers.
     #[test]
     fn syntax_soup_never_panics(parts in proptest::collection::vec(prop_oneof![

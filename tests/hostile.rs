@@ -371,3 +371,21 @@ fn botsim_keep_generated_keeps_every_file_of_a_build_that_fails() {
     let user = kept.iter().find(|k| k.contains("top")).unwrap_or_else(|| panic!("{kept:?}"));
     assert!(std::fs::read_to_string(keep.path().join(user)).unwrap().contains("sub sub_2 ("));
 }
+
+#[test]
+fn a_parameter_declaration_that_does_not_parse_is_said_at_its_line_not_as_a_missing_parameter() {
+    // A typo in the top's SIMULATE parameter (issue 41's mutants): the run with --param
+    // SIMULATE=1 says where the line is wrong, not that the top has no such parameter.
+    for decl in ["  parameter SIMULATE <= 0;\n", "  localparam W = 2; parameter SIMULATE 0;\n"] {
+        let d = design(
+            &format!("module nexys4fpga(input clk, output [15:0] led);\n{decl}  assign led = 16'h0;\nendmodule\n"),
+            &[],
+        );
+        let e = failure(&board(d.path(), &[".", "--param", "SIMULATE=1", "--seconds", "0.0001"]));
+        assert!(e.starts_with("top.v:2:") && e.contains("does not parse"), "{decl}: {e}");
+    }
+    // A top that has none is still told so.
+    let d = design("module nexys4fpga(input clk, output [15:0] led);\n  assign led = 16'h0;\nendmodule\n", &[]);
+    let e = failure(&board(d.path(), &[".", "--param", "SIMULATE=1"]));
+    assert!(e.contains("has no parameter SIMULATE (its parameters: none)"), "{e}");
+}

@@ -202,7 +202,19 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
     let mut plan = Plan::new(&design, &req).map_err(|e| e.to_string())?;
     // Every --param names a parameter of the top.
     if let Some((src, top)) = design.sources.iter().find_map(|s| s.module(&design.top).map(|m| (s, m))) {
-        if let Some((name, _)) = params.iter().find(|(n, _)| !top.params.contains(n)) {
+        // A parameter declaration the scanner could not read (`parameter SIMULATE <= 0;`) is
+        // the design's mistake, at its line: the build says it (Verilator's syntax error in
+        // the user's terms), not this.
+        let tokens: Vec<String> = botsim_core::board::scan::normalized(&src.text, top.span.clone())
+            .split_whitespace()
+            .map(str::to_string)
+            .collect();
+        let declared_unread = |name: &str| {
+            tokens.split(|t| t == ";").any(|stmt| {
+                stmt.iter().any(|t| t == "parameter" || t == "localparam") && stmt.iter().any(|t| t == name)
+            })
+        };
+        if let Some((name, _)) = params.iter().find(|(n, _)| !top.params.contains(n) && !declared_unread(n)) {
             let has = if top.params.is_empty() { "none".to_string() } else { top.params.join(", ") };
             return Err(format!(
                 "--param {name}: the top `{}` ({}:{}) has no parameter {name} (its parameters: {has})",

@@ -148,6 +148,12 @@ pub fn find(
     out
 }
 
+/// The root variable whose delayed copy `name` is (`__Vdly__x`: `x`), local or kept in the
+/// root.
+fn delayed<'a>(name: &'a str, widths: &BTreeMap<String, u32>) -> Option<&'a str> {
+    name.strip_prefix("__Vdly__").filter(|v| widths.contains_key(*v))
+}
+
 /// What the scan found of one variable so far.
 #[derive(Default)]
 struct Seen {
@@ -255,15 +261,11 @@ fn scan(
         match (tok(i), tok(i + 1), tok(i + 2)) {
             // A delayed copy kept in the root (a variable tested in several always blocks):
             // a use of the variable itself, whose twin it is after every evaluation.
-            (Tok::Id("vlSelf"), Tok::P("->"), Tok::Id(m))
-                if m.strip_prefix("__Vdly__").is_some_and(|v| widths.contains_key(v)) =>
-            {
-                Some((&m["__Vdly__".len()..], 3))
+            (Tok::Id("vlSelf"), Tok::P("->"), Tok::Id(m)) if delayed(m, widths).is_some() => {
+                delayed(m, widths).map(|v| (v, 3))
             }
             (Tok::Id("vlSelf"), Tok::P("->"), Tok::Id(m)) if widths.contains_key(m) => Some((m, 3)),
-            (Tok::Id(l), _, _) if i == 0 || tok(i - 1) != Tok::P("->") => {
-                l.strip_prefix("__Vdly__").filter(|m| widths.contains_key(*m)).map(|m| (m, 1))
-            }
+            (Tok::Id(l), _, _) if i == 0 || tok(i - 1) != Tok::P("->") => delayed(l, widths).map(|m| (m, 1)),
             _ => None,
         }
     };
@@ -453,10 +455,8 @@ fn one_kind(rhs: &[Tok], from: usize, to: usize, name: &str, widths: &BTreeMap<S
     let is_self = |a: usize, b: usize| -> bool {
         let m = |t: &Tok| matches!(t, Tok::Id(x) if *x == name);
         match &rhs[a..b] {
-            [Tok::Id("vlSelf"), Tok::P("->"), x] => {
-                m(x) || matches!(x, Tok::Id(v) if v.strip_prefix("__Vdly__") == Some(name))
-            }
-            [Tok::Id(l)] => l.strip_prefix("__Vdly__") == Some(name),
+            [Tok::Id("vlSelf"), Tok::P("->"), x] => m(x) || matches!(x, Tok::Id(v) if delayed(v, widths) == Some(name)),
+            [Tok::Id(l)] => delayed(l, widths) == Some(name),
             _ => false,
         }
     };

@@ -461,3 +461,36 @@ fn a_final_projects_clone_runs_with_the_boards_peripherals() {
     let crossings = x[48 * 2..].windows(2).filter(|w| (w[0] < 0) != (w[1] < 0)).count();
     assert!((23..=26).contains(&crossings), "{crossings} sign changes");
 }
+
+#[test]
+fn a_botsim31_bot_runs_from_the_teams_rtl_and_moves_as_botsim_20s_would() {
+    // The same Project 2 with the team's BotSim 3.1 bot and with the course's 2.0 bot (both
+    // unnamed): the 3.1 RTL runs the 2.0 program (it reads ports 0 and A only), so the two
+    // traces are equal sample for sample, cycle for cycle.
+    let team = clone_of("botsim31");
+    let course = clone_of("unnamed_bot");
+    let args = [".", "--param", "SIMULATE=1", "--seconds", "0.25", "--trace-csv", "trace.csv"];
+    let (s, said) = run(team.path(), &args);
+    let line = said.lines().find(|l| l.contains("the team's bot")).unwrap_or_else(|| panic!("{said}"));
+    assert!(
+        line.starts_with("  the team's bot `bot` (bot31/bot31.v:")
+            && line.contains("port `Bot_Config_reg`; BotSim 3.1): simulated from its own RTL"),
+        "{line}"
+    );
+    for m in ["kcpsm6", "world_map", "bot31_pgm"] {
+        assert!(said.contains(&format!("replaced {m} (")), "{m}: {said}");
+    }
+    for m in ["world_if31", "map31", "replaced bot ", "replaced world_if ", "replaced map "] {
+        assert!(!said.contains(&format!("replaced {m}")), "{m}: {said}");
+    }
+    let (c, _) = run(course.path(), &args);
+    let samples = s["samples"].as_u64().unwrap();
+    assert!(samples >= 4, "{s}");
+    assert_eq!(s["samples"], c["samples"], "{s}\n{c}");
+    let read = |d: &Path| std::fs::read_to_string(d.join("trace.csv")).unwrap();
+    let (t, r) = (read(team.path()), read(course.path()));
+    assert_eq!(t, r);
+    // Its motors turned (the example drives forward after reset): the distance counts.
+    let dist: std::collections::BTreeSet<&str> = t.lines().skip(1).filter_map(|l| l.split(',').nth(6)).collect();
+    assert!(dist.len() > 2, "{t}");
+}

@@ -197,7 +197,8 @@ fn files(plan: &Plan, params: &[(String, String)], cpu: CpuModel, bot: BotKind) 
         ("botsim_clkgen.sv".to_string(), CLKGEN.to_string()),
         ("botsim_devices.sv".to_string(), DEVICES.to_string()),
     ];
-    for (_, file) in OWN_MODULES {
+    // botsim's own modules, but those whose names are the team's modules here.
+    for &(_, file) in OWN_MODULES.iter().filter(|(m, _)| !plan.kept.contains(*m)) {
         let text = match (file, cpu) {
             ("kcpsm6.v", CpuModel::Iss) => KCPSM6_ISS.to_string(),
             ("bot.v", _) if bot == BotKind::Model => BOT_MODEL.to_string(),

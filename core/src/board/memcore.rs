@@ -465,15 +465,15 @@ fn init_words(
                 found
             }
             None => {
-                return Err(BoardError::at(
-                    owner,
-                    0,
-                    0,
-                    format!(
-                        "the core's initial contents {} are not in the repository (a path from another machine?): add the file",
-                        file.display()
-                    ),
-                ))
+                // Vivado or ISE would build it from a netlist that holds the contents (a
+                // `.ngc`, a `.dcp`), which botsim cannot read: the design runs, its memory
+                // blank, and the user is told which file would fill it.
+                notes.push(format!(
+                    "{}: the core's initial contents {} are not in the repository (a path from another machine, or only in a netlist): it starts all 0; add the file to see them",
+                    owner.display(),
+                    file.display()
+                ));
+                return Ok(Vec::new());
             }
         }
     };

@@ -60,6 +60,67 @@ pub const PRIMITIVES: [(&str, &[&str]); 34] = [
 /// generates for a design (clock cores) instantiates.
 pub const HELPERS: [&str; 3] = ["botsim_clkgen", "botsim_lock", "botsim_mmcm"];
 
+/// The ports of botsim's own module `name` (one of [`OWN_MODULES`]), as its Verilog declares
+/// them (the bot's include `Loc_Y_reg`, the later course files' spelling).
+pub fn own_ports(name: &str) -> Vec<String> {
+    let text = match name {
+        "kcpsm6" => include_str!("../../../rtl/kcpsm6.v"),
+        "bot" => include_str!("../../../rtl/bot.v"),
+        "world_if" => include_str!("../../../rtl/world_if.v"),
+        "map" => include_str!("../../../rtl/map.v"),
+        "world_map" => include_str!("../../../rtl/world_map.v"),
+        _ => return Vec::new(),
+    };
+    let modules = super::scan::scan(text);
+    modules
+        .iter()
+        .find(|m| m.name == name)
+        .map(|m| m.ports.iter().map(|p| p.name.clone()).collect())
+        .unwrap_or_default()
+}
+
+/// A team's module named like one of botsim's own ([`OWN_MODULES`]) is the course's when
+/// every port it declares is one of botsim's, and botsim's replaces it; a port botsim's
+/// does not have makes it the team's own (a BotSim 3.1 `bot` with `Bot_Config_reg`, a
+/// `world_if` with a configuration port), kept as committed. The first such port.
+///
+/// ```
+/// use botsim_core::board::{parts::foreign_port, scan};
+/// let m = &scan::scan("module bot(input clk, input [7:0] Bot_Config_reg); endmodule")[0];
+/// assert_eq!(foreign_port(m), Some("Bot_Config_reg"));
+/// let m = &scan::scan("module bot(input clk, output upd_sysregs); endmodule")[0];
+/// assert_eq!(foreign_port(m), None);
+/// ```
+pub fn foreign_port(m: &Module) -> Option<&str> {
+    if !OWN_MODULES.iter().any(|(o, _)| *o == m.name) {
+        return None;
+    }
+    let own = own_ports(&m.name);
+    m.ports.iter().map(|p| p.name.as_str()).find(|p| !own.iter().any(|o| o == p))
+}
+
+/// The ports by which a module is a bot (BotSim 2.0's, a team's BotSim 3.1, whatever its
+/// name): its motor input, its registers, its update flag and its clock. The Y register is
+/// `LocY_reg` or `Loc_Y_reg` ([`bot_locy_port`]).
+pub const BOT_PORTS: [&str; 6] = ["MotCtl_in", "LocX_reg", "Sensors_reg", "BotInfo_reg", "upd_sysregs", "clk"];
+
+/// The Y-register port of a module with the bot's ports, as it spells it.
+pub fn bot_locy_port(m: &Module) -> Option<&str> {
+    ["LocY_reg", "Loc_Y_reg"].into_iter().find(|p| m.port(p).is_some())
+}
+
+/// Is the module a bot: the bot's ports ([`BOT_PORTS`]; the motor input an input, the
+/// registers and the update flag outputs) around a KCPSM6 of its own (a module that only
+/// passes a bot's ports through, or the CPU's side of them, is not one)?
+pub fn is_bot(m: &Module) -> bool {
+    let dir = |p: &str, d: Dir| m.port(p).is_some_and(|p| p.dir == d);
+    BOT_PORTS.iter().all(|p| m.port(p).is_some())
+        && dir("MotCtl_in", Dir::Input)
+        && ["LocX_reg", "BotInfo_reg", "upd_sysregs"].iter().all(|p| dir(p, Dir::Output))
+        && bot_locy_port(m).is_some()
+        && m.instances.iter().any(|i| i.module == "kcpsm6")
+}
+
 /// One line of the substitution report.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Replacement {

@@ -11,7 +11,9 @@ use std::path::{Path, PathBuf};
 
 use kcpsm6::image::Image;
 
-use super::parts::{is_program_rom, Replacement, HELPERS, OWN_MODULES, PRIMITIVES};
+use super::parts::{
+    bot_locy_port, foreign_port, is_bot, is_program_rom, Replacement, HELPERS, OWN_MODULES, PRIMITIVES,
+};
 use super::pins::{self, Role};
 use super::resolve::Design;
 use super::scan::{Dir, Instance, Module};
@@ -77,13 +79,44 @@ pub struct Plan {
     /// The top's input ports, and its inout ones.
     pub inputs: BTreeSet<String>,
     pub inouts: BTreeSet<String>,
-    /// The hierarchical path from the top to the `bot` instance; `None` for a design without
-    /// a bot (a final project: the board alone).
+    /// The hierarchical path from the top to the bot (botsim's BotSim 2.0 `bot`, or the
+    /// team's own, [`Plan::team_bot`]); `None` for a design without a bot (a final project:
+    /// the board alone).
     pub bot_path: Option<String>,
+    /// The bot's KCPSM6 (its path from the top).
+    pub bot_cpu: Option<String>,
+    /// The bot is the team's own module (a BotSim 3.1 `bot`), simulated from its RTL.
+    pub team_bot: Option<TeamBot>,
+    /// botsim's own module names that are the team's modules here (other ports than
+    /// botsim's: [`foreign_port`]): kept as committed, botsim's left out of the build.
+    pub kept: BTreeSet<String>,
     /// The user instantiates the bot with `Loc_Y_reg` (later copies of the course files).
     pub loc_y_reg: bool,
     /// Every KCPSM6 instance: the team's and, last, the bot's.
     pub cpus: Vec<CpuSite>,
+}
+
+/// A bot the team defines (a module with the bot's ports, [`is_bot`], that is not botsim's
+/// `bot`): simulated from its own RTL, observed at its ports.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TeamBot {
+    pub module: String,
+    /// Where its module is: file:line.
+    pub at: String,
+    /// Its Y-register port (`LocY_reg` or `Loc_Y_reg`).
+    pub locy: String,
+    /// The port that makes it another BotSim than 2.0 (`Bot_Config_reg`), if one does.
+    pub config: Option<String>,
+    /// It has the motor-distance registers (`LMDist_reg`, `RMDist_reg`).
+    pub has_distances: bool,
+}
+
+impl Plan {
+    /// The path of botsim's own bot (BotSim 2.0), which its model can stand for; `None` when
+    /// the design has no bot or its bot is the team's.
+    pub fn own_bot(&self) -> Option<&str> {
+        self.bot_path.as_deref().filter(|_| self.team_bot.is_none())
+    }
 }
 
 /// A user file in the build: its path, and its text when modules were blanked out of it
@@ -115,7 +148,14 @@ impl Plan {
                 defined.insert(&m.name, (s, m));
             }
         }
-        let own_name = |n: &str| OWN_MODULES.iter().any(|(m, _)| *m == n) || HELPERS.contains(&n);
+        // botsim's own names the team's modules take here (other ports): kept, and walked.
+        let kept: BTreeSet<String> = OWN_MODULES
+            .iter()
+            .filter(|(n, _)| defined.get(n).is_some_and(|(_, m)| foreign_port(m).is_some()))
+            .map(|(n, _)| n.to_string())
+            .collect();
+        let own_name =
+            |n: &str| (OWN_MODULES.iter().any(|(m, _)| *m == n) && !kept.contains(n)) || HELPERS.contains(&n);
         let top = design.top.clone();
         if !defined.contains_key(top.as_str()) {
             return Err(BoardError::plain(format!("the top module `{top}` is not in the design's sources")));
@@ -124,6 +164,7 @@ impl Plan {
         // Walk the hierarchy from the top: every module used, missing ones, the bot's path.
         let mut used = BTreeSet::new();
         let mut bot_paths = Vec::new();
+        let mut team_bots: Vec<(String, TeamBot)> = Vec::new();
         let mut loc_y_reg = false;
         let mut used_outputs: BTreeMap<String, u8> = BTreeMap::new();
         let mut missing: Option<BoardError> = None;
@@ -136,9 +177,24 @@ impl Plan {
                 return Err(BoardError::plain("the module hierarchy does not end (a module instantiates itself?)"));
             }
             used.insert(name.clone());
-            if name == "bot" {
+            if name == "bot" && !kept.contains("bot") {
                 bot_paths.push(path.clone());
                 continue;
+            }
+            if let Some((src, m)) =
+                defined.get(name.as_str()).filter(|(_, m)| is_bot(m) && !path.is_empty() && !own_name(&name))
+            {
+                let config = m.ports.iter().map(|p| p.name.as_str()).find(|p| p.eq_ignore_ascii_case("Bot_Config_reg"));
+                team_bots.push((
+                    path.clone(),
+                    TeamBot {
+                        module: name.clone(),
+                        at: format!("{}:{}", src.path.display(), m.line),
+                        locy: bot_locy_port(m).unwrap_or("LocY_reg").to_string(),
+                        config: config.map(str::to_string),
+                        has_distances: m.port("LMDist_reg").is_some() && m.port("RMDist_reg").is_some(),
+                    },
+                ));
             }
             if own_name(&name) {
                 continue;
@@ -183,30 +239,37 @@ impl Plan {
         if let Some(e) = missing {
             return Err(e);
         }
-        let bot_path = match bot_paths.as_slice() {
-            [one] => {
+        let every: Vec<&str> = bot_paths.iter().chain(team_bots.iter().map(|(p, _)| p)).map(String::as_str).collect();
+        if every.len() > 1 {
+            return Err(BoardError::plain(format!(
+                "the design has {} bots ({}); botsim simulates one",
+                every.len(),
+                every.join(", ")
+            )));
+        }
+        let (bot_path, bot_cpu, team_bot) = match (bot_paths.first(), team_bots.first()) {
+            (Some(one), _) => {
                 let path = format!("{one}.{BOT_CPU_INSTANCE}");
-                cpus.push(CpuSite { path, rom: Ok("bot_pgm".into()), at: "botsim's bot".into() });
-                Some(one.clone())
+                cpus.push(CpuSite { path: path.clone(), rom: Ok("bot_pgm".into()), at: "botsim's bot".into() });
+                (Some(one.clone()), Some(path), None)
             }
-            [] => None,
-            many => {
-                return Err(BoardError::plain(format!(
-                    "the design has {} `bot` instances ({}); botsim simulates one",
-                    many.len(),
-                    many.join(", ")
-                )))
+            (None, Some((path, team))) => {
+                let inside = format!("{path}.");
+                let cpu = cpus.iter().find(|c| c.path.starts_with(&inside)).map(|c| c.path.clone());
+                (Some(path.clone()), cpu, Some(team.clone()))
             }
+            (None, None) => (None, None, None),
         };
+        let own_bot = bot_path.is_some() && team_bot.is_none();
 
         // Substitutions.
         let mut replaced = Vec::new();
         let mut warnings = Vec::new();
         // botsim's own modules are always in the build (a bot has them all); the user's
         // copies are reported, those of a design without a bot where it uses them.
-        for (name, _) in OWN_MODULES {
+        for &(name, _) in OWN_MODULES.iter().filter(|(n, _)| !kept.contains(*n)) {
             let from = defined.get(name).map(|(s, m)| format!("{}:{}", s.path.display(), m.line)).unwrap_or_default();
-            if !from.is_empty() && (bot_path.is_some() || used.contains(name)) {
+            if !from.is_empty() && (own_bot || used.contains(name)) {
                 replaced.push(Replacement { module: name.to_string(), from, with: format!("botsim's {name}") });
             } else if from.is_empty() && used.contains(name) {
                 // Not committed (the team relied on the course folder): said, as the course's
@@ -236,9 +299,7 @@ impl Plan {
             req.programs.iter().map(|(p, i)| (p.clone(), i.clone(), false)).collect();
         let rom_modules: Vec<(&Source, &Module)> = defined
             .values()
-            .filter(|(_, m)| {
-                (is_program_rom(m) && used.contains(&m.name)) || (m.name == "bot_pgm" && bot_path.is_some())
-            })
+            .filter(|(_, m)| (is_program_rom(m) && used.contains(&m.name)) || (m.name == "bot_pgm" && own_bot))
             .copied()
             .collect();
         let team_roms = rom_modules.iter().filter(|(_, m)| m.name != "bot_pgm").count();
@@ -296,7 +357,7 @@ impl Plan {
             });
             roms.push(Rom { module: m.name.clone(), image, origin, source });
         }
-        if bot_path.is_some() && !roms.iter().any(|r| r.module == "bot_pgm") {
+        if own_bot && !roms.iter().any(|r| r.module == "bot_pgm") {
             let why = if req.force_own_firmware {
                 "botsim's firmware with the constants asked for"
             } else {
@@ -323,6 +384,7 @@ impl Plan {
         // point at the user's lines).
         let replaced_names: BTreeSet<String> = OWN_MODULES
             .iter()
+            .filter(|(m, _)| !kept.contains(*m))
             .map(|(m, _)| m.to_string())
             .chain(PRIMITIVES.iter().map(|(p, _)| p.to_string()))
             .chain(roms.iter().map(|r| r.module.clone()))
@@ -367,6 +429,9 @@ impl Plan {
             inputs,
             inouts,
             bot_path,
+            bot_cpu,
+            team_bot,
+            kept,
             loc_y_reg,
             cpus,
         })

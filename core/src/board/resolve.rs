@@ -25,7 +25,7 @@ use std::path::{Path, PathBuf};
 use super::course;
 use super::ip::{ClockCore, ClockSpec, IpConfig, CLOCK_CORES};
 use super::memcore::{library_model, MemCore, MEMORY_CORES};
-use super::parts::{is_program_rom, Replacement, HELPERS, OWN_MODULES, PRIMITIVES};
+use super::parts::{self, foreign_port, is_program_rom, Replacement, HELPERS, OWN_MODULES, PRIMITIVES};
 use super::pins::{self, Role};
 use super::project::Project;
 use super::repo::{tidy, Ages, FileKind, Repo};
@@ -297,12 +297,13 @@ impl Pool {
         self.module(d).instances.iter().any(|i| self.reaches_bot(&i.module))
     }
 
-    /// Does any definition of `name` reach a `bot` instance?
+    /// Does any definition of `name` reach a bot (a `bot` instance, or a module with the bot's
+    /// ports)?
     fn reaches_bot(&self, name: &str) -> bool {
         let mut seen = BTreeSet::new();
         let mut stack = vec![name.to_string()];
         while let Some(n) = stack.pop() {
-            if n == "bot" {
+            if n == "bot" || self.definitions(&n).iter().any(|d| parts::is_bot(self.module(*d))) {
                 return true;
             }
             if !seen.insert(n.clone()) {
@@ -675,7 +676,10 @@ impl<'a> Walk<'a> {
                 continue; // replaced by a behavioural ROM: what it instantiates is not needed
             }
             for inst in &m.instances {
-                if inst.module == "bot" {
+                // A `bot` the team defines with ports BotSim 2.0's lacks is the team's own (a
+                // BotSim 3.1 bot), simulated as committed; any other is botsim's.
+                let team_bot = inst.module == "bot" && self.is_team_own("bot", &file);
+                if inst.module == "bot" && !team_bot {
                     if let Some((port, _)) =
                         inst.connections.iter().find(|(p, _)| !p.starts_with('#') && !bot_ports.contains(p))
                     {
@@ -704,15 +708,17 @@ impl<'a> Walk<'a> {
                     if let Choice::User(d) = &child {
                         self.pool.unterminated(*d)?;
                     }
-                    // botsim's own modules replace the user's copies: not walked into.
-                    let own = OWN_MODULES.iter().any(|(o, _)| *o == inst.module);
+                    // botsim's own modules replace the user's copies (the course's): not walked
+                    // into. A team's module of the same name with other ports is walked.
+                    let own = OWN_MODULES.iter().any(|(o, _)| *o == inst.module)
+                        && !matches!(&child, Choice::User(d) if foreign_port(self.pool.module(*d)).is_some());
                     if let (Choice::User(d), false) = (&child, own) {
                         queue.push_back((inst.module.clone(), *d));
                     }
                     self.chosen.insert(inst.module.clone(), child);
                     self.order.push(inst.module.clone());
                 }
-                if inst.module == "bot" && !self.chosen.contains_key("bot_pgm") {
+                if inst.module == "bot" && !team_bot && !self.chosen.contains_key("bot_pgm") {
                     // botsim's bot runs the user's bot_pgm, if there is one.
                     let defs = self.pool.definitions("bot_pgm");
                     if !defs.is_empty() {
@@ -725,6 +731,22 @@ impl<'a> Walk<'a> {
             }
         }
         Ok(())
+    }
+
+    /// Is the module `name` (one of botsim's own names), as it would be chosen for an instance
+    /// in `file`, the team's own ([`foreign_port`])?
+    fn is_team_own(&self, name: &str, file: &Path) -> bool {
+        if let Some(Choice::User(d)) = self.chosen.get(name) {
+            return foreign_port(self.pool.module(*d)).is_some();
+        }
+        let defs = self.pool.definitions(name);
+        if defs.is_empty() {
+            return false;
+        }
+        match self.pool.choose(name, &defs, Some(file), self.listed, self.opts) {
+            Ok((d, _)) => foreign_port(self.pool.module(d)).is_some(),
+            Err(_) => false,
+        }
     }
 
     fn clock_specs(&self, module: &str, instance: &str) -> Option<Vec<&'a ClockSpec>> {

@@ -185,7 +185,7 @@ pub fn board_top(plan: &Plan, params: &[(String, String)]) -> String {
          \x20   always @(posedge bot_clk) bot_cycles <= bot_cycles + 64'd1;\n\
          endmodule\n",
         top = plan.top,
-        bot = bot_taps(plan.bot_path.as_deref()),
+        bot = bot_taps(plan),
         conns = conns.join(",\n        "),
         devices = devices,
         assigns = assigns.join("\n    "),
@@ -299,11 +299,30 @@ fn devices(plan: &Plan) -> (String, Vec<(&'static str, String)>) {
 
 /// The board's view of the bot: its registers through hierarchical references to the
 /// instance at `path` below the user's top, or all 0 (a clock that never ticks) without one.
-fn bot_taps(path: Option<&str>) -> String {
-    let Some(path) = path else {
+fn bot_taps(plan: &Plan) -> String {
+    let Some(path) = plan.bot_path.as_deref() else {
         return "    // The design has no bot: its outputs are 0 and its clock stands still.\n    wire bot_clk = 1'b0;\n    assign {bot_upd, bot_locx, bot_locy, bot_info, bot_sensors, bot_lmdist, bot_rmdist, bot_motctl} = 57'd0;\n".to_string();
     };
     let bot = format!("user.{path}");
+    if let Some(team) = &plan.team_bot {
+        // The team's own bot (a BotSim 3.1 `bot`), seen at its ports.
+        return format!(
+            "    // The team's bot `{module}`, seen at its ports through hierarchical references.\n\
+             \x20   wire bot_clk = {bot}.clk;\n\
+             \x20   assign bot_upd = {bot}.upd_sysregs;\n\
+             \x20   assign bot_locx = {bot}.LocX_reg;\n\
+             \x20   assign bot_locy = {bot}.{locy};\n\
+             \x20   assign bot_info = {bot}.BotInfo_reg;\n\
+             \x20   assign bot_sensors = {bot}.Sensors_reg;\n\
+             \x20   assign bot_lmdist = {lmdist};\n\
+             \x20   assign bot_rmdist = {rmdist};\n\
+             \x20   assign bot_motctl = {bot}.MotCtl_in;\n",
+            module = team.module,
+            locy = team.locy,
+            lmdist = if team.has_distances { format!("{bot}.LMDist_reg") } else { "8'd0".into() },
+            rmdist = if team.has_distances { format!("{bot}.RMDist_reg") } else { "8'd0".into() },
+        );
+    }
     format!(
         "    // The substituted bot, seen through hierarchical references.\n\
          \x20   wire bot_clk = {bot}.clk;\n\

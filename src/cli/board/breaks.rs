@@ -102,8 +102,7 @@ pub fn write_save_file(
             ],
         );
     }
-    let in_bot =
-        |path: &str| plan.bot_path.as_deref().is_some_and(|b| path.strip_prefix(b).is_some_and(|r| r.starts_with('.')));
+    let in_bot = |path: &str| plan.own_bot().is_some_and(|b| path.strip_prefix(b).is_some_and(|r| r.starts_with('.')));
     for site in plan.cpus.iter().filter(|c| !(bot_model && in_bot(&c.path))) {
         let at = format!("{top}.user.{}", site.path);
         let debug = if probed { format!("{at}.core") } else { at.clone() };
@@ -129,7 +128,7 @@ pub fn breakpoints(
     plan: &Plan,
     sources: &BTreeMap<String, SourceMap>,
 ) -> Result<(BTreeMap<String, Breaks>, Vec<BreakSpec>), String> {
-    let bot_cpu = plan.bot_path.as_ref().map(|b| format!("{b}.{}", botsim_core::board::plan::BOT_CPU_INSTANCE));
+    let bot_cpu = plan.bot_cpu.clone();
     let team: Vec<&str> =
         plan.cpus.iter().map(|c| c.path.as_str()).filter(|p| Some(*p) != bot_cpu.as_deref()).collect();
     let mut cpu: BTreeMap<String, Breaks> = BTreeMap::new();

@@ -232,7 +232,25 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
         a.say(format!("note: {n}"));
     }
     match &plan.bot_path {
-        Some(b) => a.say(format!("botsim board: top `{}`, bot at `{}.{b}`", plan.top, plan.top)),
+        Some(b) => {
+            a.say(format!("botsim board: top `{}`, bot at `{}.{b}`", plan.top, plan.top));
+            if let Some(t) = &plan.team_bot {
+                let which = match &t.config {
+                    Some(port) => format!("a later BotSim than 2.0 (port `{port}`; BotSim 3.1)"),
+                    None => "the bot's ports around a KCPSM6".to_string(),
+                };
+                a.say(format!(
+                    "  the team's bot `{}` ({}) is {which}: simulated from its own RTL, with botsim's kcpsm6 and the world from the map",
+                    t.module, t.at
+                ));
+                if a.bot == Some(BotArg::Model) {
+                    return Err(format!(
+                        "--bot model: the design's bot is the team's `{}` ({}), simulated from its RTL; botsim's model is BotSim 2.0's",
+                        t.module, t.at
+                    ));
+                }
+            }
+        }
         None => {
             bot_options_without_bot(a)?;
             a.say(format!("botsim board: top `{}`, no bot (the board alone)", plan.top));
@@ -317,7 +335,7 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
     let looks_inside = a.cpu_trace.is_some() || !a.breaks.is_empty();
     let bot = match (a.bot, cpu_arg) {
         // Without a bot, nothing is built for one: the board's runs are as with a model.
-        _ if plan.bot_path.is_none() => BotKind::Model,
+        _ if plan.own_bot().is_none() => BotKind::Model,
         (Some(BotArg::Model), _) => BotKind::Model,
         (None, CpuArg::Iss | CpuArg::Lockstep) if !looks_inside => BotKind::Model,
         _ => BotKind::Rtl,

@@ -307,3 +307,143 @@ fn the_board_tilted_steers_the_bot() {
     let turned = moves.iter().position(|m| *m == "fast-right").unwrap();
     assert!(x(turned) > x(0), "the bot went forward (east): x {} -> {}", x(0), x(turned));
 }
+
+/// `text` with every whole identifier `from` written `to` (but an instance's port name,
+/// `.from(`).
+fn rename_word(text: &str, from: &str, to: &str) -> String {
+    let ident = |c: char| c.is_ascii_alphanumeric() || c == '_' || c == '$' || c == '.';
+    let mut out = String::new();
+    let mut rest = text;
+    while let Some(at) = rest.find(from) {
+        let before = rest[..at].chars().next_back();
+        let after = rest[at + from.len()..].chars().next();
+        out.push_str(&rest[..at]);
+        out.push_str(if before.is_some_and(ident) || after.is_some_and(ident) { from } else { to });
+        rest = &rest[at + from.len()..];
+    }
+    out.push_str(rest);
+    out
+}
+
+/// The package pin of the Nexys4 that is `f`.
+fn nexys4_pin(f: botsim_core::board::constraints::Function) -> &'static str {
+    use botsim_core::board::constraints::Board;
+    Board::Nexys4.pins().find(|(_, g)| *g == f).map(|(p, _)| p).unwrap_or_else(|| panic!("{f:?}"))
+}
+
+#[test]
+fn the_console_with_every_pin_renamed_and_placed_by_its_xdc_runs_as_the_original() {
+    // The package pins, not the names, say what a port is: every port of the console's top
+    // is renamed (`RsRx` becomes `pin_9`) and an .xdc places each bit where the original's
+    // name puts it. Greeting, echo, keys and display are the original's, to the line.
+    use botsim_core::board::constraints::Function as F;
+    use botsim_core::board::pins::{role, Role};
+    let dir = tempfile::tempdir().unwrap();
+    let renamed = dir.path().join("renamed");
+    std::fs::create_dir(&renamed).unwrap();
+    for e in std::fs::read_dir(design("console")).unwrap() {
+        let e = e.unwrap();
+        std::fs::copy(e.path(), renamed.join(e.file_name())).unwrap();
+    }
+    let top_file = renamed.join("nexys4fpga.v");
+    let mut top = std::fs::read_to_string(&top_file).unwrap();
+    let module = botsim_core::board::scan::scan(&top).into_iter().find(|m| m.name == "nexys4fpga").unwrap();
+    let mut xdc = String::new();
+    for (k, port) in module.ports.iter().enumerate() {
+        let r = role(&port.name).unwrap_or_else(|| panic!("{}", port.name));
+        let new = format!("pin_{k}");
+        let scalar = match r {
+            Role::Clock => Some(F::Clock),
+            Role::Reset { active_low } => Some(F::Reset { active_low }),
+            Role::Button(n) => Some(F::Button(n)),
+            Role::DecimalPoint => Some(F::DecimalPoint),
+            Role::UartRx => Some(F::UartRx),
+            Role::UartTx => Some(F::UartTx),
+            Role::Ps2Clock => Some(F::Ps2Clock),
+            Role::Ps2Data => Some(F::Ps2Data),
+            _ => None,
+        };
+        match scalar {
+            Some(f) => xdc.push_str(&format!("set_property PACKAGE_PIN {} [get_ports {new}]\n", nexys4_pin(f))),
+            None => {
+                for bit in 0..port.width {
+                    let f = match r {
+                        Role::Switches => F::Switch(bit as u8),
+                        Role::Leds => F::Led(bit as u8),
+                        Role::Anodes => F::Anode(bit as u8),
+                        Role::Segments => F::Segment(bit as u8),
+                        other => panic!("{other:?}"),
+                    };
+                    xdc.push_str(&format!(
+                        "set_property -dict {{ PACKAGE_PIN {} IOSTANDARD LVCMOS33 }} [get_ports {{ {new}[{bit}] }}]\n",
+                        nexys4_pin(f)
+                    ));
+                }
+            }
+        }
+        top = rename_word(&top, &port.name, &new);
+    }
+    assert!(!top.contains("RsRx") && top.contains("pin_0"), "{top}");
+    std::fs::write(&top_file, top).unwrap();
+    std::fs::write(renamed.join("nexys4.xdc"), xdc).unwrap();
+    let typed = design("console/typing.txt");
+    let outputs = |source: &Path, tag: &str| {
+        let (uart, display) = (dir.path().join(format!("{tag}.bin")), dir.path().join(format!("{tag}.txt")));
+        let args = [
+            source.to_str().unwrap(),
+            "--seconds",
+            "0.016",
+            "--stimulus",
+            typed.to_str().unwrap(),
+            "--uart",
+            uart.to_str().unwrap(),
+            "--display",
+            display.to_str().unwrap(),
+        ];
+        let o = board_in(dir.path(), &args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        (std::fs::read(&uart).unwrap(), std::fs::read_to_string(&display).unwrap(), stderr(&o))
+    };
+    let (sent, shown, said) = outputs(&renamed, "renamed");
+    assert!(said.contains("nexys4.xdc places them on the Nexys4 (11 of its ports)"), "{said}");
+    assert!(!said.contains("ports with no board pin"), "{said}");
+    assert_eq!(String::from_utf8_lossy(&sent), format!("{GREETING}hi!\r"));
+    let (sent0, shown0, _) = outputs(&design("console"), "original");
+    assert_eq!((sent, shown), (sent0, shown0));
+}
+
+#[test]
+fn a_board_pin_declared_with_the_wrong_direction_runs_as_the_board_would_with_one_warning() {
+    // `output aclMISO` (the accelerometer's data into the FPGA): Vivado builds it with a
+    // warning; the design then reads its own undriven output, 0, as the board would give
+    // it. One warning at the port's line, with and without the controller stubbed.
+    let dir = tempfile::tempdir().unwrap();
+    let tilt = dir.path().join("tilt");
+    std::fs::create_dir(&tilt).unwrap();
+    for e in std::fs::read_dir(design("tilt")).unwrap() {
+        let e = e.unwrap();
+        std::fs::copy(e.path(), tilt.join(e.file_name())).unwrap();
+    }
+    let top = tilt.join("nexys4fpga.v");
+    let text = std::fs::read_to_string(&top).unwrap();
+    let wrong = text.replacen("    input  wire        aclMISO,", "    output wire        aclMISO,", 1);
+    assert_ne!(wrong, text);
+    std::fs::write(&top, wrong).unwrap();
+    for stub in [false, true] {
+        let mut args = vec!["tilt", "--seconds", "0.01", "--tilt", "0.5,0,0.8"];
+        if stub {
+            args.extend(["--stub", "spi_master"]);
+        }
+        let o = board_in(dir.path(), &args);
+        let said = stderr(&o);
+        assert!(o.status.success(), "{said}");
+        let warnings: Vec<&str> = said.lines().filter(|l| l.contains("aclMISO") && l.starts_with("warning:")).collect();
+        assert_eq!(warnings.len(), 1, "{said}");
+        assert!(
+            warnings[0].starts_with("warning: tilt/nexys4fpga.v:16:24: port `aclMISO` is the board's accelerometer pin, an input, but `nexys4fpga` declares it an output")
+                && warnings[0].contains("reads `aclMISO` as what it drives itself"),
+            "{}",
+            warnings[0]
+        );
+    }
+}

@@ -128,6 +128,7 @@ mod tests {
             include_dirs: vec![],
             notes: vec![],
             generated: vec![],
+            placed: None,
         };
         let d = declared(&design, "top", "disp.SSB.refresh").unwrap();
         assert_eq!((d.module.as_str(), d.file, d.line), ("sevenseg", PathBuf::from("ssb.v"), 4));

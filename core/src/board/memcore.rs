@@ -258,6 +258,8 @@ impl MemCore {
             dir,
             width,
             range: Some((width as i64 - 1, 0)),
+            line: 0,
+            col: 0,
         };
         let mut out = Vec::new();
         match &self.kind {

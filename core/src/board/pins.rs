@@ -4,6 +4,7 @@
 //! audio output (board.md §7), by the names the course's constraint files use (Nexys4 2014 and
 //! 2016, Nexys3, Nexys4 DDR / A7).
 
+use super::constraints::Placed;
 use super::scan::{Dir, Module};
 
 /// What a top-level port is wired to in the simulated board.
@@ -174,42 +175,90 @@ fn dir_fits(r: Role, dir: Dir) -> bool {
     dir == expected_dir(r) || (dir == Dir::Inout && matches!(r, Role::Ps2Clock | Role::Ps2Data | Role::AudioPwm))
 }
 
-/// The roles of a top's ports, and the ports with none.
-pub type PinMap = (Vec<(String, Role)>, Vec<String>);
+/// The roles of a top's ports, the ports with none, and the board pins it declares with the
+/// wrong direction.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct PinMap {
+    pub roles: Vec<(String, Role)>,
+    pub unknown: Vec<String>,
+    pub misdirected: Vec<Misdirected>,
+}
 
-/// Map every port of `top` to a role; ports with no role are reported in `unknown` (inputs
-/// are tied low, outputs left open). A known name with the wrong direction, or a top with no
-/// clock, is an error.
-pub fn map(top: &Module) -> Result<PinMap, PinError> {
-    let mut roles = Vec::new();
-    let mut unknown = Vec::new();
+/// A port on a board pin, declared with the other direction (`output aclMISO`): Vivado
+/// builds it with a warning, and so does botsim: the port is on no pin (an input reads 0, an
+/// output reaches nothing), as on the board.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Misdirected {
+    pub port: String,
+    pub role: Role,
+    pub declared: Dir,
+    pub line: u32,
+    pub col: u32,
+}
+
+impl Misdirected {
+    /// What happens, said for the top `top`.
+    pub fn message(&self, top: &str) -> String {
+        let pin = describe(self.role);
+        let consequence = match self.declared {
+            Dir::Output => format!(
+                "the {pin} line reaches nothing in the design, and the design reads `{}` as what it drives itself (0 where nothing drives it)",
+                self.port
+            ),
+            _ => format!("the design drives nothing to the {pin} pin, and reads `{}` as 0", self.port),
+        };
+        format!(
+            "port `{}` is the board's {pin} pin, an {}, but `{top}` declares it an {} (Vivado builds it with a warning): run as the board would, {consequence}",
+            self.port,
+            dir_word(expected_dir(self.role)),
+            dir_word(self.declared)
+        )
+    }
+}
+
+/// Map every port of `top` to a role: by where the constraint file places it (`placed`),
+/// else by its name; ports with no role are reported in `unknown` (inputs are tied low,
+/// outputs left open), and so are those declared with the wrong direction (in
+/// `misdirected` too). A top with no clock is an error.
+pub fn map(top: &Module, placed: Option<&Placed>) -> Result<PinMap, PinError> {
+    let mut out = PinMap::default();
     for p in &top.ports {
-        match role(&p.name) {
-            Some(r) => {
-                if !dir_fits(r, p.dir) {
-                    return Err(PinError {
-                        port: p.name.clone(),
-                        reason: format!(
-                            "is the board's {} pin, an {}, but `{}` declares it an {}",
-                            describe(r),
-                            dir_word(expected_dir(r)),
-                            top.name,
-                            dir_word(p.dir)
-                        ),
-                    });
-                }
-                roles.push((p.name.clone(), r));
+        let lsb = p.range.map_or(0, |(m, l)| m.min(l).max(0) as u32);
+        let by_pin = placed.and_then(|pl| pl.role(&p.name, lsb, p.width));
+        match by_pin.unwrap_or_else(|| role(&p.name)) {
+            Some(r) if dir_fits(r, p.dir) => out.roles.push((p.name.clone(), r)),
+            Some(r) if r != Role::Clock => {
+                out.misdirected.push(Misdirected {
+                    port: p.name.clone(),
+                    role: r,
+                    declared: p.dir,
+                    line: p.line,
+                    col: p.col,
+                });
+                out.unknown.push(p.name.clone());
             }
-            None => unknown.push(p.name.clone()),
+            Some(r) => {
+                return Err(PinError {
+                    port: p.name.clone(),
+                    reason: format!(
+                        "is the board's {} pin, an {}, but `{}` declares it an {}",
+                        describe(r),
+                        dir_word(expected_dir(r)),
+                        top.name,
+                        dir_word(p.dir)
+                    ),
+                })
+            }
+            None => out.unknown.push(p.name.clone()),
         }
     }
-    if !roles.iter().any(|(_, r)| *r == Role::Clock) {
+    if !out.roles.iter().any(|(_, r)| *r == Role::Clock) {
         return Err(PinError {
             port: top.name.clone(),
             reason: "has no clock input (expected one of clk, clk100, CLK100MHZ)".into(),
         });
     }
-    Ok((roles, unknown))
+    Ok(out)
 }
 
 fn dir_word(d: Dir) -> &'static str {

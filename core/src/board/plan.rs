@@ -408,10 +408,15 @@ impl Plan {
         }
 
         let top_module = defined[top.as_str()].1;
-        let (pins, unknown_pins) = pins::map(top_module).map_err(|e| {
+        let top_src = defined[top.as_str()].0;
+        let mapped = pins::map(top_module, design.placed.as_ref()).map_err(|e| {
             let (s, m) = defined[top.as_str()];
             BoardError::at(&s.path, m.line, m.col, format!("port `{}` {}", e.port, e.reason))
         })?;
+        for w in &mapped.misdirected {
+            warnings.push(format!("{}:{}:{}: {}", top_src.path.display(), w.line, w.col, w.message(&top)));
+        }
+        let (pins, unknown_pins) = (mapped.roles, mapped.unknown);
         let widths = top_module.ports.iter().map(|p| (p.name.clone(), p.width)).collect();
         let inputs = top_module.ports.iter().filter(|p| p.dir == Dir::Input).map(|p| p.name.clone()).collect();
         let inouts = top_module.ports.iter().filter(|p| p.dir == Dir::Inout).map(|p| p.name.clone()).collect();
@@ -525,8 +530,15 @@ mod tests {
 
     /// `sources` as the resolver gives them, with `top`.
     fn plan(top: &str, sources: Vec<Source>, req: &Request) -> Result<Plan, BoardError> {
-        let design =
-            Design { top: top.into(), project: None, sources, include_dirs: vec![], notes: vec![], generated: vec![] };
+        let design = Design {
+            top: top.into(),
+            project: None,
+            sources,
+            include_dirs: vec![],
+            notes: vec![],
+            generated: vec![],
+            placed: None,
+        };
         Plan::new(&design, req)
     }
 

@@ -29,6 +29,8 @@ pub struct Repo {
     pub ip: Vec<PathBuf>,
     /// Project files (`.xpr`, `.xise`).
     pub projects: Vec<PathBuf>,
+    /// Constraint files (`.ucf`, `.xdc`).
+    pub constraints: Vec<PathBuf>,
     /// Every file, by lower-case file name.
     by_name: BTreeMap<String, Vec<PathBuf>>,
     /// Every file's canonical path: a file named twice (by a folder and by a project) is
@@ -44,6 +46,8 @@ pub enum FileKind {
     Vhdl,
     Ip,
     Project,
+    /// A constraint file (`.ucf`, `.xdc`).
+    Constraints,
     Other,
 }
 
@@ -55,6 +59,7 @@ impl FileKind {
             Some("vhd" | "vhdl") => FileKind::Vhdl,
             Some("xci" | "xco") => FileKind::Ip,
             Some("xpr" | "xise") => FileKind::Project,
+            Some("ucf" | "xdc") => FileKind::Constraints,
             _ => FileKind::Other,
         }
     }
@@ -109,6 +114,7 @@ impl Repo {
             FileKind::Vhdl => self.vhdl.push(f),
             FileKind::Ip => self.ip.push(f),
             FileKind::Project => self.projects.push(f),
+            FileKind::Constraints => self.constraints.push(f),
             FileKind::Other => {}
         }
     }

@@ -22,6 +22,7 @@
 use std::collections::{BTreeMap, BTreeSet, VecDeque};
 use std::path::{Path, PathBuf};
 
+use super::constraints::{self, ConstraintFile, Placed};
 use super::course;
 use super::ip::{ClockCore, ClockSpec, IpConfig, CLOCK_CORES};
 use super::memcore::{library_model, MemCore, MEMORY_CORES};
@@ -65,6 +66,8 @@ pub struct Design {
     pub notes: Vec<String>,
     /// What botsim made for the design, for the report.
     pub generated: Vec<Replacement>,
+    /// Where the team's constraint file places the top's ports, if one does.
+    pub placed: Option<Placed>,
 }
 
 /// The ports of BotSim 2.0's `bot` (rtl/bot.v): a `bot` instance that connects another is
@@ -209,6 +212,8 @@ struct Pool {
     entities: BTreeMap<String, Vec<(PathBuf, String)>>,
     ages: std::cell::OnceCell<Ages>,
     root: PathBuf,
+    /// The repository's constraint files and what each places.
+    constraints: Vec<ConstraintFile>,
 }
 
 /// Generated artefacts Vivado leaves beside a core (board.md §6): a simulation netlist is
@@ -250,7 +255,8 @@ impl Pool {
             }
         }
         let root = repo.roots.first().cloned().unwrap_or_else(|| PathBuf::from("."));
-        Ok(Pool { sources, defs, ips, entities, ages: std::cell::OnceCell::new(), root })
+        let constraints = constraints::read_all(&repo.constraints);
+        Ok(Pool { sources, defs, ips, entities, ages: std::cell::OnceCell::new(), root, constraints })
     }
 
     fn module(&self, d: Def) -> &Module {
@@ -295,6 +301,12 @@ impl Pool {
     /// Does the definition `d` reach a `bot` instance?
     fn def_reaches_bot(&self, d: Def) -> bool {
         self.module(d).instances.iter().any(|i| self.reaches_bot(&i.module))
+    }
+
+    /// Where the repository's constraint file that places the most of the ports of `d`
+    /// places them, if one does.
+    fn placed(&self, d: Def) -> Option<Placed> {
+        Placed::choose(&self.constraints, self.module(d), self.path(d))
     }
 
     /// Does any definition of `name` reach a bot (a `bot` instance, or a module with the bot's
@@ -396,7 +408,11 @@ impl Pool {
             .filter(|n| {
                 self.definitions(n).iter().any(|d| {
                     let m = self.module(*d);
-                    !is_program_rom(m) && m.ports.iter().any(|p| pins::role(&p.name) == Some(Role::Clock))
+                    !is_program_rom(m)
+                        && (m.ports.iter().any(|p| pins::role(&p.name) == Some(Role::Clock))
+                            || self.placed(*d).is_some_and(|p| {
+                                p.ports.keys().any(|port| p.role(port, 0, 1) == Some(Some(Role::Clock)))
+                            }))
                 })
             })
             .map(String::as_str)
@@ -1106,7 +1122,21 @@ impl<'a> Walk<'a> {
         }
         include_dirs.extend(self.opts.include_dirs.iter().cloned());
         user.extend(sources);
-        Ok(Design { top, project, sources: user, include_dirs, notes: self.notes, generated })
+        // The constraint file that places the top's ports: their package pins say what they
+        // are on the board.
+        let placed = user
+            .iter()
+            .find_map(|s| s.modules.iter().find(|m| m.name == top).map(|m| (s, m)))
+            .and_then(|(s, m)| Placed::choose(&self.pool.constraints, m, &s.path));
+        if let Some(p) = &placed {
+            self.notes.push(format!(
+                "the top's pins as {} places them on the {} ({} of its ports)",
+                p.file.display(),
+                p.board.name(),
+                p.ports.len()
+            ));
+        }
+        Ok(Design { top, project, sources: user, include_dirs, notes: self.notes, generated, placed })
     }
 
     /// The line after the missing modules that gets past them all in one step, when a module

@@ -36,6 +36,9 @@ pub struct Port {
     pub width: u32,
     /// The declared range, `msb:lsb`, when it was two integer constants.
     pub range: Option<(i64, i64)>,
+    /// 1-based line and column of its name in its direction's declaration.
+    pub line: u32,
+    pub col: u32,
 }
 
 /// An instance of a module (or primitive) inside another module.
@@ -688,7 +691,8 @@ fn ansi_ports(p: &Parser, from: usize, to: usize, ports: &mut Vec<Port>, order: 
                             Some((-1, -1)) => (None, 0),
                             r => (r, width_of(r)),
                         };
-                        ports.push(Port { name: name.clone(), dir: d, width, range })
+                        let (line, col) = (p.t[k].line, p.t[k].col);
+                        ports.push(Port { name: name.clone(), dir: d, width, range, line, col })
                     }
                     None => order.push(name.clone()),
                 }
@@ -723,7 +727,8 @@ fn non_ansi_ports(p: &Parser, dir: Dir, from: usize, to: usize, ports: &mut Vec<
             Tok::Ident(name) => {
                 let width = if unknown { 0 } else { width_of(rng) };
                 ports.retain(|pt| pt.name != *name);
-                ports.push(Port { name: name.clone(), dir, width, range: rng });
+                let (line, col) = (p.t[k].line, p.t[k].col);
+                ports.push(Port { name: name.clone(), dir, width, range: rng, line, col });
                 k += 1;
             }
             _ => k += 1,

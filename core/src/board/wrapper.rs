@@ -374,8 +374,15 @@ mod tests {
         let src = Source::new("top.v", text);
         let top = src.modules[0].name.clone();
         let req = Request { programs: vec![], bot_firmware: kcpsm6::image::Image::zeroed(), force_own_firmware: false };
-        let design =
-            Design { top, project: None, sources: vec![src], include_dirs: vec![], notes: vec![], generated: vec![] };
+        let design = Design {
+            top,
+            project: None,
+            sources: vec![src],
+            include_dirs: vec![],
+            notes: vec![],
+            generated: vec![],
+            placed: None,
+        };
         Plan::new(&design, &req).unwrap()
     }
 

@@ -628,9 +628,19 @@ mod tests {
     }
 
     #[test]
-    fn a_wrong_pin_direction_is_an_error_at_the_top() {
-        let top = src("top.v", "module t(input clk, input [15:0] led);\n bot b(.clk(clk));\nendmodule\n");
+    fn a_wrong_pin_direction_is_a_warning_at_the_port_and_the_port_on_no_pin() {
+        let top = src("top.v", "module t(input clk,\n  input [15:0] led);\n bot b(.clk(clk));\nendmodule\n");
+        let p = plan("t", vec![top], &request()).unwrap();
+        assert!(
+            p.warnings.iter().any(|w| w.starts_with("top.v:2:16: port `led` is the board's LED pin, an output")
+                && w.contains("the design drives nothing to the LED pin, and reads `led` as 0")),
+            "{:?}",
+            p.warnings
+        );
+        assert!(p.unknown_pins.contains(&"led".to_string()) && !p.pins.iter().any(|(n, _)| n == "led"));
+        // The clock has no such leniency: without it nothing runs.
+        let top = src("top.v", "module t(output clk);\n bot b(.clk(clk));\nendmodule\n");
         let e = plan("t", vec![top], &request()).unwrap_err().to_string();
-        assert!(e.starts_with("top.v:1:8: port `led` is the board's LED pin, an output"), "{e}");
+        assert!(e.starts_with("top.v:1:8: port `clk` is the board's clock pin, an input"), "{e}");
     }
 }

@@ -1186,3 +1186,77 @@ fn a_run_stops_at_the_first_move_the_world_refuses_when_asked() {
     assert_eq!(stopped["samples"], k + 2);
     assert_eq!(stopped["blocked_moves"], 1);
 }
+
+#[test]
+fn memory_cores_committed_as_a_coe_alone_are_memories_of_its_words() {
+    // Two cores instantiated by module name with no configuration and no wrapper: `sprite`
+    // beside its `sprite.coe` (in another folder), `knitg` whose contents the team keeps in
+    // `frt.coe` (a renamed core: --memory names it). Radix 16 and 2, 12 and 4 bits wide.
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::create_dir_all(d.join("hdl")).unwrap();
+    std::fs::create_dir_all(d.join("art")).unwrap();
+    std::fs::write(
+        d.join("hdl/top.v"),
+        "module top(input clk, input btnCpuReset, input [15:0] sw, output [15:0] led);\n\
+         \x20 knitg SPRITE_A (.clka(clk), .addra(sw[1:0]), .douta(led[11:0]));\n\
+         \x20 sprite SPRITE_B (.clka(clk), .ena(sw[15]), .addra(sw[3:2]), .douta(led[15:12]));\n\
+         endmodule\n",
+    )
+    .unwrap();
+    std::fs::write(
+        d.join("art/frt.coe"),
+        "; knitting pattern\nmemory_initialization_radix=16;\nmemory_initialization_vector=\n0A5, 3C0,\nFFF, 001;\n",
+    )
+    .unwrap();
+    std::fs::write(
+        d.join("art/sprite.coe"),
+        "memory_initialization_radix = 2;\nmemory_initialization_vector = 0001 0010 0100 1000;\n",
+    )
+    .unwrap();
+    // Without --memory: `knitg` is missing, offered the option with the files found.
+    let o = common::board_in(d, &[".", "--seconds", "0.0001"]);
+    let e = common::stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(
+        e.contains("`knitg` (instance `SPRITE_A` in `top`): a memory core with no configuration and no knitg.coe: name its contents with --memory knitg=FILE (the repository's .coe files: frt.coe, sprite.coe)"),
+        "{e}"
+    );
+    let o = common::board_in(d, &[".", "--memory", "knitg=art/frt.coe", "--seconds", "0.0001"]);
+    let said = common::stderr(&o);
+    assert!(o.status.success(), "{said}");
+    for line in [
+        "replaced knitg with a Block Memory Generator core, read latency 1, 12 x 4, from art/frt.coe alone (no configuration)",
+        "replaced sprite with a Block Memory Generator core, read latency 1, 4 x 4, from art/sprite.coe alone (no configuration)",
+    ] {
+        assert!(said.contains(line), "{said}");
+    }
+    for (sw, want) in [(0x8000u32, 0x10A5u64), (0x8005, 0x23C0), (0x800A, 0x4FFF), (0x800F, 0x8001), (0x000F, 0x0001)] {
+        let sw = format!("{sw:04X}");
+        let o = common::board_in(
+            d,
+            &[".", "--memory", "knitg=art/frt.coe", "--switches", &sw, "--seconds", "0.0001", "--json"],
+        );
+        assert!(o.status.success(), "{}", common::stderr(&o));
+        let s: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        assert_eq!(s["leds"].as_u64().unwrap(), want, "switches {sw}: {s}");
+    }
+    // A connection wider than the file's words: one warning at the instance, as Vivado's.
+    let top = std::fs::read_to_string(d.join("hdl/top.v")).unwrap();
+    std::fs::write(d.join("hdl/top.v"), top.replace(".douta(led[15:12])", ".douta(led[15:8])")).unwrap();
+    let o = common::board_in(d, &[".", "--memory", "knitg=art/frt.coe", "--seconds", "0.0001"]);
+    let said = common::stderr(&o);
+    let warned: Vec<&str> = said.lines().filter(|l| l.contains("douta")).collect();
+    assert_eq!(warned.len(), 1, "{said}");
+    assert!(
+        warned[0].starts_with("warning: hdl/top.v:3:")
+            && warned[0].contains(
+                "the design connects 8 bits to `douta` of `sprite`, 4 bits wide in a Block Memory Generator core"
+            )
+            && warned[0].ends_with(
+                "from art/sprite.coe alone (no configuration): as Vivado builds it, the design's upper 4 bits read 0"
+            ),
+        "{}",
+        warned[0]
+    );
+}

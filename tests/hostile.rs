@@ -334,8 +334,10 @@ fn a_core_narrower_than_the_design_connects_is_one_warning_said_as_vivado_builds
     let line = e.lines().find(|l| l.contains("addra")).unwrap_or_else(|| panic!("{e}"));
     assert!(
         line.starts_with("warning: top.v:3:")
-            && line.contains("the design connects 10 bits to `addra` of `rom16`")
-            && line.ends_with("takes as 4: as Vivado builds it, the design's upper 6 bits are dropped"),
+            && line.contains(
+                "the design connects 10 bits to `addra` of `rom16`, 4 bits wide in a Block Memory Generator core"
+            )
+            && line.ends_with(": as Vivado builds it, the design's upper 6 bits are dropped"),
         "{line}"
     );
     // The width is the design's configuration's: not botsim's to be reported.

@@ -113,7 +113,7 @@ pub fn explain(stderr: &str, files: &[File], stands_for: &dyn Fn(&str) -> Option
 /// let stderr = "%Warning-WIDTH: /r/icon.v:2:29: Input port connection 'addra' expects 8 bits on the pin \
 ///               connection, but pin connection's VARREF 'a12' generates 12 bits.\n";
 /// let said = replacement_widths(stderr, &files, &|m| Some(Stand::Built(format!("botsim's core for `{m}`"))));
-/// assert_eq!(said[0], "icon.v:2:29: the design connects 12 bits to `addra` of `Icon_Rom`, which botsim's core for `Icon_Rom` takes as 8: as Vivado builds it, the design's upper 4 bits are dropped");
+/// assert_eq!(said[0], "icon.v:2:29: the design connects 12 bits to `addra` of `Icon_Rom`, 8 bits wide in botsim's core for `Icon_Rom`: as Vivado builds it, the design's upper 4 bits are dropped");
 /// ```
 pub fn replacement_widths(stderr: &str, files: &[File], stands_for: &dyn Fn(&str) -> Option<Stand>) -> Vec<String> {
     let mut out = Vec::new();
@@ -152,7 +152,7 @@ pub fn replacement_widths(stderr: &str, files: &[File], stands_for: &dyn Fn(&str
                 (true, false) => format!("the design's upper {bits} {read} 0"),
             };
             out.push(format!(
-                "{}:{l}:{c}: the design connects {given_bits} bits to `{port}` of `{}`, which {what} takes as {takes}: as Vivado builds it, {how}",
+                "{}:{l}:{c}: the design connects {given_bits} bits to `{port}` of `{}`, {takes} bits wide in {what}: as Vivado builds it, {how}",
                 file.shown, inst.module
             ));
         }

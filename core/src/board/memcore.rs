@@ -156,6 +156,54 @@ impl MemCore {
         core.checked(&ip.path).map(Some)
     }
 
+    /// A Block Memory Generator core committed as its contents alone, a `.coe`: as deep as
+    /// the file has words, as wide as its widest word is written (or needs), with the ports
+    /// the instance connects (`clka`, `addra`, `douta`; `ena`; `wea`, `dina` make it a RAM;
+    /// `clkb`... a second port), read latency 1 as the generator's default.
+    ///
+    /// ```
+    /// use botsim_core::board::memcore::MemCore;
+    /// let dir = tempfile::tempdir().unwrap();
+    /// let coe = dir.path().join("frt.coe");
+    /// std::fs::write(&coe, "memory_initialization_radix=16;\nmemory_initialization_vector=\n000, 0F3, 7A1, 000;\n").unwrap();
+    /// let core = MemCore::from_coe("knitg", &["clka", "addra", "douta"], &coe).unwrap();
+    /// assert_eq!((core.width, core.depth, core.init.len()), (12, 4, 4));
+    /// assert!(core.verilog().contains("module knitg ("));
+    /// ```
+    pub fn from_coe(name: &str, connected: &[&str], path: &Path) -> Result<MemCore, BoardError> {
+        let text = std::fs::read(path)
+            .map_err(|e| BoardError::at(path, 0, 0, format!("cannot read the memory's initial contents: {e}")))?;
+        let coe = parse_coe(&String::from_utf8_lossy(&text)).map_err(|(line, m)| BoardError::at(path, line, 0, m))?;
+        let has = |p: &str| connected.iter().any(|c| c.eq_ignore_ascii_case(p));
+        let port = |x: &str| PortCfg {
+            enable: has(&format!("en{x}")),
+            write: has(&format!("we{x}")) || has(&format!("din{x}")),
+            read: true,
+            latency: 1,
+            mode: WriteMode::WriteFirst,
+        };
+        let b = (has("clkb") || has("addrb") || has("doutb")).then(|| port("b"));
+        let needed = coe.words.iter().map(|w| 64 - w.leading_zeros()).max().unwrap_or(0);
+        let width = coe.written_bits.max(needed).clamp(1, 64);
+        let mut notes = Vec::new();
+        if let Some(line) = coe.unterminated {
+            notes.push(format!(
+                "{}:{line}: the vector does not end with `;` (Vivado reads it to the end of the file, and so does botsim)",
+                path.display()
+            ));
+        }
+        Ok(MemCore {
+            name: name.to_string(),
+            kind: Kind::Block { a: port("a"), b },
+            width,
+            depth: (coe.words.len() as u32).max(1),
+            init: coe.words,
+            ports: None,
+            origin: format!("{} alone (no configuration)", path.display()),
+            notes,
+        })
+    }
+
     /// The core a generated wrapper (`wrapper`, in `file`) describes through the `C_*`
     /// parameters of its instance `lib` of Xilinx's library model.
     pub fn from_wrapper(wrapper: &Module, lib: &Instance, file: &Path, find: Finder) -> Result<MemCore, BoardError> {
@@ -529,6 +577,9 @@ pub struct Coe {
     pub words: Vec<u64>,
     /// The last line, when the vector runs to the end of the file without its `;`.
     pub unterminated: Option<u32>,
+    /// The widest word as written, in bits (its digits: a `.coe` of 12-bit words writes
+    /// `0A3`); 0 for radix 10.
+    pub written_bits: u32,
 }
 
 /// `.coe`: `memory_initialization_radix = 2|10|16;` and `memory_initialization_vector =`
@@ -538,6 +589,7 @@ pub fn parse_coe(text: &str) -> Result<Coe, (u32, String)> {
     let mut radix = None;
     let mut words = Vec::new();
     let mut in_vector = false;
+    let mut written_bits = 0;
     for (n, raw) in text.lines().enumerate() {
         let line_no = n as u32 + 1;
         let mut line = raw.trim();
@@ -573,13 +625,18 @@ pub fn parse_coe(text: &str) -> Result<Coe, (u32, String)> {
             let v = u64::from_str_radix(tok, radix)
                 .map_err(|_| (line_no, format!("`{tok}` is not a radix-{radix} number")))?;
             words.push(v);
+            written_bits = written_bits.max(match radix {
+                2 => tok.len() as u32,
+                16 => 4 * tok.len() as u32,
+                _ => 0,
+            });
         }
         if done {
-            return Ok(Coe { words, unterminated: None });
+            return Ok(Coe { words, unterminated: None, written_bits });
         }
     }
     if in_vector {
-        Ok(Coe { words, unterminated: Some(text.lines().count() as u32) })
+        Ok(Coe { words, unterminated: Some(text.lines().count() as u32), written_bits })
     } else {
         Err((1, "no memory_initialization_vector".into()))
     }

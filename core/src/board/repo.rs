@@ -119,6 +119,19 @@ impl Repo {
         }
     }
 
+    /// Every file whose extension is `ext` (any case), in path order.
+    pub fn files_with_extension(&self, ext: &str) -> Vec<PathBuf> {
+        let mut out: Vec<PathBuf> = self
+            .by_name
+            .values()
+            .flatten()
+            .filter(|p| p.extension().is_some_and(|e| e.eq_ignore_ascii_case(ext)))
+            .cloned()
+            .collect();
+        out.sort();
+        out
+    }
+
     /// The one file named `name` in the repository (exactly, else without regard to case, as
     /// on the Windows machines the projects were made on); `None` when none or several are.
     pub fn find(&self, name: &str) -> Option<PathBuf> {

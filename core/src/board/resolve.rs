@@ -50,6 +50,9 @@ pub struct Options {
     pub stubs: Vec<String>,
     /// `--include`: more include folders.
     pub include_dirs: Vec<PathBuf>,
+    /// `--memory MODULE=FILE`: the `.coe` that holds a memory core's contents, for a core
+    /// committed without its configuration under another name than the module's.
+    pub memories: Vec<(String, PathBuf)>,
 }
 
 /// The design as the build takes it.
@@ -68,6 +71,12 @@ pub struct Design {
     pub generated: Vec<Replacement>,
     /// Where the team's constraint file places the top's ports, if one does.
     pub placed: Option<Placed>,
+}
+
+/// Does an instance connect a block memory core's ports (`clka`, `addra`, `douta`, as the
+/// Block Memory Generator names them)?
+fn looks_like_memory_core(connected: &[&str]) -> bool {
+    ["clka", "addra", "douta"].iter().all(|p| connected.iter().any(|c| c.eq_ignore_ascii_case(p)))
 }
 
 /// The ports of BotSim 2.0's `bot` (rtl/bot.v): a `bot` instance that connects another is
@@ -811,6 +820,10 @@ impl<'a> Walk<'a> {
         if !defs.is_empty() {
             return Some(self.user(name, &defs, file));
         }
+        // A memory core committed as its contents alone (`<name>.coe`, or --memory's file).
+        if let Some(c) = self.coe_core(inst, parent, file) {
+            return c;
+        }
         // A program ROM whose Verilog was never committed, only its program: assembled here.
         let connects = |p: &str| inst.connections.iter().any(|(c, _)| c == p);
         if connects("instruction") && connects("address") {
@@ -931,11 +944,63 @@ impl<'a> Walk<'a> {
                 m.step = Some(clocks);
             }
             return None;
+        } else if looks_like_memory_core(&inst.connections.iter().map(|(p, _)| p.as_str()).collect::<Vec<_>>()) {
+            let coes: Vec<String> = self
+                .repo
+                .files_with_extension("coe")
+                .iter()
+                .map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default())
+                .collect();
+            if coes.is_empty() {
+                format!("a memory core with no configuration and no {name}.coe: add its .xci or .coe, or tie it off with --stub {name}")
+            } else {
+                format!(
+                    "a memory core with no configuration and no {name}.coe: name its contents with --memory {name}=FILE (the repository's .coe files: {}), or tie it off with --stub {name}",
+                    coes.join(", ")
+                )
+            }
         } else {
             format!("add its file, or tie it off with --stub {name}")
         };
         self.missing(inst, parent, file, hint);
         None
+    }
+
+    /// A memory core whose configuration was never committed, from its `.coe`: the file
+    /// `--memory` names for the module, else `<module>.coe` in the repository (nearest to
+    /// the instance). `None` when the instance has no memory core's ports or no file is
+    /// found; `Some(None)` when the file does not read (recorded as missing).
+    fn coe_core(&mut self, inst: &Instance, parent: &str, file: &Path) -> Option<Option<Choice>> {
+        let name = inst.module.as_str();
+        let connected: Vec<&str> = inst.connections.iter().map(|(p, _)| p.as_str()).collect();
+        let named = self.opts.memories.iter().find(|(m, _)| m == name).map(|(_, f)| f.clone());
+        if named.is_none() && !looks_like_memory_core(&connected) {
+            return None;
+        }
+        let dir = file.parent().unwrap_or(Path::new("."));
+        let coe = match named {
+            Some(f) if f.is_file() => f,
+            Some(f) => {
+                let file_name = f.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+                match self.repo.find_near(&file_name, dir) {
+                    Some(found) => found,
+                    None => {
+                        let hint = format!("--memory {name}={}: no such file in the repository", f.display());
+                        self.missing(inst, parent, file, hint);
+                        return Some(None);
+                    }
+                }
+            }
+            None => self.repo.find_near(&format!("{name}.coe"), dir)?,
+        };
+        match MemCore::from_coe(name, &connected, &coe) {
+            // Said in the substitution report, with the file.
+            Ok(core) => Some(Some(self.core(core, String::new()))),
+            Err(e) => {
+                self.missing(inst, parent, file, format!("its contents {} do not read: {e}", coe.display()));
+                Some(None)
+            }
+        }
     }
 
     fn user(&mut self, name: &str, defs: &[Def], file: &Path) -> Choice {

@@ -102,6 +102,10 @@ pub struct Args {
     /// Tie off a module botsim has no model of
     #[arg(long, value_name = "MODULE")]
     stub: Vec<String>,
+    /// A memory core committed without its configuration: the .coe that holds its contents
+    /// (its depth and width follow), when the file is not named after the module
+    #[arg(long, value_name = "MODULE=FILE")]
+    memory: Vec<String>,
     /// The bot's registers at every upd_sysregs (the columns of `botsim run`)
     #[arg(long, value_name = "FILE")]
     trace_csv: Option<PathBuf>,

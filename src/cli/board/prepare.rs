@@ -196,6 +196,16 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
         clocks,
         stubs: a.stub.clone(),
         include_dirs: a.include.clone(),
+        memories: a
+            .memory
+            .iter()
+            .map(|m| {
+                m.split_once('=')
+                    .filter(|(n, f)| !n.is_empty() && !f.is_empty())
+                    .map(|(n, f)| (n.to_string(), PathBuf::from(f)))
+                    .ok_or_else(|| format!("--memory {m}: expected MODULE=FILE (for example --memory knitg=frt.coe)"))
+            })
+            .collect::<Result<Vec<_>, _>>()?,
     };
     let design = resolve(&a.sources, &options).map_err(|e| e.to_string())?;
     let req = Request { programs, bot_firmware, force_own_firmware: a.firmware.any() };

@@ -469,7 +469,7 @@ fn a_botsim31_bot_runs_from_the_teams_rtl_and_moves_as_botsim_20s_would() {
     // traces are equal sample for sample, cycle for cycle.
     let team = clone_of("botsim31");
     let course = clone_of("unnamed_bot");
-    let args = [".", "--param", "SIMULATE=1", "--seconds", "0.25", "--trace-csv", "trace.csv"];
+    let args = [".", "--param", "SIMULATE=1", "--seconds", "0.16", "--trace-csv", "trace.csv"];
     let (s, said) = run(team.path(), &args);
     let line = said.lines().find(|l| l.contains("the team's bot")).unwrap_or_else(|| panic!("{said}"));
     assert!(

@@ -236,10 +236,30 @@ def check(args):
             entry["speed"] = {str(s): bench(clone, repo, s) for s in ([1, 0] if simulate is not None else [None])}
         record.append(entry)
         print(json.dumps(entry), flush=True)
+    if args.merge:
+        record = merged(args.merge, record)
     if args.json:
         with open(args.json, "w") as f:
             json.dump(record, f, indent=1)
     write_table(args.table, record)
+
+
+def merged(path, record):
+    """An earlier run's record (`check --json`) with this run's entries in place of theirs:
+    a run with --no-speed keeps the earlier speed of an entry whose verdict it confirms."""
+    with open(path) as f:
+        old = json.load(f)
+    new = {e["name"]: e for e in record}
+    out = []
+    for e in old:
+        n = new.pop(e["name"], None)
+        if n is None:
+            out.append(e)
+            continue
+        if "speed" not in n and "speed" in e and n["expect"][0] == e["expect"][0] == "ok":
+            n["speed"] = e["speed"]
+        out.append(n)
+    return out + list(new.values())
 
 
 def table(args):
@@ -295,6 +315,7 @@ def main():
     c.add_argument("--no-speed", action="store_true")
     c.add_argument("--table", default=os.path.join(ROOT, "docs", "ECOSYSTEM.md"))
     c.add_argument("--json")
+    c.add_argument("--merge", help="an earlier run's JSON: its entries for the repositories not run here are kept")
     t = sub.add_parser("table")
     t.add_argument("--json", required=True)
     t.add_argument("--table", default=os.path.join(ROOT, "docs", "ECOSYSTEM.md"))

@@ -5,7 +5,7 @@
 //! within a few lines of it in the edited file, or a name the edit removed or misspelt. No
 //! panic, no hang, and never "please report" (the mistake is the user's, not botsim's).
 //!
-//! CI runs `BOTSIM_MUTANTS` (default 6) mutants of each design; locally, for thousands:
+//! CI runs `BOTSIM_MUTANTS` (default 3) mutants of each design; locally, for thousands:
 //! `BOTSIM_MUTANTS=500 BOTSIM_MUTANT_SEED=7 cargo test --release --test mutants -- --nocapture`
 //! (a mutant that reaches Verilator builds: seconds each).
 
@@ -142,6 +142,10 @@ fn misleads(edit: &Edit, file: &str, code: Option<i32>, err: &str) -> Option<Str
             .and_then(|(_, r)| r.split(':').next()?.parse::<usize>().ok())
             .is_some_and(|n| n + 3 >= edit.line && n <= edit.line + 3)
     });
+    // Or a line near the edit named in the message (`does not close before the `;` at line 37`).
+    let near = near
+        || (edit.line.saturating_sub(3)..=edit.line + 3)
+            .any(|n| text.contains(&format!("at line {n}:")) || text.contains(&format!("at line {n} ")));
     // A name the edit removed or misspelt, in quotes as botsim and Verilator quote them.
     let named = edit.names.iter().any(|n| text.contains(&format!("`{n}`")) || text.contains(&format!("'{n}'")));
     // A cut file: the module it no longer ends, or its end.
@@ -155,7 +159,7 @@ fn misleads(edit: &Edit, file: &str, code: Option<i32>, err: &str) -> Option<Str
 
 #[test]
 fn every_mutant_runs_or_is_told_where_its_edit_is() {
-    let count: usize = std::env::var("BOTSIM_MUTANTS").ok().and_then(|v| v.parse().ok()).unwrap_or(6);
+    let count: usize = std::env::var("BOTSIM_MUTANTS").ok().and_then(|v| v.parse().ok()).unwrap_or(3);
     let seed: u64 = std::env::var("BOTSIM_MUTANT_SEED").ok().and_then(|v| v.parse().ok()).unwrap_or(1);
     let mut r = Rng::new(seed);
     let mut bad = Vec::new();

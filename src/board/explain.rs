@@ -196,12 +196,16 @@ fn user_error(
         return format!("{at}: botsim's edit of this line does not build ({msg}); {REPORT}");
     }
     if msg.starts_with("syntax error") {
-        // A `begin` without its `end`: Verilator stops at the module's end; the mistake is
+        // A `begin` without its `end`: Verilator stops at the module's end, or at the next
+        // thing only a module may hold (an instance's `#(`, an `always`); the mistake is
         // where the `begin` is.
-        if msg.contains("unexpected endmodule") {
+        let module_level = ["endmodule", "'#'", "always", "assign", "initial", "module"]
+            .iter()
+            .any(|w| msg.contains(&format!("unexpected {w}")));
+        if module_level {
             if let Some((l, c)) = unclosed_begin(&file.text, line) {
                 return format!(
-                    "{}:{l}:{c}: this `begin` has no `end` (Verilator stops at the module's end, {at}: {msg})",
+                    "{}:{l}:{c}: this `begin` has no `end` (Verilator stops later, {at}: {msg})",
                     file.shown
                 );
             }
@@ -211,7 +215,7 @@ fn user_error(
     format!("{at}: {msg}")
 }
 
-/// The last `begin` still open at line `line` (where Verilator met an `endmodule`), counted
+/// The last `begin` still open at line `line` (where Verilator met what only a module holds), counted
 /// from the `module` before it: its line and column. Comments and strings are skipped.
 fn unclosed_begin(text: &str, line: u32) -> Option<(u32, u32)> {
     let b = text.as_bytes();

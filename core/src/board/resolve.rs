@@ -284,6 +284,9 @@ impl Pool {
     /// nothing else said of the design can be trusted while it stands.
     fn unterminated(&self, d: Def) -> Result<(), BoardError> {
         let m = self.module(d);
+        if let Some((line, col, what)) = &m.unreadable {
+            return Err(BoardError::at(self.path(d), *line, *col, what.clone()));
+        }
         if !m.unterminated {
             return Ok(());
         }

@@ -76,6 +76,9 @@ pub struct Module {
     /// It has no `endmodule`: the file ends, or another module begins, before it does (a
     /// file cut short). Its span and instances end there.
     pub unterminated: bool,
+    /// Something the scanner cannot read as Verilog where it looked (a keyword where a
+    /// port's name should be: a stray `endmodule` in the port list): line, column, what.
+    pub unreadable: Option<(u32, u32, String)>,
 }
 
 impl Module {
@@ -404,9 +407,38 @@ struct Parser<'a> {
     src: &'a str,
     t: Vec<Token>,
     i: usize,
+    /// The first thing the module being read has that does not parse where the scanner
+    /// looked (see [`Module::unreadable`]).
+    trouble: Option<(u32, u32, String)>,
 }
 
 impl Parser<'_> {
+    /// The identifier at token `k`, if it is one.
+    fn ident_at(&self, k: usize) -> Option<&str> {
+        match self.t.get(k).map(|t| &t.tok) {
+            Some(Tok::Ident(w)) => Some(w.as_str()),
+            _ => None,
+        }
+    }
+
+    /// An instance's group `(`..`)` from `open` to `end` that holds a `;`: its `)` is
+    /// missing (or a line was pasted in twice), and what follows it is lost to the instance.
+    fn unclosed(&mut self, inst: &Token, module: &str, open: usize, end: usize) {
+        if self.trouble.is_some() {
+            return;
+        }
+        if let Some(semi) = self.t[open..end.min(self.t.len())].iter().find(|t| t.tok == Tok::Punct(';')) {
+            self.trouble = Some((
+                inst.line,
+                inst.col,
+                format!(
+                    "the `(` of this `{module}` does not close before the `;` at line {}: this does not parse",
+                    semi.line
+                ),
+            ));
+        }
+    }
+
     fn peek(&self, k: usize) -> Option<&Tok> {
         self.t.get(self.i + k).map(|t| &t.tok)
     }
@@ -455,13 +487,48 @@ impl Parser<'_> {
 /// Scan one source text.
 pub fn scan(src: &str) -> Vec<Module> {
     let (t, _) = tokenize(src);
-    let mut p = Parser { src, t, i: 0 };
-    let mut modules = Vec::new();
+    let mut p = Parser { src, t, i: 0, trouble: None };
+    let mut modules: Vec<Module> = Vec::new();
     while p.i < p.t.len() {
         if matches!(p.ident(0), Some("module" | "macromodule")) {
             if let Some(m) = module(&mut p) {
                 modules.push(m);
                 continue;
+            }
+        }
+        // Other design units (a UDP, a SystemVerilog package...): skipped whole.
+        if let Some(end) = p.ident(0).and_then(|w| {
+            ["primitive", "interface", "program", "checker", "class", "package", "config"]
+                .contains(&w)
+                .then(|| format!("end{w}"))
+        }) {
+            while p.i < p.t.len() && p.ident(0) != Some(end.as_str()) {
+                p.i += 1;
+            }
+            p.i += 1;
+            continue;
+        }
+        // What only a module holds, outside any: an `endmodule` ended the one before early.
+        if let (Some(last), Some(word)) = (modules.last_mut(), p.ident(0)) {
+            let item = matches!(
+                word,
+                "always" | "assign" | "initial" | "wire" | "reg" | "input" | "output" | "inout" | "endmodule" | "begin"
+            ) || (p.ident(1).is_some()
+                && !KEYWORDS.contains(&word)
+                && !word.starts_with('`')
+                && p.is(2, '('));
+            if item && last.unreadable.is_none() && !last.unterminated {
+                let t = &p.t[p.i];
+                let ended =
+                    p.t[..p.i].iter().rev().find(|t| t.tok == Tok::Ident("endmodule".into())).map_or(0, |t| t.line);
+                last.unreadable = Some((
+                    t.line,
+                    t.col,
+                    format!(
+                        "`{word}` is outside any module: the `endmodule` at line {ended} ends `{}` before it; this does not parse",
+                        last.name
+                    ),
+                ));
             }
         }
         p.i += 1;
@@ -522,6 +589,32 @@ fn module(p: &mut Parser) -> Option<Module> {
                 let semi = (p.i..body_end).find(|&k| p.t[k].tok == Tok::Punct(';')).unwrap_or(body_end);
                 non_ansi_ports(p, dir, p.i + 1, semi, &mut ports);
                 p.i = semi;
+                continue;
+            }
+            Some(Tok::Ident(w)) if matches!(w.as_str(), "wire" | "reg" | "logic" | "tri") && stmt_start => {
+                // A declaration: a name, then another where a `,`, `=` or `;` should be (a
+                // stray `wire` before an instance) is said here, before the instance is lost.
+                let mut k = p.i + 1;
+                while let Some(t) = p.t.get(k) {
+                    match &t.tok {
+                        Tok::Ident(n) if NET_WORDS.contains(&n.as_str()) => k += 1,
+                        Tok::Punct('[') => k = p.skip_group(k),
+                        _ => break,
+                    }
+                }
+                if let (Some(name), Some(next)) = (p.ident_at(k), p.t.get(k + 1)) {
+                    if let Tok::Ident(other) = &next.tok {
+                        if p.trouble.is_none() && !other.starts_with('`') {
+                            p.trouble = Some((
+                                next.line,
+                                next.col,
+                                format!("`{other}` right after `{name}` in a declaration (a `,` or `;` missing, or a stray `{w}`?): this does not parse"),
+                            ));
+                        }
+                    }
+                }
+                p.i += 1;
+                stmt_start = false;
                 continue;
             }
             Some(Tok::Ident(w)) if matches!(w.as_str(), "parameter" | "localparam") && stmt_start => {
@@ -600,6 +693,11 @@ fn module(p: &mut Parser) -> Option<Module> {
         ports.retain(|pt| port_order.contains(&pt.name));
     }
     let empty = !logic && instances.is_empty();
+    let unreadable = ports
+        .iter()
+        .find(|pt| KEYWORDS.contains(&pt.name.as_str()))
+        .map(|pt| (pt.line, pt.col, format!("`{}` where a port's name should be: this does not parse", pt.name)))
+        .or(p.trouble.take());
     Some(Module {
         name,
         line: name_tok.line,
@@ -610,6 +708,7 @@ fn module(p: &mut Parser) -> Option<Module> {
         instances,
         empty,
         unterminated,
+        unreadable,
     })
 }
 
@@ -745,6 +844,7 @@ fn instance_statement(p: &mut Parser, body_end: usize, out: &mut Vec<Instance>) 
     if p.t.get(k).map(|t| &t.tok) == Some(&Tok::Punct('#')) {
         if p.t.get(k + 1).map(|t| &t.tok) == Some(&Tok::Punct('(')) {
             let end = p.skip_group(k + 1);
+            p.unclosed(&mtok, &module, k + 1, end);
             params = connections(p, k + 2, end - 1);
             k = end;
         } else {
@@ -754,6 +854,7 @@ fn instance_statement(p: &mut Parser, body_end: usize, out: &mut Vec<Instance>) 
     // An instance without a name: botsim names it after the module and its line.
     if p.t.get(k).map(|t| &t.tok) == Some(&Tok::Punct('(')) {
         let end = p.skip_group(k);
+        p.unclosed(&mtok, &module, k, end);
         out.push(Instance {
             module: module.clone(),
             name: format!("{module}_{}", mtok.line),
@@ -774,6 +875,7 @@ fn instance_statement(p: &mut Parser, body_end: usize, out: &mut Vec<Instance>) 
             break;
         }
         let end = p.skip_group(k);
+        p.unclosed(&mtok, &module, k, end);
         let conns = connections(p, k + 1, end - 1);
         out.push(Instance {
             module: module.clone(),
@@ -1236,6 +1338,36 @@ fn truncated_literal(text: &str) -> Option<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn what_the_scanner_cannot_read_is_said_where_it_is() {
+        // A keyword where a port's name should be.
+        let m = &scan("module t(input clk,\n  endmodule\n  output led);\nendmodule\n")[0];
+        assert_eq!(m.unreadable.as_ref().map(|u| (u.0, u.1)), Some((2, 3)), "{m:?}");
+        // A stray `endmodule`: what follows is outside any module.
+        let m = &scan("module t(input clk);\n  wire a;\nendmodule\n  always @(posedge clk) a <= 1;\nendmodule\nmodule u; endmodule\n")[0];
+        let u = m.unreadable.as_ref().unwrap();
+        assert_eq!((u.0, u.1), (4, 3));
+        assert!(u.2.contains("the `endmodule` at line 3 ends `t` before it"), "{}", u.2);
+        // An instance whose `)` is missing: the `;` inside its group.
+        let m = &scan("module t(input clk);\n  sub a (.x(clk),\n  sub b (.x(clk));\nendmodule\n")[0];
+        let u = m.unreadable.as_ref().unwrap();
+        assert_eq!(
+            (u.0, u.2.as_str()),
+            (2, "the `(` of this `sub` does not close before the `;` at line 3: this does not parse")
+        );
+        // A stray `wire` before an instance: the declaration says so.
+        let m = &scan("module t(input clk);\n  wire\n  sub a (.x(clk));\nendmodule\n")[0];
+        let u = m.unreadable.as_ref().unwrap();
+        assert_eq!((u.0, u.1), (3, 7), "{}", u.2);
+        // Nothing of the kind in good Verilog, UDPs and packages after a module included.
+        for good in [
+            "module t(input clk);\n  wire signed [7:0] a = 8'd1, b;\n  reg [3:0] m [0:15];\n  wire #1 c;\n  sub a (.x(clk));\nendmodule\nprimitive p (o, i);\n output o; input i;\n table 0:1; endtable\nendprimitive\n",
+            "`timescale 1ns/1ps\nmodule t(input clk);\nendmodule\n`MY_MACRO(x)\n",
+        ] {
+            assert!(scan(good).iter().all(|m| m.unreadable.is_none()), "{good}");
+        }
+    }
 
     #[test]
     fn a_connections_text_leaves_out_the_comments_around_and_inside_it() {

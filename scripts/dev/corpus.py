@@ -169,18 +169,34 @@ def outcome(repo, code, out, err, trace):
             return "ok", f"reached the line's end {LINE_END} at sample {at}"
         return "FAIL", f"never on the line's end {LINE_END}; ended at {loc} after {s.get('samples')} samples"
     if "uart" in repo:
-        text = s.get("uart") or ""
-        if repo["uart"] not in text:
-            return "FAIL", f"UART said {text[:80]!r}"
-        return "ok", f"UART: {repo['uart']!r}"
+        # "type -> echo": the text typed (expect_args) comes back, in order, among what the
+        # design sends (a program may echo each character with more).
+        text = (s.get("uart") or {}).get("text") or ""
+        rest = iter(text)
+        if not all(c in rest for c in TYPED):
+            return "FAIL", f"typed {TYPED!r}, the UART said {text[-80:]!r}"
+        return "ok", f"typed {TYPED!r}, echoed ({repo['uart']})"
     return "ok", "ran"
+
+
+# What the check types to a design whose entry says `uart`: letters no banner has.
+TYPED = "QZXJ"
 
 
 def expect_args(repo, trace):
     if repo["expect"] == "line-end":
         return ["--timing", "fast", "--samples", "2000", "--map", MAP, "--stop-at-line-end", "--trace-csv", trace, "--json"]
     if repo["expect"] == "runs":
-        return ["--seconds", str(repo.get("seconds", 0.05)), "--json"]
+        seconds = repo.get("seconds", 0.05)
+        args = ["--seconds", str(seconds), "--json"]
+        if "uart" in repo:
+            # Typed at 80 % of the run: after the program's start (which may empty the
+            # UART's buffers), with time left for the echo.
+            stim = os.path.join(tempfile.gettempdir(), f"corpus-{repo['name']}-typing.txt")
+            with open(stim, "w") as f:
+                f.write(f"{seconds * 0.8:.4f}s uart \"{TYPED}\"\n")
+            args += ["--stimulus", stim]
+        return args
     return []
 
 

@@ -1142,17 +1142,26 @@ impl<'a> Walk<'a> {
             }
         }
         if !self.missing.is_empty() {
-            let n = self.missing.len();
+            // One line per module (a module cut off with the end of its file may have many
+            // instances): its first instance, and how many more.
+            let mut firsts: Vec<(&Missing, usize)> = Vec::new();
+            for m in &self.missing {
+                match firsts.iter_mut().find(|(f, _)| f.module == m.module) {
+                    Some((_, more)) => *more += 1,
+                    None => firsts.push((m, 0)),
+                }
+            }
+            let n = firsts.len();
             let mut msg = if n == 1 {
                 "a module of the design is missing:".to_string()
             } else {
                 format!("{n} modules of the design are missing:")
             };
-            for m in &self.missing {
-                let place = if m.instance.is_empty() {
-                    String::new()
-                } else {
-                    format!(" (instance `{}` in `{}`)", m.instance, m.parent)
+            for (m, more) in &firsts {
+                let place = match (m.instance.is_empty(), more) {
+                    (true, _) => String::new(),
+                    (false, 0) => format!(" (instance `{}` in `{}`)", m.instance, m.parent),
+                    (false, k) => format!(" (instance `{}` in `{}`, and {k} more)", m.instance, m.parent),
                 };
                 msg.push_str(&format!("\n  {}: `{}`{place}: {}", m.at, m.module, m.hint));
             }
@@ -1211,9 +1220,16 @@ impl<'a> Walk<'a> {
     /// of the team's (not the top) holds several of them (an icon module holding its ROM
     /// cores): `--stub` that module, beside each other missing module's own option.
     fn way_past(&self, top: &str) -> String {
-        let n = self.missing.len();
-        let mut held: BTreeMap<&str, usize> = BTreeMap::new();
+        // Each missing module once (its first instance).
+        let mut unique: Vec<&Missing> = Vec::new();
         for m in &self.missing {
+            if !unique.iter().any(|u| u.module == m.module) {
+                unique.push(m);
+            }
+        }
+        let n = unique.len();
+        let mut held: BTreeMap<&str, usize> = BTreeMap::new();
+        for m in &unique {
             *held.entry(m.parent.as_str()).or_default() += 1;
         }
         let stubbed = |parent: &str| {
@@ -1221,7 +1237,7 @@ impl<'a> Walk<'a> {
         };
         let at = |parent: &str| self.pool.definitions(parent).first().map(|d| self.pool.at(*d)).unwrap_or_default();
         let mut steps: Vec<String> = Vec::new();
-        for m in &self.missing {
+        for m in &unique {
             let step = if stubbed(&m.parent) { Some(format!("--stub {}", m.parent)) } else { m.step.clone() };
             let Some(step) = step else { return String::new() };
             if !steps.contains(&step) {
@@ -1627,6 +1643,22 @@ mod tests {
         let opts = Options { top: Some("mfp_nexys4_ddr".into()), ..Options::default() };
         let named = resolve(&[t.path().to_path_buf()], &opts).unwrap_err().to_string();
         assert_eq!(named, e);
+    }
+
+    #[test]
+    fn a_missing_module_with_many_instances_is_one_line() {
+        // A file cut before its last module: the module is gone, its eight instances stay.
+        let mut top = String::from("module top(input clk, output [7:0] led);\n");
+        for k in 0..8 {
+            top.push_str(&format!("  cell c{k} (.i(clk), .o(led[{k}]));\n"));
+        }
+        top.push_str("  bot b (.clk(clk));\nendmodule\n");
+        let t = tree(&[("top.v", &top)]);
+        let e = resolve(&[t.path().to_path_buf()], &Options::default()).unwrap_err().to_string();
+        let lines: Vec<&str> = e.lines().collect();
+        assert_eq!(lines[0], "a module of the design is missing:", "{e}");
+        assert_eq!(lines.len(), 2, "{e}");
+        assert!(lines[1].contains("`cell` (instance `c0` in `top`, and 7 more)"), "{e}");
     }
 
     #[test]

@@ -1297,6 +1297,8 @@ pub struct Oversized {
 /// let o = oversized_literals("assign a = 8'h1FF; // 8'h1FF\nassign b = 6'hFF + 4'b0_1010 + 4'b1_1010;");
 /// let fixed: Vec<_> = o.iter().map(|o| (o.line, o.text.as_str(), o.fixed.as_str())).collect();
 /// assert_eq!(fixed, [(1, "8'h1FF", "8'hFF"), (2, "4'b1_1010", "4'b1010")]);
+/// // A typo is no literal to fix.
+/// assert!(oversized_literals("assign c = 1'shift;").is_empty());
 /// ```
 pub fn oversized_literals(src: &str) -> Vec<Oversized> {
     let (tokens, _) = tokenize(src);
@@ -1327,6 +1329,13 @@ fn truncated_literal(text: &str) -> Option<String> {
         _ => return None,
     };
     let digits: String = rest[1..].chars().filter(|c| *c != '_').collect();
+    // Only a literal that is one (`1'shift` is the user's typo, left for the compiler to
+    // point at, not "fixed" into another).
+    let valid =
+        |c: char| matches!(c.to_ascii_lowercase(), 'x' | 'z' | '?') || c.to_digit(1 << bits_per_digit).is_some();
+    if digits.is_empty() || !digits.chars().all(valid) {
+        return None;
+    }
     let significant = digits.trim_start_matches('0');
     let allowed = size.div_ceil(bits_per_digit) as usize;
     if size == 0 || significant.len() <= allowed {

@@ -1331,8 +1331,7 @@ fn truncated_literal(text: &str) -> Option<String> {
     let digits: String = rest[1..].chars().filter(|c| *c != '_').collect();
     // Only a literal that is one (`1'shift` is the user's typo, left for the compiler to
     // point at, not "fixed" into another).
-    let valid =
-        |c: char| matches!(c.to_ascii_lowercase(), 'x' | 'z' | '?') || c.to_digit(1 << bits_per_digit).is_some();
+    let valid = |c: char| matches!(c.to_ascii_lowercase(), 'x' | 'z' | '?') || c.is_digit(1 << bits_per_digit);
     if digits.is_empty() || !digits.chars().all(valid) {
         return None;
     }

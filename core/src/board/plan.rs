@@ -628,6 +628,39 @@ mod tests {
     }
 
     #[test]
+    fn a_teams_bot_and_world_if_with_ports_botsims_lack_are_kept_and_the_bot_is_traced_at_its_ports() {
+        // A BotSim 3.1-shaped bot: `bot` with Bot_Config_reg, and inside it a `world_if` with
+        // a configuration port (the team's, not the course's), a kcpsm6 and its ROM.
+        let top = src(
+            "top.v",
+            "module t(input clk, input [7:0] sw);\n  bot b (.clk(clk), .Bot_Config_reg(sw));\nendmodule\n",
+        );
+        let bot = src(
+            "bot31.v",
+            "module bot(input [7:0] MotCtl_in, output [7:0] LocX_reg, output [7:0] LocY_reg, output [7:0] Sensors_reg,\n  output [7:0] BotInfo_reg, output upd_sysregs, input clk, input reset, input [7:0] Bot_Config_reg);\n  kcpsm6 cpu (.address(a), .instruction(i), .bram_enable(e), .clk(clk));\n  prog rom (.address(a), .instruction(i), .enable(e), .clk(clk));\n  world_if wif (.BotConfig(Bot_Config_reg), .clk(clk));\nendmodule\n",
+        );
+        let wif = src("world_if.v", "module world_if(input [7:0] BotConfig, input clk);\nendmodule\n");
+        let image = kcpsm6::asm::assemble_str("start: JUMP start\n").unwrap().image;
+        let rom =
+            src("prog.v", &kcpsm6::output::verilog_rom(&image, "prog", "prog.psm", kcpsm6::asm::RomSize::K1, None));
+        let p = plan("t", vec![top, bot, wif, rom], &request()).unwrap();
+        assert_eq!(p.kept.iter().map(String::as_str).collect::<Vec<_>>(), ["bot", "world_if"]);
+        assert_eq!(p.bot_path.as_deref(), Some("b"));
+        assert_eq!(p.bot_cpu.as_deref(), Some("b.cpu"));
+        let team = p.team_bot.as_ref().unwrap();
+        assert_eq!(
+            (team.module.as_str(), team.locy.as_str(), team.config.as_deref()),
+            ("bot", "LocY_reg", Some("Bot_Config_reg"))
+        );
+        assert_eq!(p.own_bot(), None);
+        // Neither is said to be replaced, nor blanked from its file; kcpsm6 is botsim's.
+        let said: Vec<&str> = p.replaced.iter().map(|r| r.module.as_str()).collect();
+        assert!(!said.contains(&"bot") && !said.contains(&"world_if") && said.contains(&"kcpsm6"), "{said:?}");
+        assert!(p.files.iter().any(|f| f.path.ends_with("world_if.v") && f.filtered.is_none()));
+        assert!(!p.roms.iter().any(|r| r.module == "bot_pgm"), "no 2.0 firmware for a team's bot");
+    }
+
+    #[test]
     fn a_wrong_pin_direction_is_a_warning_at_the_port_and_the_port_on_no_pin() {
         let top = src("top.v", "module t(input clk,\n  input [15:0] led);\n bot b(.clk(clk));\nendmodule\n");
         let p = plan("t", vec![top], &request()).unwrap();

@@ -7,7 +7,9 @@
 //!
 //! CI runs `BOTSIM_MUTANTS` (default 3) mutants of each design; locally, for thousands:
 //! `BOTSIM_MUTANTS=500 BOTSIM_MUTANT_SEED=7 cargo test --release --test mutants -- --nocapture`
-//! (a mutant that reaches Verilator builds: seconds each).
+//! (a mutant that reaches Verilator builds: seconds each). Another design, a restored corpus
+//! repository's for one: `BOTSIM_MUTANT_DESIGN=FOLDER:FILE` (FILE below FOLDER; the run is
+//! `botsim board FOLDER --seconds 0.001`, with `BOTSIM_MUTANT_ARGS` more, space-separated).
 
 mod common;
 
@@ -164,13 +166,28 @@ fn every_mutant_runs_or_is_told_where_its_edit_is() {
     let mut r = Rng::new(seed);
     let mut bad = Vec::new();
     let mut outcomes = [0usize; 2];
-    for (design, file, args) in DESIGNS {
-        let original = std::fs::read_to_string(root().join(design).join(file)).unwrap();
+    let given = std::env::var("BOTSIM_MUTANT_DESIGN").ok();
+    let extra = std::env::var("BOTSIM_MUTANT_ARGS").unwrap_or_default();
+    let designs: Vec<(PathBuf, String, Vec<String>)> = match &given {
+        Some(g) => {
+            let (folder, file) = g.split_once(':').expect("BOTSIM_MUTANT_DESIGN=FOLDER:FILE");
+            let mut args = vec!["--seconds".to_string(), "0.001".into()];
+            args.extend(extra.split_whitespace().map(str::to_string));
+            vec![(PathBuf::from(folder), file.to_string(), args)]
+        }
+        None => DESIGNS
+            .iter()
+            .map(|(d, f, a)| (root().join(d), f.to_string(), a.iter().map(|s| s.to_string()).collect()))
+            .collect(),
+    };
+    for (folder, file, args) in &designs {
+        let design = folder.display().to_string();
+        let original = std::fs::read_to_string(folder.join(file)).unwrap();
         for n in 0..count {
             let edit = mutate(&original, &mut r);
             let dir = tempfile::tempdir().unwrap();
             let copy = dir.path().join("design");
-            copy_dir(&root().join(design), &copy);
+            copy_dir(folder, &copy);
             std::fs::write(copy.join(file), &edit.text).unwrap();
             let out = Command::new("timeout")
                 .arg("300")
@@ -193,6 +210,7 @@ fn every_mutant_runs_or_is_told_where_its_edit_is() {
     assert!(bad.is_empty(), "{}", bad.join("\n---\n"));
 }
 
+/// The folder's files and folders (not `.git`).
 fn copy_dir(from: &Path, to: &Path) {
     std::fs::create_dir_all(to).unwrap();
     for e in std::fs::read_dir(from).unwrap() {
@@ -200,6 +218,8 @@ fn copy_dir(from: &Path, to: &Path) {
         let p: PathBuf = e.path();
         if p.is_file() {
             std::fs::copy(&p, to.join(e.file_name())).unwrap();
+        } else if p.is_dir() && e.file_name() != ".git" {
+            copy_dir(&p, &to.join(e.file_name()));
         }
     }
 }

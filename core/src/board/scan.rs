@@ -603,14 +603,19 @@ fn module(p: &mut Parser) -> Option<Module> {
                     }
                 }
                 if let (Some(name), Some(next)) = (p.ident_at(k), p.t.get(k + 1)) {
-                    if let Tok::Ident(other) = &next.tok {
-                        if p.trouble.is_none() && !other.starts_with('`') {
-                            p.trouble = Some((
-                                next.line,
-                                next.col,
-                                format!("`{other}` right after `{name}` in a declaration (a `,` or `;` missing, or a stray `{w}`?): this does not parse"),
-                            ));
-                        }
+                    // Another name, or an instance's `#(`/`(`, where the declaration needs a
+                    // `,`, `=`, `[` or `;`.
+                    let what = match &next.tok {
+                        Tok::Ident(other) if !other.starts_with('`') => Some(format!("`{other}`")),
+                        Tok::Punct(c @ ('#' | '(')) => Some(format!("`{c}`")),
+                        _ => None,
+                    };
+                    if let (Some(what), None) = (what, &p.trouble) {
+                        p.trouble = Some((
+                            next.line,
+                            next.col,
+                            format!("{what} right after `{name}` in a declaration (a `,` or `;` missing, or a stray `{w}`?): this does not parse"),
+                        ));
                     }
                 }
                 p.i += 1;
@@ -1366,6 +1371,9 @@ mod tests {
         );
         // A stray `wire` before an instance: the declaration says so.
         let m = &scan("module t(input clk);\n  wire\n  sub a (.x(clk));\nendmodule\n")[0];
+        let u = m.unreadable.as_ref().unwrap();
+        assert_eq!((u.0, u.1), (3, 7), "{}", u.2);
+        let m = &scan("module t(input clk);\n  wire\n  sub #(.N(1)) a (.x(clk));\nendmodule\n")[0];
         let u = m.unreadable.as_ref().unwrap();
         assert_eq!((u.0, u.1), (3, 7), "{}", u.2);
         // Nothing of the kind in good Verilog, UDPs and packages after a module included.

@@ -203,7 +203,7 @@ fn user_error(
             .iter()
             .any(|w| msg.contains(&format!("unexpected {w}")));
         if module_level {
-            if let Some((l, c)) = unclosed_begin(&file.text, line) {
+            if let Some((l, c)) = botsim_core::board::scan::unclosed_begin(&file.text, line) {
                 return format!(
                     "{}:{l}:{c}: this `begin` has no `end` (Verilator stops later, {at}: {msg})",
                     file.shown
@@ -213,65 +213,6 @@ fn user_error(
         return format!("{at}: this does not parse ({msg})");
     }
     format!("{at}: {msg}")
-}
-
-/// The last `begin` still open at line `line` (where Verilator met what only a module holds), counted
-/// from the `module` before it: its line and column. Comments and strings are skipped.
-fn unclosed_begin(text: &str, line: u32) -> Option<(u32, u32)> {
-    let b = text.as_bytes();
-    let (mut i, mut l, mut col) = (0usize, 1u32, 1u32);
-    let mut open: Vec<(u32, u32)> = Vec::new();
-    while i < b.len() && l < line {
-        let c = b[i];
-        if c == b'/' && b.get(i + 1) == Some(&b'/') {
-            while i < b.len() && b[i] != b'\n' {
-                i += 1;
-            }
-            continue;
-        }
-        if c == b'/' && b.get(i + 1) == Some(&b'*') {
-            i += 2;
-            while i < b.len() && !(b[i] == b'*' && b.get(i + 1) == Some(&b'/')) {
-                if b[i] == b'\n' {
-                    (l, col) = (l + 1, 1);
-                }
-                i += 1;
-            }
-            i += 2;
-            continue;
-        }
-        if c == b'"' {
-            i += 1;
-            while i < b.len() && b[i] != b'"' && b[i] != b'\n' {
-                i += 1;
-            }
-            i += 1;
-            continue;
-        }
-        if c.is_ascii_alphabetic() || c == b'_' {
-            let start = i;
-            while i < b.len() && (b[i].is_ascii_alphanumeric() || b[i] == b'_' || b[i] == b'$') {
-                i += 1;
-            }
-            match &text[start..i] {
-                "module" | "macromodule" => open.clear(),
-                "begin" => open.push((l, col)),
-                "end" => {
-                    open.pop();
-                }
-                _ => {}
-            }
-            col += (i - start) as u32;
-            continue;
-        }
-        if c == b'\n' {
-            (l, col) = (l + 1, 1);
-        } else {
-            col += 1;
-        }
-        i += 1;
-    }
-    open.last().copied()
 }
 
 /// Verilator's words without its asides (`... For error description see`).
@@ -353,9 +294,5 @@ mod tests {
         let files = [file("user0_top.v", "top.v", Origin::User, original, Some(original))];
         let s = explain("%Error: user0_top.v:2:14: syntax error, unexpected '='\n", &files, &|_| None).unwrap();
         assert_eq!(s, "top.v:2:14: this does not parse (syntax error, unexpected '=')");
-        // A `begin` without its `end`, told where it is (comments and strings skipped).
-        let text = "module m(input a);\n  reg x; // begin\n  always @* begin\n    if (a) begin x = 1; end\n    $display(\"end\");\n  /* end */\nendmodule\n";
-        assert_eq!(unclosed_begin(text, 7), Some((3, 13)));
-        assert_eq!(unclosed_begin("module m;\n always @* begin\n end\nendmodule\n", 4), None);
     }
 }

@@ -23,6 +23,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use super::pins::Role;
+use super::repo::common_depth;
 use super::scan::Module;
 
 /// One port (or one bit of it) placed on a package pin, and the line that says so.
@@ -434,7 +435,8 @@ impl Placed {
             let Some(board) = Board::ALL.into_iter().filter(|b| clocked(*b)).max_by_key(|b| known(*b)) else {
                 continue;
             };
-            let depth = common_depth(f, near);
+            let canon = |p: &Path| std::fs::canonicalize(p).unwrap_or(p.to_path_buf());
+            let depth = common_depth(&canon(f), &canon(near));
             let better = match &best {
                 None => true,
                 Some((n, d, _)) => (ports.len(), depth) > (*n, *d),
@@ -508,11 +510,6 @@ fn vector(bits: Vec<(Option<u32>, Option<Function>)>) -> Option<Role> {
         role = Some(r);
     }
     role
-}
-
-fn common_depth(a: &Path, b: &Path) -> usize {
-    let canon = |p: &Path| std::fs::canonicalize(p).unwrap_or(p.to_path_buf());
-    canon(a).components().zip(canon(b).components()).take_while(|(x, y)| x == y).count()
 }
 
 #[cfg(test)]

@@ -213,6 +213,11 @@ impl Ages {
     }
 }
 
+/// How many leading components two paths share (the nearer of two files to a third).
+pub fn common_depth(a: &Path, b: &Path) -> usize {
+    a.components().zip(b.components()).take_while(|(x, y)| x == y).count()
+}
+
 /// `a/b/../c` as `a/c`, `./x` as `x`: a path as a person writes it, without asking the file
 /// system (a `..` after a link would differ, which the repositories here do not have).
 ///

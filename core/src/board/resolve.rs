@@ -29,7 +29,7 @@ use super::memcore::{library_model, MemCore, MEMORY_CORES};
 use super::parts::{self, foreign_port, is_program_rom, Replacement, HELPERS, OWN_MODULES, PRIMITIVES};
 use super::pins::{self, Role};
 use super::project::Project;
-use super::repo::{tidy, Ages, FileKind, Repo};
+use super::repo::{common_depth, tidy, Ages, FileKind, Repo};
 use super::scan::{self, Instance, Module};
 use super::source::Source;
 use super::vhdl;
@@ -609,10 +609,6 @@ impl Pool {
         design.notes = notes;
         Ok(design)
     }
-}
-
-fn common_depth(a: &Path, b: &Path) -> usize {
-    a.components().zip(b.components()).take_while(|(x, y)| x == y).count()
 }
 
 /// What stands for a reached module.

@@ -1317,6 +1317,32 @@ pub fn oversized_literals(src: &str) -> Vec<Oversized> {
         .collect()
 }
 
+/// The last `begin` still open before line `line` (where Verilator met what only a module
+/// holds), counted from the `module` before it: its line and column. Read with the
+/// scanner's tokens, so comments and strings do not count.
+///
+/// ```
+/// use botsim_core::board::scan::unclosed_begin;
+/// let text = "module m(input a);\n  reg x; // begin\n  always @* begin\n    if (a) begin x = 1; end\n    $display(\"end\");\n  /* end */\nendmodule\n";
+/// assert_eq!(unclosed_begin(text, 7), Some((3, 13)));
+/// assert_eq!(unclosed_begin("module m;\n always @* begin\n end\nendmodule\n", 4), None);
+/// ```
+pub fn unclosed_begin(src: &str, line: u32) -> Option<(u32, u32)> {
+    let (tokens, _) = tokenize(src);
+    let mut open: Vec<(u32, u32)> = Vec::new();
+    for t in tokens.iter().take_while(|t| t.line < line) {
+        match &t.tok {
+            Tok::Ident(w) if w == "module" || w == "macromodule" => open.clear(),
+            Tok::Ident(w) if w == "begin" => open.push((t.line, t.col)),
+            Tok::Ident(w) if w == "end" => {
+                open.pop();
+            }
+            _ => {}
+        }
+    }
+    open.last().copied()
+}
+
 /// `8'h1FF` -> `8'hFF`: the digits a literal's width keeps, when it has more (an unsized
 /// literal is 32 bits wide).
 fn truncated_literal(text: &str) -> Option<String> {

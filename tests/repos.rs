@@ -494,3 +494,25 @@ fn a_botsim31_bot_runs_from_the_teams_rtl_and_moves_as_botsim_20s_would() {
     let dist: std::collections::BTreeSet<&str> = t.lines().skip(1).filter_map(|l| l.split(',').nth(6)).collect();
     assert!(dist.len() > 2, "{t}");
 }
+
+#[test]
+fn a_note_about_a_vhdl_entity_points_at_its_vhd_file() {
+    // Verilator's finding in GHDL's Verilog of an entity (a combinational loop) is said at
+    // the entity's declaration in the .vhd, not at a converted file the user does not have.
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    std::fs::write(
+        d.join("top.v"),
+        "module top(input clk, input [15:0] sw, output [15:0] led);\n  loopy L (.a(sw[0]), .b(sw[1]), .q(led[0]));\n  assign led[15:1] = 0;\nendmodule\n",
+    )
+    .unwrap();
+    std::fs::write(
+        d.join("loopy.vhd"),
+        "library ieee;\nuse ieee.std_logic_1164.all;\n\n-- x and y feed each other.\nentity loopy is\n  port (a : in std_logic; b : in std_logic; q : out std_logic);\nend loopy;\n\narchitecture rtl of loopy is\n  signal x, y : std_logic;\nbegin\n  x <= y and a;\n  y <= x or b;\n  q <= x;\nend rtl;\n",
+    )
+    .unwrap();
+    let (_, said) = run(d, &[".", "--seconds", "0.0001"]);
+    let note = said.lines().find(|l| l.contains("UNOPTFLAT")).unwrap_or_else(|| panic!("{said}"));
+    assert!(note.starts_with("note: loopy.vhd:5: "), "{note}");
+    assert!(!said.contains(".vhd.v"), "{said}");
+}

@@ -23,8 +23,11 @@ use crate::interrupt::interrupted;
 mod verilator;
 
 const HARNESS: &str = include_str!("harness.cpp");
+const MODEL_H: &str = include_str!("board_model.h");
+const MODEL_CPP: &str = include_str!("board_model.cpp");
 const ABI: &str = include_str!("board_abi.h");
 const PRINT: &str = include_str!("botsim_print.h");
+const PCH: &str = include_str!("botsim_pch.h");
 const DISASM: &str = include_str!("../sim/rtl/ffi/botsim_disasm.h");
 const XILINX: &str = include_str!("../../rtl/board/xilinx.v");
 const CLKGEN: &str = include_str!("../../rtl/board/botsim_clkgen.v");
@@ -88,7 +91,7 @@ const VERILATOR_FLAGS: &[&str] = &[
     "-Wwarn-WIDTH",
     "-CFLAGS",
     "-fPIC -O2 -fvisibility-inlines-hidden -fno-semantic-interposition -DVL_USER_FINISH -DVL_USER_FATAL \
-     -DVL_USER_STOP -DVL_USER_WARN -DVL_PRINTF=botsim_printf -DVL_VPRINTF=botsim_vprintf -include ../botsim_print.h -I..",
+     -DVL_USER_STOP -DVL_USER_WARN -DVL_PRINTF=botsim_printf -DVL_VPRINTF=botsim_vprintf -Winvalid-pch -I..",
     "-LDFLAGS",
     "-shared -Wl,-Bsymbolic",
 ];
@@ -96,6 +99,15 @@ const VERILATOR_FLAGS: &[&str] = &[
 /// The variables of Verilator's makefile for every board build (part of the cache key): it
 /// compiles with -Os after CFLAGS; -O2 makes boards about twice as fast (docs/PERFORMANCE.md).
 const MAKE_VARS: &[&str] = &["OPT_FAST=-O2", "OPT_GLOBAL=-O2", "OPT_SLOW=-O1"];
+
+/// The header forced first into every file of a build (botsim_pch.h), given to make apart
+/// from [`VERILATOR_FLAGS`] so that the precompiled header itself is compiled without it.
+const FORCED: &str = "USER_CPPFLAGS=-include botsim_pch.h";
+
+/// The rule that compiles botsim_pch.h as the build's makefile compiles its files (a makefile
+/// read after Verilator's: its variables are set).
+const PCH_RULE: &str =
+    "botsim_pch.h.gch: botsim_pch.h\n\t$(CXX) $(CXXFLAGS) $(CPPFLAGS) $(OPT_FAST) -x c++-header -o $@ $<\n";
 
 /// `BOTSIM_KEEP_GENERATED=DIR`: every file of a build (the user's files as botsim edited
 /// them, the wrapper and botsim's modules, the cores and stubs made for the design, Verilator's
@@ -110,7 +122,7 @@ fn keep_generated(build: &Path) {
             let (p, q) = (e.path(), to.join(e.file_name()));
             if p.is_dir() {
                 copy(&p, &q);
-            } else if !p.extension().is_some_and(|x| x == "o" || x == "so" || x == "a" || x == "d") {
+            } else if !p.extension().is_some_and(|x| x == "o" || x == "so" || x == "a" || x == "d" || x == "gch") {
                 let _ = std::fs::copy(&p, &q);
             }
         }
@@ -139,17 +151,13 @@ pub struct Built {
     pub verilator: String,
     /// The names Verilator knows the user's files by (the build's copies, absolute paths),
     /// with the user's paths.
-    names: Vec<(String, String)>,
+    names: Vec<Name>,
 }
 
 impl Built {
     /// `msg` (a message of Verilator's or of the model's runtime) with the user's paths.
     pub fn user_paths(&self, msg: &str) -> String {
-        let mut m = msg.to_string();
-        for (name, user) in &self.names {
-            m = m.replace(name.as_str(), user);
-        }
-        m
+        to_user(msg, &self.names)
     }
 }
 
@@ -187,6 +195,8 @@ struct Files {
     user: Vec<(String, Option<String>, PathBuf)>,
     /// Which of `user` botsim wrote (cores, stand-ins, stubs, conversions).
     made: Vec<bool>,
+    /// What each of `user` was converted from (a VHDL entity's file and line).
+    converted: Vec<Option<(PathBuf, u32)>>,
     defines: Vec<String>,
 }
 
@@ -216,6 +226,7 @@ fn files(plan: &Plan, params: &[(String, String)], cpu: CpuModel, bot: BotKind) 
     }
     let mut user = Vec::new();
     let made = plan.files.iter().map(|f| f.generated).collect();
+    let converted = plan.files.iter().map(|f| f.converted_from.clone()).collect();
     for (k, f) in plan.files.iter().enumerate() {
         match &f.filtered {
             Some(text) => {
@@ -232,7 +243,7 @@ fn files(plan: &Plan, params: &[(String, String)], cpu: CpuModel, bot: BotKind) 
     for (prim, mask) in &plan.used_outputs {
         defines.push(format!("BOTSIM_USED_{prim}=8'h{mask:02X}"));
     }
-    Files { generated, user, made, defines }
+    Files { generated, user, made, converted, defines }
 }
 
 /// Build (or find in the cache) the library for `plan` with `cpu` for its KCPSM6s; `debug`:
@@ -259,6 +270,8 @@ pub fn build(
     v.version.hash(&mut h);
     v.root.hash(&mut h);
     HARNESS.hash(&mut h);
+    MODEL_H.hash(&mut h);
+    MODEL_CPP.hash(&mut h);
     VERILATOR_FLAGS.hash(&mut h);
     MAKE_VARS.hash(&mut h);
     // The analyses whose results the harness is compiled with.
@@ -268,6 +281,8 @@ pub fn build(
     include_str!("dialect.rs").hash(&mut h);
     ABI.hash(&mut h);
     PRINT.hash(&mut h);
+    PCH.hash(&mut h);
+    FORCED.hash(&mut h);
     DISASM.hash(&mut h);
     // The check whose verdict the build keeps.
     include_str!("checks.rs").hash(&mut h);
@@ -332,6 +347,8 @@ pub fn build(
         write(name, text)?;
     }
     write("harness.cpp", HARNESS)?;
+    write("board_model.h", MODEL_H)?;
+    write("board_model.cpp", MODEL_CPP)?;
     write("board_abi.h", ABI)?;
     write("botsim_print.h", PRINT)?;
     write("botsim_disasm.h", DISASM)?;
@@ -373,7 +390,7 @@ pub fn build(
             cmd.arg(absolute(path));
         }
     }
-    cmd.arg("harness.cpp");
+    cmd.args(["harness.cpp", "board_model.cpp"]);
     let fail = |e| {
         keep_generated(&tmp);
         let _ = std::fs::remove_dir_all(&tmp);
@@ -415,11 +432,24 @@ pub fn build(
         "botsim_observed.h",
         &super::observed::header(&checked.members, &checked.counters, checked.triggers_fn.as_deref()),
     )?;
-    // Verilator's run-time library, compiled once for every build of these flags.
-    let runtime = Runtime::new(&v, delays.is_some(), &tmp.join("obj"));
+    // Verilator's run-time library and the precompiled header, compiled once for every build
+    // of these flags.
+    let obj = tmp.join("obj");
+    write("obj/botsim_pch.h", PCH)?;
+    write("obj/botsim_pch.mk", PCH_RULE)?;
+    let runtime = Runtime::new(&v, delays.is_some(), &obj);
     runtime.lend();
+    if !obj.join(Runtime::PCH).exists() {
+        let mut make = Command::new("make");
+        make.current_dir(&obj).args(["-f", "Vboard.mk", "-f", "botsim_pch.mk"]).args(MAKE_VARS).arg(Runtime::PCH);
+        let out = run_with_budget(&mut make, budget, t0).map_err(fail)?;
+        if !out.status.success() {
+            // Every file parses botsim_pch.h itself instead.
+            let _ = std::fs::remove_file(obj.join(Runtime::PCH));
+        }
+    }
     let mut make = Command::new("make");
-    make.current_dir(tmp.join("obj")).args(["-f", "Vboard.mk", "-j"]).arg(jobs.to_string()).args(MAKE_VARS);
+    make.current_dir(&obj).args(["-f", "Vboard.mk", "-j"]).arg(jobs.to_string()).args(MAKE_VARS).arg(FORCED);
     let out = run_with_budget(&mut make, budget, t0).map_err(fail)?;
     if out.status.success() {
         runtime.keep();
@@ -498,12 +528,12 @@ impl Lock {
     }
 }
 
-/// Remove the temporary folders of builds whose process is gone (stopped by a crash or a
-/// kill; Ctrl-C removes its own): `<design>.tmp<pid>`.
-/// Verilator's run-time library (`verilated.o` and the others its makefile lists as global
-/// objects), the same for every build of one Verilator with botsim's flags: compiled by the
-/// first build (about 10 s of the compiler), kept in the cache, and given to the next builds'
-/// makefiles, which then find them made.
+/// What every build of one Verilator with botsim's flags compiles the same: Verilator's
+/// run-time library (`verilated.o` and the others its makefile lists as global objects), the
+/// harness (`harness.o`: it sees a design only through board_model.h) and the precompiled
+/// header (botsim_pch.h). Compiled by the first build, kept in the cache, and given to the
+/// next builds' makefiles, which then find them made: a build compiles only the design's model
+/// and board_model.cpp (measured in docs/PERFORMANCE.md).
 struct Runtime {
     /// Where the objects are kept, by what they are compiled from.
     dir: PathBuf,
@@ -513,9 +543,14 @@ struct Runtime {
 }
 
 impl Runtime {
+    /// The precompiled botsim_pch.h.
+    const PCH: &'static str = "botsim_pch.h.gch";
+
     fn new(v: &verilator::Verilator, timing: bool, obj: &Path) -> Runtime {
         let mut h = DefaultHasher::new();
-        (&v.version, &v.root, VERILATOR_FLAGS, MAKE_VARS, PRINT, timing).hash(&mut h);
+        (&v.version, &v.root, VERILATOR_FLAGS, MAKE_VARS, PRINT, PCH, PCH_RULE, timing).hash(&mut h);
+        // The harness, which sees a design only through board_model.h.
+        (HARNESS, MODEL_H, ABI, DISASM).hash(&mut h);
         // The makefile's list: VM_GLOBAL_FAST and VM_GLOBAL_SLOW, one name a line.
         let classes = std::fs::read_to_string(obj.join("Vboard_classes.mk")).unwrap_or_default();
         let mut names = Vec::new();
@@ -537,12 +572,18 @@ impl Runtime {
         {
             std::fs::read(include.join(file)).unwrap_or_default().hash(&mut h);
         }
+        names.push("harness".into());
         Runtime { dir: cache_dir().join("runtime").join(format!("{:016x}", h.finish())), obj: obj.to_path_buf(), names }
     }
 
     /// Put the kept objects in the build's folder, newer than its makefile (which they
     /// depend on), so that make takes them as made.
     fn lend(&self) {
+        // The precompiled header is large (tens of MB): linked, not copied, where it can be.
+        let (kept, to) = (self.dir.join(Self::PCH), self.obj.join(Self::PCH));
+        if kept.exists() && std::fs::hard_link(&kept, &to).is_err() {
+            let _ = std::fs::copy(&kept, &to);
+        }
         for n in &self.names {
             let (kept, to) = (self.dir.join(format!("{n}.o")), self.obj.join(format!("{n}.o")));
             if std::fs::copy(&kept, &to).is_ok() {
@@ -561,13 +602,14 @@ impl Runtime {
     /// whole, then renamed: builds may run side by side).
     fn keep(&self) {
         let _ = std::fs::create_dir_all(&self.dir);
-        for n in &self.names {
-            let kept = self.dir.join(format!("{n}.o"));
-            if kept.exists() {
+        let files = self.names.iter().map(|n| format!("{n}.o")).chain([Self::PCH.to_string()]);
+        for file in files {
+            let (made, kept) = (self.obj.join(&file), self.dir.join(&file));
+            if kept.exists() || !made.exists() {
                 continue;
             }
-            let part = self.dir.join(format!(".{n}.o.{}", std::process::id()));
-            if std::fs::copy(self.obj.join(format!("{n}.o")), &part).is_ok() && std::fs::rename(&part, &kept).is_ok() {
+            let part = self.dir.join(format!(".{file}.{}", std::process::id()));
+            if std::fs::copy(&made, &part).is_ok() && std::fs::rename(&part, &kept).is_ok() {
                 continue;
             }
             let _ = std::fs::remove_file(&part);
@@ -575,6 +617,8 @@ impl Runtime {
     }
 }
 
+/// Remove the temporary folders of builds whose process is gone (stopped by a crash or a
+/// kill; Ctrl-C removes its own): `<design>.tmp<pid>`.
 fn remove_stale_builds(boards: &Path) {
     for e in std::fs::read_dir(boards).into_iter().flatten().flatten() {
         let name = e.file_name().to_string_lossy().into_owned();
@@ -641,23 +685,74 @@ fn absolute(p: &Path) -> PathBuf {
     std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf())
 }
 
+/// A name Verilator is given a user's file by, the user's path for it, and for a conversion
+/// the line every message about it points at (the VHDL entity's: GHDL's Verilog is not in the
+/// user's tree).
+#[derive(Clone, Debug)]
+struct Name {
+    given: String,
+    user: String,
+    line: Option<u32>,
+}
+
 /// The names Verilator is given the user's files by, with the user's paths: the build
 /// folder's copies of edited files, the absolute paths of the others.
-fn names(f: &Files) -> Vec<(String, String)> {
-    let mut names: Vec<(String, String)> = Vec::new();
-    for (name, text, path) in &f.user {
+fn names(f: &Files) -> Vec<Name> {
+    let mut names = Vec::new();
+    for ((name, text, path), from) in f.user.iter().zip(&f.converted) {
+        if let Some((original, line)) = from {
+            names.push(Name { given: name.clone(), user: original.display().to_string(), line: Some(*line) });
+            continue;
+        }
         let user = path.display().to_string();
         if text.is_some() {
-            names.push((name.clone(), user));
+            names.push(Name { given: name.clone(), user, line: None });
         } else {
             // Verilator writes some absolute paths with a doubled first slash.
             let given = absolute(path).display().to_string();
-            names.push((format!("/{given}"), user.clone()));
-            names.push((given, user));
+            names.push(Name { given: format!("/{given}"), user: user.clone(), line: None });
+            names.push(Name { given, user, line: None });
         }
     }
-    names.retain(|(given, user)| given != user);
+    names.retain(|n| n.given != n.user);
     names
+}
+
+/// `msg` with the user's paths for the build's names (a conversion's `name:line:col` as the
+/// original's `file:line`).
+fn to_user(msg: &str, names: &[Name]) -> String {
+    let mut m = msg.to_string();
+    for n in names {
+        let Some(line) = n.line else {
+            m = m.replace(n.given.as_str(), &n.user);
+            continue;
+        };
+        let mut out = String::new();
+        let mut rest = m.as_str();
+        while let Some(i) = rest.find(n.given.as_str()) {
+            out.push_str(&rest[..i]);
+            out.push_str(&n.user);
+            rest = &rest[i + n.given.len()..];
+            // Its `:line` and `:col`, when they follow, are the conversion's: the original's line.
+            let mut skipped = false;
+            for _ in 0..2 {
+                let digits = rest
+                    .strip_prefix(':')
+                    .map_or(0, |r| r.len() - r.trim_start_matches(|c: char| c.is_ascii_digit()).len());
+                if digits == 0 {
+                    break;
+                }
+                rest = &rest[1 + digits..];
+                skipped = true;
+            }
+            if skipped {
+                out.push_str(&format!(":{line}"));
+            }
+        }
+        out.push_str(rest);
+        m = out;
+    }
+    m
 }
 
 /// The build's files as [`explain`] reads Verilator's errors about them.
@@ -700,11 +795,7 @@ fn stands_for(plan: &Plan, module: &str) -> Option<explain::Stand> {
 
 /// Replace the build folder's copies of the user's files by the user's paths.
 fn user_paths(msg: &str, f: &Files) -> String {
-    let mut m = msg.to_string();
-    for (name, user) in names(f) {
-        m = m.replace(name.as_str(), &user);
-    }
-    m
+    to_user(msg, &names(f))
 }
 
 /// Verilator's `%Warning-CODE: file:line:col: message` lines about the user's files, grouped.
@@ -739,4 +830,26 @@ fn first_error(stderr: &str, stdout: &str, f: &Files, plan: &Plan) -> BoardError
     }
     let tail: Vec<&str> = stderr.lines().rev().take(3).collect();
     BoardError::plain(format!("the Verilator build failed: {}", tail.into_iter().rev().collect::<Vec<_>>().join(" / ")))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_conversions_lines_are_the_originals_entity_line() {
+        let names = [
+            Name { given: "user3_AccelCtl.vhd.v".into(), user: "hdl/AccelCtl.vhd".into(), line: Some(7) },
+            Name { given: "/abs/top.v".into(), user: "top.v".into(), line: None },
+        ];
+        assert_eq!(
+            to_user("user3_AccelCtl.vhd.v:412:9: Signal is not driven: 'x' (see /abs/top.v:3:5)", &names),
+            "hdl/AccelCtl.vhd:7: Signal is not driven: 'x' (see top.v:3:5)"
+        );
+        // Named without a line, and twice in one message.
+        assert_eq!(
+            to_user("in user3_AccelCtl.vhd.v, and user3_AccelCtl.vhd.v:2", &names),
+            "in hdl/AccelCtl.vhd, and hdl/AccelCtl.vhd:7"
+        );
+    }
 }

@@ -1,13 +1,14 @@
-// harness.cpp: the C++ side of botsim's board simulation, compiled with each design's
-// Verilated `botsim_board` into one shared library that botsim loads at run time.
+// harness.cpp: the C++ side of botsim's board simulation, linked with each design's
+// Verilated `botsim_board` into one shared library that botsim loads at run time. It is
+// compiled once for every design (beside Verilator's run-time library) and sees the design's
+// model through board_model.h.
 //
 // The scheduler: the board oscillator (100 MHz, the wrapper's `clk`) and every
 // botsim_clkgen instance (found by its public variables) are clocks with exact rational
 // periods; the harness advances time to the next edge of any running clock, sets every clock
 // that changes then, evaluates once, dumps the waveform if one is open, and records what the
 // board shows (display and LED changes, every upd_sysregs of the bot) into the caller's buffer.
-#include "Vboard.h"
-#include "Vboard___024root.h"
+#include "board_model.h"
 #include "verilated.h"
 #include "verilated_syms.h"
 #include "verilated_vcd_c.h"
@@ -27,50 +28,6 @@
 extern "C" {
 #include "board_abi.h"
 }
-
-// One variable of the root object: its bytes, and whether a run without a waveform or VGA
-// frames observes it (src/board/observed.rs decides; botsim_observed.h lists them).
-struct BoardMember {
-    size_t off, len;
-    bool observed;
-    const char* name;
-};
-// A variable a counter is compared with: its bytes, and the constant added to the counter
-// first (`count + 1 >= half`).
-struct BoardBound {
-    size_t off, len;
-    uint64_t offset;
-};
-// A counter the fast-forward moves on by arithmetic (src/board/counters.rs): its bytes, its
-// width in bits, whether it counts down, its largest step, the lowest bit a shifted read sees
-// (64: none), the constants it is compared with, the bit below which only masks read it
-// (64: none; the low part then repeats while the rest counts), the lowest bit a read
-// above that split sees (64: none) and the variables it is compared with.
-struct BoardCounter {
-    size_t off, len;
-    uint32_t bits;
-    bool down;
-    uint64_t step;
-    uint32_t shift;
-    std::vector<uint64_t> consts;
-    uint32_t split, split_shift;
-    std::vector<BoardBound> bounds;
-};
-#include "botsim_observed.h"
-
-// The model's evaluation proper, which Vboard::eval() wraps (Verilator 5's generated name).
-// eval() also marks activity for the waveform and does a single-threaded model's thread
-// bookkeeping through thread-local variables, which in a shared library cost more than the
-// evaluation of a small design; runs without a waveform call this directly (measured in
-// docs/PERFORMANCE.md).
-void Vboard___024root___eval(Vboard___024root* vlSelf);
-// Its trigger computation alone: at a falling edge of a board whose only trigger is the
-// clock's rising edge, it notes the clock's level and nothing else happens (the build checks
-// the design for this: src/board/checks.rs). Its name is the Verilator version's
-// (BOTSIM_EVAL_TRIGGERS, from botsim_observed.h); without one, every edge is evaluated.
-#ifdef BOTSIM_EVAL_TRIGGERS
-void BOTSIM_EVAL_TRIGGERS(Vboard___024root* vlSelf);
-#endif
 
 namespace {
 
@@ -305,7 +262,8 @@ inline long member_at(const FastForward& f, size_t off) {
 
 struct Board {
     VerilatedContext ctx;
-    Vboard* top = nullptr;
+    DesignModel model{};  // the design's (board_model.cpp)
+    BoardPorts io{};      // its ports
     VerilatedVcdC* vcd = nullptr;
     std::vector<Clock> clocks;
     uint64_t now = 0;
@@ -353,6 +311,9 @@ static inline void enter(Board* b) {
     Verilated::threadContextp(&b->ctx);
 }
 
+// The whole evaluation (Vboard::eval()), for inputs set from outside a run.
+static inline void eval(Board* b) { b->model.eval(b->model.top); }
+
 extern "C" {
 
 Board* board_new_hosted(int argc, const char** argv, BoardHost* host) {
@@ -362,21 +323,22 @@ Board* board_new_hosted(int argc, const char** argv, BoardHost* host) {
     b->ctx.traceEverOn(true);
     b->ctx.fatalOnError(false);
     enter(b);
-    b->top = new Vboard(&b->ctx, "TOP");
-    b->top->clk = 0;
-    b->top->reset_pressed = 0;
-    b->top->btn = 0;
-    b->top->sw = 0;
-    b->top->uart_div = 868;  // 115200 baud
-    b->top->tilt_z = 1000;   // lying flat: +1 g on z
+    b->model = botsim_model_new(&b->ctx);
+    b->io = b->model.io;
+    *b->io.clk = 0;
+    *b->io.reset_pressed = 0;
+    *b->io.btn = 0;
+    *b->io.sw = 0;
+    *b->io.uart_div = 868;  // 115200 baud
+    *b->io.tilt_z = 1000;   // lying flat: +1 g on z
     // A design that stops at power-up (a $fatal, a loop that never settles) is a board that
     // has finished: its first run says so.
     try {
-        b->top->eval();
+        eval(b);
     } catch (const Stopped&) {
     }
     // The oscillator, then every generated clock.
-    Clock osc(&b->top->clk, nullptr, 10000, 1, 0, 500);
+    Clock osc(b->io.clk, nullptr, 10000, 1, 0, 500);
     osc.schedule_from(1);
     b->clocks.push_back(osc);
     for (auto& kv : *b->ctx.scopeNameMap()) {
@@ -404,10 +366,10 @@ void board_free(Board* b) {
     enter(b);
     close_vcd(b);
     try {
-        b->top->final();
+        b->model.final(b->model.top);
     } catch (const Stopped&) {
     }
-    delete b->top;
+    b->model.destroy(b->model.top);
     delete b;
 }
 
@@ -415,7 +377,7 @@ int board_open_vcd(Board* b, const char* path) {
     enter(b);
     if (b->vcd) return 0;
     b->vcd = new VerilatedVcdC;
-    b->top->trace(b->vcd, 99);
+    b->model.trace(b->model.top, b->vcd, 99);
     b->vcd->open(path);
     if (!b->vcd->isOpen()) {
         delete b->vcd;
@@ -440,11 +402,11 @@ void board_clock(Board* b, size_t i, uint64_t* num, uint64_t* den) {
 
 void board_set_inputs(Board* b, uint32_t reset_pressed, uint32_t buttons, uint32_t switches) {
     enter(b);
-    b->top->reset_pressed = reset_pressed & 1;
-    b->top->btn = buttons & 0x1F;
-    b->top->sw = switches & 0xFFFF;
+    *b->io.reset_pressed = reset_pressed & 1;
+    *b->io.btn = buttons & 0x1F;
+    *b->io.sw = switches & 0xFFFF;
     try {
-        b->top->eval();
+        eval(b);
     } catch (const Stopped&) {
     }
     b->evals++;
@@ -459,18 +421,18 @@ void board_set_inputs(Board* b, uint32_t reset_pressed, uint32_t buttons, uint32
 // none).
 int board_push(Board* b, uint32_t device, const uint8_t* bytes, uint32_t n) {
     enter(b);
-    Vboard* t = b->top;
-    const uint32_t room = device == BOARD_UART ? t->uart_room : t->ps2_room;
-    if (n == 0 || n > 8 || t->uart_pending || t->ps2_pending) return 0;
+    const BoardPorts& io = b->io;
+    const uint32_t room = device == BOARD_UART ? *io.uart_room : *io.ps2_room;
+    if (n == 0 || n > 8 || *io.uart_pending || *io.ps2_pending) return 0;
     if (room < n) return -1;
     uint64_t v = 0;
     for (uint32_t i = 0; i < n; i++) v |= (uint64_t)bytes[i] << (8 * i);
-    t->push_bytes = v;
-    t->push_n = n;
-    if (device == BOARD_UART) t->uart_push ^= 1;
-    else t->ps2_push ^= 1;
+    *io.push_bytes = v;
+    *io.push_n = n;
+    if (device == BOARD_UART) *io.uart_push ^= 1;
+    else *io.ps2_push ^= 1;
     try {
-        t->eval();
+        eval(b);
     } catch (const Stopped&) {
     }
     b->evals++;
@@ -482,14 +444,14 @@ int board_push(Board* b, uint32_t device, const uint8_t* bytes, uint32_t n) {
 // The UART's clocks of 100 MHz per bit into the FPGA, and the board's tilt in mg.
 void board_set_uart_div(Board* b, uint32_t div) {
     enter(b);
-    b->top->uart_div = div < 1 ? 1 : div;
+    *b->io.uart_div = div < 1 ? 1 : div;
     b->ff.marked = false;
 }
 void board_set_tilt(Board* b, int32_t x, int32_t y, int32_t z) {
     enter(b);
-    b->top->tilt_x = (uint16_t)(int16_t)x;
-    b->top->tilt_y = (uint16_t)(int16_t)y;
-    b->top->tilt_z = (uint16_t)(int16_t)z;
+    *b->io.tilt_x = (uint16_t)(int16_t)x;
+    *b->io.tilt_y = (uint16_t)(int16_t)y;
+    *b->io.tilt_z = (uint16_t)(int16_t)z;
     b->ff.marked = false;
     b->ff.quiet_from = b->now;
 }
@@ -499,7 +461,7 @@ void board_record_bot(Board* b, int on) { b->bot = on != 0; }
 
 uint64_t board_time_ps(Board* b) { return b->now; }
 uint64_t board_evals(Board* b) { return b->evals; }
-uint64_t board_bot_cycles(Board* b) { return b->top->bot_cycles; }
+uint64_t board_bot_cycles(Board* b) { return *b->io.bot_cycles; }
 
 static inline void record(BoardEvent* buf, uint32_t* n, uint64_t t, uint32_t kind, uint32_t a, uint64_t bb, uint64_t c) {
     BoardEvent& e = buf[(*n)++];
@@ -513,9 +475,7 @@ static inline void record(BoardEvent* buf, uint32_t* n, uint64_t t, uint32_t kin
 // Evaluate at rising clock edges only (the build found that nothing happens on the falling
 // ones); a waveform still gets every edge.
 int board_rising_edges_only(Board* b, int on) {
-#ifndef BOTSIM_EVAL_TRIGGERS
-    on = 0;  // without the trigger function the levels cannot be noted alone
-#endif
+    if (!b->model.eval_triggers) on = 0;  // without it the levels cannot be noted alone
     b->rising_only = on != 0;
     return b->rising_only;
 }
@@ -527,12 +487,12 @@ int board_rising_edges_only(Board* b, int on) {
 // oscillator drives what the run observes.
 int board_fast_forward(Board* b, int mode) {
     FastForward& f = b->ff;
-    const bool observed = mode == 2 && kObservedKnown;
+    const bool observed = mode == 2 && b->model.observed_known;
     f.spans.clear();
     f.counters.clear();
     if (observed) {
         std::vector<BoardCounter> cs;
-        botsim_counters(b->top->rootp, cs);
+        b->model.counters(b->model.root, cs);
         for (const BoardCounter& c : cs) {
             Counting k;
             k.c = c;
@@ -546,7 +506,7 @@ int board_fast_forward(Board* b, int mode) {
         };
         std::vector<BoardMember>& ms = f.members;
         ms.clear();
-        botsim_members(b->top->rootp, ms);
+        b->model.members(b->model.root, ms);
         std::sort(ms.begin(), ms.end(), [](const BoardMember& x, const BoardMember& y) { return x.off < y.off; });
         f.busy.assign(ms.size(), 0);
         // Observed variables, neighbours merged across padding (no variable between them); the
@@ -563,7 +523,7 @@ int board_fast_forward(Board* b, int mode) {
             }
         }
     } else {
-        f.spans.push_back({0, (uint32_t)sizeof(Vboard___024root)});
+        f.spans.push_back({0, (uint32_t)b->model.root_size});
         f.members.clear();
         f.busy.clear();
     }
@@ -577,7 +537,7 @@ int board_fast_forward(Board* b, int mode) {
     // its period too. A clock taken back goes on from now.
     for (size_t i = 1; i < b->clocks.size(); i++) {
         Clock& c = b->clocks[i];
-        const size_t q = (size_t)((const uint8_t*)c.q - (const uint8_t*)b->top->rootp);
+        const size_t q = (size_t)((const uint8_t*)c.q - b->model.root);
         bool seen = !observed;
         for (const Span& x : f.spans) seen |= q >= x.off && q < x.off + x.len;
         const bool park = f.on && !seen;
@@ -586,12 +546,12 @@ int board_fast_forward(Board* b, int mode) {
     }
     f.hint = 0;
     f.hint_mask = 0;
-    f.mark.assign(sizeof(Vboard___024root), 0);
+    f.mark.assign(b->model.root_size, 0);
     f.marked = false;
     f.activity = ~0ull;
     f.drifting = false;
     f.settle = kSettlePs;
-    f.bot_cycles = (size_t)((const uint8_t*)&b->top->rootp->bot_cycles - (const uint8_t*)b->top->rootp);
+    f.bot_cycles = (size_t)((const uint8_t*)b->io.bot_cycles - b->model.root);
     return f.on;
 }
 
@@ -741,7 +701,7 @@ static const bool kFfTrace = std::getenv("BOTSIM_FF_TRACE") != nullptr;
 // period that ends here stay, for the next to confirm.
 void ff_mark(Board* b, uint64_t t, bool drifting = false) {
     FastForward& f = b->ff;
-    std::memcpy(f.mark.data(), (const void*)b->top->rootp, f.mark.size());
+    std::memcpy(f.mark.data(), b->model.root, f.mark.size());
     f.drifting = drifting;
     for (Counting& k : f.counters) {
         counter_interval(k, counter_value(f.mark.data(), k), f.mark.data());
@@ -777,7 +737,7 @@ void ff_snap_take(Board* b, uint64_t t) {
     if (f.phases.size() == f.nphases) f.phases.emplace_back();
     Phase& p = f.phases[f.nphases++];
     p.at = t - f.mark_t;
-    const uint8_t* root = (const uint8_t*)b->top->rootp;
+    const uint8_t* root = b->model.root;
     p.root.assign(root, root + f.mark.size());
     p.clocks.resize(b->clocks.size());
     for (size_t i = 0; i < b->clocks.size(); i++) p.clocks[i] = phase_of(b->clocks[i], t);
@@ -795,7 +755,7 @@ uint64_t ff_restart(Board* b, uint64_t t);
 // its own.
 __attribute__((noinline)) uint64_t ff_counter_moved(Board* b, uint64_t t) {
     FastForward& f = b->ff;
-    const uint8_t* root = (const uint8_t*)b->top->rootp;
+    const uint8_t* root = b->model.root;
     if (!f.proven) {
         bool again = false;
         for (Counting& k : f.counters) again |= !counter_inside(k, root) && ++k.early >= 2;
@@ -858,7 +818,7 @@ inline __attribute__((always_inline)) uint64_t ff_step(Board* b, uint64_t t, uin
     FastForward& f = b->ff;
     if (b->host->activity != f.activity || !f.marked || f.overflow || t - f.mark_t > f.patience)
         return ff_restart(b, t);
-    uint8_t* root = (uint8_t*)b->top->rootp;
+    uint8_t* root = b->model.root;
     if (!f.counters.empty() && !counters_inside(f, root)) return ff_counter_moved(b, t);
     uint8_t* m = f.mark.data();
     std::memcpy(m + f.bot_cycles, root + f.bot_cycles, 8);  // a counter, not state
@@ -891,7 +851,7 @@ __attribute__((noinline)) uint64_t ff_restart(Board* b, uint64_t t) {
         // What still differed from the mark.
         long busy = -1;
         const uint64_t differ =
-            (load64((const uint8_t*)b->top->rootp + f.hint) ^ load64(f.mark.data() + f.hint)) & f.hint_mask;
+            (load64(b->model.root + f.hint) ^ load64(f.mark.data() + f.hint)) & f.hint_mask;
         if (differ) {
             const unsigned byte = (unsigned)__builtin_ctzll(differ) / 8;
             busy = member_at(f, f.hint + byte);
@@ -903,7 +863,7 @@ __attribute__((noinline)) uint64_t ff_restart(Board* b, uint64_t t) {
         // taken for a short one that is not back where it was may be a long one marked near
         // its turn: it counts again.
         f.patience = std::min(2 * f.patience, kMaxPeriodPs);
-        const uint8_t* root = (const uint8_t*)b->top->rootp;
+        const uint8_t* root = b->model.root;
         for (Counting& k : f.counters) {
             if (k.trial) {
                 // No longer period: back to a counter, and a longer wait before another trial.
@@ -927,7 +887,7 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
                                               uint32_t* n, Shown& s) {
     FastForward& f = b->ff;
     BoardHost* h = b->host;
-    uint8_t* root = (uint8_t*)b->top->rootp;
+    uint8_t* root = b->model.root;
     uint8_t* m = f.mark.data();
     const Span* spans = f.spans.data();
     const size_t nspans = f.spans.size();
@@ -1047,7 +1007,7 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
     }
     if (phase) shown(f.phases[phase - 1].shown, f.mark_t + (k + 1) * period);
     uint64_t skipped = k * period;
-    const uint64_t bot_cycles = b->top->rootp->bot_cycles;
+    const uint64_t bot_cycles = *b->io.bot_cycles;
     // The counters move on with the board: the mark and the snapshots to the period it is now
     // in, the board to its place in it (a counter compared as state: its value at the phase).
     for (const Counting& c : f.counters) {
@@ -1077,14 +1037,14 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
         Clock& c = b->clocks[i];
         if (!c.parked) set_phase(c, phase ? f.phases[phase - 1].clocks[i] : phase_of(c, t), t + skipped);
     }
-    b->top->rootp->bot_cycles = bot_cycles + edges;
+    *b->io.bot_cycles = bot_cycles + edges;
     b->now = t + skipped;
     b->ctx.time(b->now);
-    s.an = b->top->an;
-    s.seg = b->top->seg;
-    s.dp = b->top->dp;
-    s.led = b->top->led;
-    s.lines = b->top->lines;
+    s.an = *b->io.an;
+    s.seg = *b->io.seg;
+    s.dp = *b->io.dp;
+    s.led = *b->io.led;
+    s.lines = *b->io.lines;
     f.skips++;
     f.skipped_ps += skipped;
     return skipped / b->clocks[0].num;
@@ -1096,7 +1056,8 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
 template <bool kOneClock>
 uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, BoardEvent* buf, uint32_t cap,
                   uint32_t* n) {
-    Vboard* top = b->top;
+    const DesignModel& model = b->model;
+    const BoardPorts io = b->io;  // in locals: the evaluation is opaque to the compiler
     const size_t nc = b->clocks.size();
     Clock* clocks = b->clocks.data();
     const bool vga = b->vga, watch_bot = b->bot;
@@ -1118,7 +1079,8 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
 #ifdef BOTSIM_TIMING
             // A design with delays: the next of its timed events (in picoseconds, the
             // build's time precision) is a moment to evaluate too.
-            if (top->eventsPending() && top->nextTimeSlot() < t) t = top->nextTimeSlot();
+            if (model.events_pending(model.top) && model.next_time_slot(model.top) < t)
+                t = model.next_time_slot(model.top);
 #endif
         }
         if (t > until_ps) {
@@ -1148,14 +1110,12 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
         // runs on rising edges: Verilator notes the levels, and nothing is evaluated.
         const bool evaluate = rose || !rising_only;
         if (!evaluate) {
-#ifdef BOTSIM_EVAL_TRIGGERS
-            BOTSIM_EVAL_TRIGGERS(top->rootp);
-#endif
+            model.eval_triggers(model.root);
         } else if (b->vcd) {
-            top->eval();
+            model.eval(model.top);
             b->vcd->dump(t);
         } else {
-            Vboard___024root___eval(top->rootp);
+            model.eval_step(model.root);
         }
         s.evals += evaluate;
         if (b->ctx.gotFinish()) {  // $finish, or vl_fatal
@@ -1177,7 +1137,7 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
             }
         }
         if (!evaluate) continue;
-        uint8_t an = top->an, seg = top->seg, dp = top->dp;
+        uint8_t an = *io.an, seg = *io.seg, dp = *io.dp;
         if (an != s.an || seg != s.seg || dp != s.dp) {
             s.an = an;
             s.seg = seg;
@@ -1185,38 +1145,38 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
             record(buf, n, t, BOARD_EVENT_DISPLAY, an | (uint32_t)seg << 8 | (uint32_t)dp << 15, 0, 0);
         }
         if (vga) {
-            uint16_t v = (uint16_t)(top->vga_r << 8 | top->vga_g << 4 | top->vga_b | top->hsync << 12 | top->vsync << 13);
+            uint16_t v = (uint16_t)(*io.vga_r << 8 | *io.vga_g << 4 | *io.vga_b | *io.hsync << 12 | *io.vsync << 13);
             if (v != s.vga) {
                 s.vga = v;
                 record(buf, n, t, BOARD_EVENT_VGA, v, 0, 0);
             }
         }
-        if (top->led != s.led) {
-            s.led = top->led;
-            record(buf, n, t, BOARD_EVENT_LEDS, top->led, 0, 0);
+        if (*io.led != s.led) {
+            s.led = *io.led;
+            record(buf, n, t, BOARD_EVENT_LEDS, s.led, 0, 0);
         }
-        if (top->lines != s.lines) {
-            s.lines = top->lines;
-            record(buf, n, t, BOARD_EVENT_LINES, top->lines, 0, 0);
+        if (*io.lines != s.lines) {
+            s.lines = *io.lines;
+            record(buf, n, t, BOARD_EVENT_LINES, s.lines, 0, 0);
         }
         if (watch_bot) {
-            uint64_t v = (uint64_t)top->bot_locx | (uint64_t)top->bot_locy << 8 | (uint64_t)top->bot_info << 16 |
-                         (uint64_t)top->bot_sensors << 24 | (uint64_t)top->bot_lmdist << 32 |
-                         (uint64_t)top->bot_rmdist << 40 | (uint64_t)top->bot_upd << 48;
+            uint64_t v = (uint64_t)*io.bot_locx | (uint64_t)*io.bot_locy << 8 | (uint64_t)*io.bot_info << 16 |
+                         (uint64_t)*io.bot_sensors << 24 | (uint64_t)*io.bot_lmdist << 32 |
+                         (uint64_t)*io.bot_rmdist << 40 | (uint64_t)*io.bot_upd << 48;
             if (v != s.bot) {
                 s.bot = v;
                 record(buf, n, t, BOARD_EVENT_BOT, (uint32_t)(v >> 48), v & 0xFFFFFFFFFFFFull, 0);
             }
         }
-        bool upd = top->bot_upd;
+        bool upd = *io.bot_upd;
         if (upd != s.upd) {
             s.upd = upd;
             if (upd) {
-                uint64_t regs = (uint64_t)top->bot_locx | (uint64_t)top->bot_locy << 8 |
-                                (uint64_t)top->bot_info << 16 | (uint64_t)top->bot_sensors << 24 |
-                                (uint64_t)top->bot_lmdist << 32 | (uint64_t)top->bot_rmdist << 40 |
-                                (uint64_t)top->bot_motctl << 48;
-                record(buf, n, t, BOARD_EVENT_SAMPLE, (uint32_t)s.samples, regs, top->bot_cycles);
+                uint64_t regs = (uint64_t)*io.bot_locx | (uint64_t)*io.bot_locy << 8 |
+                                (uint64_t)*io.bot_info << 16 | (uint64_t)*io.bot_sensors << 24 |
+                                (uint64_t)*io.bot_lmdist << 32 | (uint64_t)*io.bot_rmdist << 40 |
+                                (uint64_t)*io.bot_motctl << 48;
+                record(buf, n, t, BOARD_EVENT_SAMPLE, (uint32_t)s.samples, regs, *io.bot_cycles);
                 if (++s.samples >= stop_after_samples) {
                     why = BOARD_SAMPLES;
                     break;
@@ -1282,15 +1242,15 @@ const char* board_fatal(Board* b) { return b->fatal.c_str(); }
 // of its own: it moves the model's time without the scheduler.
 void board_bench_minimal(Board* b, uint64_t cycles) {
     enter(b);
-    Vboard* top = b->top;
+    const DesignModel& model = b->model;
     try {
         for (uint64_t i = 0; i < cycles && !b->ctx.gotFinish(); i++) {
             b->ctx.timeInc(5000);
-            top->clk = 1;
-            top->eval();
+            *model.io.clk = 1;
+            model.eval(model.top);
             b->ctx.timeInc(5000);
-            top->clk = 0;
-            top->eval();
+            *model.io.clk = 0;
+            model.eval(model.top);
         }
     } catch (const Stopped&) {
     }

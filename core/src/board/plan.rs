@@ -127,6 +127,8 @@ pub struct UserFile {
     pub filtered: Option<String>,
     /// botsim wrote it (a core, a stand-in, a stub, a conversion): `path` says for what.
     pub generated: bool,
+    /// A conversion: the file and line its messages point at ([`super::source::Source`]).
+    pub converted_from: Option<(PathBuf, u32)>,
 }
 
 impl Plan {
@@ -394,7 +396,7 @@ impl Plan {
             let drop: Vec<std::ops::Range<usize>> =
                 s.modules.iter().filter(|m| replaced_names.contains(&m.name)).map(|m| m.span.clone()).collect();
             if drop.is_empty() && s.dropped.is_empty() && !s.edited {
-                files.push(UserFile { path: s.path.clone(), filtered: None, generated: false });
+                files.push(UserFile { path: s.path.clone(), filtered: None, generated: false, converted_from: None });
                 continue;
             }
             if drop.len() == s.modules.len() && !s.text.contains("`define") {
@@ -404,6 +406,7 @@ impl Plan {
                 path: s.path.clone(),
                 filtered: Some(s.compiled_text(&drop)),
                 generated: s.generated,
+                converted_from: s.converted_from.clone(),
             });
         }
 

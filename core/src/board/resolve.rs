@@ -901,8 +901,14 @@ impl<'a> Walk<'a> {
             match vhdl::to_verilog(&vhd, &beside, &entity, name, &generics) {
                 Ok(verilog) => {
                     let path = PathBuf::from(format!("{}.v", vhd.display()));
+                    let line = std::fs::read_to_string(&vhd)
+                        .ok()
+                        .and_then(|t| vhdl::entities(&t).into_iter().find(|(e, _)| e.eq_ignore_ascii_case(&entity)))
+                        .map_or(1, |(_, line)| line);
+                    let mut source = Source::generated(path, verilog);
+                    source.converted_from = Some((vhd.clone(), line));
                     return Some(Choice::Generated(
-                        Source::generated(path, verilog),
+                        source,
                         Some(Replacement {
                             module: name.to_string(),
                             from: vhd.display().to_string(),

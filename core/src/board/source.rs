@@ -22,6 +22,9 @@ pub struct Source {
     pub edited: bool,
     /// botsim wrote all of it (a core, a stand-in, a stub, a conversion).
     pub generated: bool,
+    /// A conversion of another language's file (GHDL's Verilog of a VHDL entity): the file
+    /// and line that messages about any of its lines point at, the entity's declaration.
+    pub converted_from: Option<(PathBuf, u32)>,
 }
 
 impl Source {
@@ -29,7 +32,15 @@ impl Source {
     pub fn new(path: impl Into<PathBuf>, text: impl Into<String>) -> Source {
         let text = text.into();
         let modules = scan::scan(&text);
-        Source { path: path.into(), text, modules, dropped: Vec::new(), edited: false, generated: false }
+        Source {
+            path: path.into(),
+            text,
+            modules,
+            dropped: Vec::new(),
+            edited: false,
+            generated: false,
+            converted_from: None,
+        }
     }
 
     /// A source botsim wrote (`path` says where it comes from and ends in `.v`).

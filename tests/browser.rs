@@ -421,3 +421,48 @@ fn the_page_tilts_the_board_and_plays_its_sound() {
     let d = devices_until(&tab, "a second of sound", |d| d["sound"]["samples"].as_u64() > Some(48_000));
     assert!(d["sound"]["peak"].as_f64() > Some(0.2), "{d}");
 }
+
+#[test]
+fn the_page_draws_every_bot_of_a_game() {
+    // The two-bot game (tests/board_designs/repos/two_bots: the course's bot and a team's
+    // BotSim 3.1 `bot31`, unnamed): the page draws the second in its own colour over the
+    // first and says where it is.
+    let Some(chromium) = chromium() else { return };
+    let game = common::repo::clone_of("two_bots");
+    let live = Live::start_in(game.path(), "board", &[".", "--param", "SIMULATE=1", "--speed", "max"]);
+    let (_browser, tab) = open(chromium, &live.url);
+    let shown = |tab: &Tab| -> Value {
+        let v = tab
+            .evaluate(
+                r##"(() => {
+                     const c = document.getElementById("world").getContext("2d");
+                     const px = c.getImageData(0, 0, 512, 512).data;
+                     let cyan = 0;
+                     for (let i = 0; i < px.length; i += 4) cyan += px[i] === 0 && px[i + 1] === 200 && px[i + 2] === 200;
+                     const text = (id) => document.getElementById(id).textContent;
+                     const first = "(" + text("r-x") + ", " + text("r-y") + ") " + text("r-heading");
+                     return JSON.stringify({ legend: text("others"), cyan, first });
+                   })()"##,
+                false,
+            )
+            .unwrap()
+            .value
+            .unwrap();
+        serde_json::from_str(v.as_str().unwrap()).unwrap()
+    };
+    until(&tab, "a few samples", |p| p["status"] == "live" && p["samples"].as_u64().is_some_and(|n| n >= 3));
+    // The second bot stands where the first does (the same motors): its place in the legend,
+    // and its arrow on the world.
+    let start = Instant::now();
+    loop {
+        let s = shown(&tab);
+        let (legend, first) = (s["legend"].as_str().unwrap(), s["first"].as_str().unwrap());
+        if legend.contains(&format!("nexys4fpga.SYS.bot31_72 {first}")) && s["cyan"].as_u64().unwrap() > 10 {
+            break;
+        }
+        assert!(start.elapsed() < BUDGET, "the page never drew the second bot where the first is: {s}");
+        std::thread::sleep(Duration::from_millis(100));
+    }
+    let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
+    std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-two-bots-page.png"), &shot).unwrap();
+}

@@ -516,3 +516,38 @@ fn a_note_about_a_vhdl_entity_points_at_its_vhd_file() {
     assert!(note.starts_with("note: loopy.vhd:5: "), "{note}");
     assert!(!said.contains(".vhd.v"), "{said}");
 }
+
+#[test]
+fn two_bots_of_two_kinds_each_traced_as_the_one_bot_of_project_2() {
+    // A game's hero (the course's 2.0 `bot`) and monster (the team's BotSim 3.1 `bot31`),
+    // both unnamed, given the same motor control: each one's trace equals the one bot's of
+    // the same Project 2, sample for sample and cycle for cycle; each is reported, and the
+    // picture draws both.
+    let game = clone_of("two_bots");
+    let course = clone_of("unnamed_bot");
+    let args = [".", "--param", "SIMULATE=1", "--seconds", "0.16", "--trace-csv", "trace.csv", "--png", "path.png"];
+    let (s, said) = run(game.path(), &args);
+    let first = said.lines().find(|l| l.starts_with("botsim board: top")).unwrap();
+    assert!(first.contains(", 2 bots: `nexys4fpga."), "{first}");
+    assert!(said.contains("  the team's bot `bot31` (bot31/bot31.v:"), "{said}");
+    let bots = s["bots"].as_array().unwrap_or_else(|| panic!("{s}"));
+    assert_eq!(bots.len(), 2, "{s}");
+    assert_eq!(bots[0]["module"], "bot");
+    assert_eq!(bots[1]["module"], "bot31");
+    let monster = bots[1]["path"].as_str().unwrap();
+    let told = String::from_utf8_lossy(&board_in(game.path(), &args).stdout).into_owned();
+    assert!(told.contains(&format!("  the bot at `{monster}`: {} samples, ended at (", bots[1]["samples"])), "{told}");
+    let (c, _) = run(course.path(), &args);
+    let samples = c["samples"].as_u64().unwrap();
+    assert!(samples >= 4, "{c}");
+    assert_eq!(s["samples"], samples, "{s}");
+    assert_eq!(bots[1]["samples"], samples, "{s}");
+    let read = |d: &Path, f: &str| std::fs::read_to_string(d.join(f)).unwrap_or_else(|e| panic!("{f}: {e}"));
+    let one = read(course.path(), "trace.csv");
+    assert_eq!(read(game.path(), "trace.csv"), one);
+    assert_eq!(read(game.path(), &format!("trace.{monster}.csv")), one);
+    // The picture of both paths (each bot's colour: a unit test of render.rs; here they
+    // share their cells).
+    let (w, h, _) = common::decode_png(&game.path().join("path.png"));
+    assert_eq!((w, h), (512, 512));
+}

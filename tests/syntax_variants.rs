@@ -75,6 +75,14 @@ fn record(dir: &Path, inputs: &[&str], args: &[&str], out: &Path, bot: bool) -> 
     for k in ["wall_seconds", "build_seconds", "design_lines", "verilator"] {
         summary.as_object_mut().unwrap().remove(k);
     }
+    // The name botsim gives an unnamed instance says its line (`bot_64`), which a variant
+    // moves: each bot's path without it.
+    for b in summary["bots"].as_array_mut().into_iter().flatten() {
+        if let Some(p) = b["path"].as_str() {
+            let unlined = p.trim_end_matches(|c: char| c.is_ascii_digit()).to_string();
+            b["path"] = unlined.into();
+        }
+    }
     let read = |p: &str| std::fs::read_to_string(p).unwrap_or_default();
     Record { trace: read(&trace), display: read(&display), pins: read(&pins), summary }
 }

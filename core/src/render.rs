@@ -67,6 +67,15 @@ impl Canvas {
 
 /// A PNG of `world` with the path of `snapshots` drawn on it.
 pub fn path_picture(world: &World, snapshots: &[Snapshot], threshold: u8, style: &PathStyle) -> Vec<u8> {
+    paths_picture(world, &[snapshots], threshold, style)
+}
+
+/// The paths of a design's other bots (the second, third, fourth): cyan, yellow, red.
+pub const OTHER_PATHS: [[u8; 3]; 3] = [[0, 200, 200], [230, 200, 0], [220, 40, 40]];
+
+/// A PNG of `world` with the paths of several bots drawn on it, the first in `style.path`,
+/// the others in [`OTHER_PATHS`]; each bot's start, end and refused moves as `style` says.
+pub fn paths_picture(world: &World, trails: &[&[Snapshot]], threshold: u8, style: &PathStyle) -> Vec<u8> {
     let s = style.scale.max(1) as i64;
     let n = SIZE as i64;
     let mut c = Canvas::new((n * s) as u32, (n * s) as u32);
@@ -75,8 +84,17 @@ pub fn path_picture(world: &World, snapshots: &[Snapshot], threshold: u8, style:
             c.rect(x * s, y * s, s, s, world.get(x as u8, y as u8).colour());
         }
     }
+    for (k, snapshots) in trails.iter().enumerate() {
+        let path = if k == 0 { style.path } else { OTHER_PATHS[(k - 1) % OTHER_PATHS.len()] };
+        trail(&mut c, s, snapshots, threshold, &PathStyle { path, ..*style });
+    }
+    encode_rgb(c.w, c.h, &c.rgb)
+}
+
+/// One bot's path on the canvas: the middle of each visited cell (the cell's own colour stays
+/// visible around it), its refused moves, its start and its end with its heading.
+fn trail(c: &mut Canvas, s: i64, snapshots: &[Snapshot], threshold: u8, style: &PathStyle) {
     let cell = |(x, y): (u8, u8)| ((x as i64 & 127) * s, (y as i64 & 127) * s);
-    // The path: the middle of each visited cell (the cell's own colour stays visible around it).
     let inner = (s / 2).max(1);
     let off = (s - inner) / 2;
     for snap in snapshots {
@@ -105,7 +123,6 @@ pub fn path_picture(world: &World, snapshots: &[Snapshot], threshold: u8, style:
             c.put(cx + dx as i64 * k, cy + dy as i64 * k, style.end);
         }
     }
-    encode_rgb(c.w, c.h, &c.rgb)
 }
 
 /// The course display: 640 x 480, the world at 4 x 4 pixels per cell (rows 0-119 visible, 512
@@ -217,5 +234,34 @@ pub mod display {
             }
         }
         encode_rgb(c.w, c.h, &c.rgb)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::regs::Registers;
+
+    fn colours(png_bytes: &[u8]) -> std::collections::BTreeSet<[u8; 3]> {
+        let mut r = png::Decoder::new(std::io::Cursor::new(png_bytes)).read_info().unwrap();
+        let mut buf = vec![0; r.output_buffer_size().unwrap()];
+        let info = r.next_frame(&mut buf).unwrap();
+        buf[..info.buffer_size()].chunks(3).map(|p| [p[0], p[1], p[2]]).collect()
+    }
+
+    #[test]
+    fn each_bot_has_its_own_path_colour() {
+        let at = |sample, loc_x, loc_y| Snapshot {
+            sample,
+            cycle: 0,
+            regs: Registers { loc_x, loc_y, bot_info: 0x42, ..Registers::default() },
+        };
+        let hero: Vec<Snapshot> = (0..6).map(|k| at(k, 10 + k as u8, 20)).collect();
+        let monster: Vec<Snapshot> = (0..6).map(|k| at(k, 40, 50 + k as u8)).collect();
+        let style = PathStyle::default();
+        let both = colours(&paths_picture(&World::empty(), &[&hero, &monster], 15, &style));
+        assert!(both.contains(&style.path) && both.contains(&OTHER_PATHS[0]), "{both:?}");
+        let one = colours(&path_picture(&World::empty(), &hero, 15, &style));
+        assert!(one.contains(&style.path) && !one.contains(&OTHER_PATHS[0]), "{one:?}");
     }
 }

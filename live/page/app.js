@@ -349,6 +349,16 @@ function showState(s) {
     $("r-lmdist").textContent = b.lmdist;
     $("r-rmdist").textContent = b.rmdist;
   }
+  // Where the other bots are, in their colours, under the world.
+  const legend = $("others");
+  legend.textContent = "";
+  (s.others || []).forEach((o, i) => {
+    const e = document.createElement("span");
+    e.className = "other-bot";
+    e.style.color = OTHER_COLOURS[i % OTHER_COLOURS.length];
+    e.textContent = " \u25B6 " + o.path + (o.bot ? " (" + o.bot.x + ", " + o.bot.y + ") " + o.bot.heading : ": no sample yet");
+    legend.appendChild(e);
+  });
   drawWorld();
 }
 
@@ -384,23 +394,34 @@ function drawWorld() {
     g.stroke();
   }
   const b = state && state.bot;
-  if (b) {
-    g.save();
-    g.translate((b.x + 0.5) * k, (b.y + 0.5) * k);
-    g.rotate(((HEADING[b.heading] || 0) * Math.PI) / 180);
-    g.fillStyle = "#2f80ed";
-    g.strokeStyle = "#fff";
-    g.lineWidth = 1.5;
-    g.beginPath();
-    g.moveTo(9, 0);
-    g.lineTo(-7, -7);
-    g.lineTo(-4, 0);
-    g.lineTo(-7, 7);
-    g.closePath();
-    g.fill();
-    g.stroke();
-    g.restore();
-  }
+  if (b) drawBot(g, k, b, "#2f80ed", 1);
+  // The design's other bots (a game's monster), each in its own colour, smaller and over the
+  // first: bots on one cell stay visible.
+  const others = (state && state.others) || [];
+  others.forEach((o, i) => o.bot && drawBot(g, k, o.bot, OTHER_COLOURS[i % OTHER_COLOURS.length], 0.6));
+}
+
+// The other bots' colours (the second, third and fourth bot: botsim's pictures' too).
+const OTHER_COLOURS = ["#00c8c8", "#e6c800", "#dc2828"];
+
+// A bot as an arrow on its cell, pointing where it heads (`size` 1: the first bot's).
+function drawBot(g, k, b, colour, size) {
+  g.save();
+  g.translate((b.x + 0.5) * k, (b.y + 0.5) * k);
+  g.rotate(((HEADING[b.heading] || 0) * Math.PI) / 180);
+  g.scale(size, size);
+  g.fillStyle = colour;
+  g.strokeStyle = "#fff";
+  g.lineWidth = 1.5;
+  g.beginPath();
+  g.moveTo(9, 0);
+  g.lineTo(-7, -7);
+  g.lineTo(-4, 0);
+  g.lineTo(-7, 7);
+  g.closePath();
+  g.fill();
+  g.stroke();
+  g.restore();
 }
 
 function showError(text) {

@@ -249,12 +249,23 @@ pub struct BoardView {
     pub text: String,
     pub samples: u64,
     pub bot: Option<BotView>,
+    /// The design's other bots (a game's monster): each one's path from the top and its last
+    /// sample, if it has had one.
+    pub others: Vec<(String, Option<BotView>)>,
     /// VGA frames per second of wall time, the last few seconds.
     pub frame_rate: f64,
     /// The bot alone: the MotCtl_in the page set (or the driver gave) for the next sample.
     pub motors: Option<u8>,
     /// Why the run cannot keep the pace asked for, in one line; `None` while it keeps it.
     pub behind: Option<String>,
+}
+
+/// A bot's last sample in the `state` message.
+fn bot_json(b: &BotView) -> Value {
+    json!({
+        "sample": b.sample, "x": b.x, "y": b.y, "heading": b.heading, "movement": b.movement,
+        "info": b.info, "sensors": b.sensors, "lmdist": b.lmdist, "rmdist": b.rmdist, "motctl": b.motctl,
+    })
 }
 
 impl BoardView {
@@ -272,10 +283,8 @@ impl BoardView {
             "digits": self.digits,
             "text": self.text,
             "samples": self.samples,
-            "bot": self.bot.as_ref().map(|b| json!({
-                "sample": b.sample, "x": b.x, "y": b.y, "heading": b.heading, "movement": b.movement,
-                "info": b.info, "sensors": b.sensors, "lmdist": b.lmdist, "rmdist": b.rmdist, "motctl": b.motctl,
-            })),
+            "bot": self.bot.as_ref().map(bot_json),
+            "others": self.others.iter().map(|(path, b)| json!({"path": path, "bot": b.as_ref().map(bot_json)})).collect::<Vec<_>>(),
             "frame_rate": self.frame_rate,
             "behind": self.behind,
             "motors": self.motors,

@@ -11,7 +11,8 @@ enum {
     BOARD_EVENT_VGA = 4,
     BOARD_EVENT_BOT = 5,
     BOARD_EVENT_REPEAT = 6,
-    BOARD_EVENT_LINES = 7
+    BOARD_EVENT_LINES = 7,
+    BOARD_EVENT_OTHER_SAMPLE = 8
 };
 /* The devices botsim_push feeds. */
 enum { BOARD_UART = 0, BOARD_KEYBOARD = 1 };
@@ -20,6 +21,8 @@ enum { BOARD_UNTIL = 0, BOARD_BUFFER_FULL = 1, BOARD_SAMPLES = 2, BOARD_FINISHED
 /* One thing the board showed. DISPLAY: a = an | seg << 8 | dp << 15. LEDS: a = led.
  * SAMPLE: a = sample index, b = LocX | LocY << 8 | BotInfo << 16 | Sensors << 24 |
  * LMDist << 32 | RMDist << 40 | MotCtl << 48, c = the bot's clock cycles since power-up.
+ * OTHER_SAMPLE: another bot's upd_sysregs; a = its sample index | the bot (1..3) << 28, b as
+ * SAMPLE's, c = the first bot's clock cycles.
  * VGA (when board_record_vga is on): a = r << 8 | g << 4 | b | hsync << 12 | vsync << 13.
  * BOT (when board_record_bot is on): any of the bot's outputs changed; a = upd_sysregs,
  * b = LocX | LocY << 8 | BotInfo << 16 | Sensors << 24 | LMDist << 32 | RMDist << 40.

@@ -69,6 +69,10 @@ DesignModel botsim_model_new(VerilatedContext* ctx) {
     m.io.bot_rmdist = &t->bot_rmdist;
     m.io.bot_motctl = &t->bot_motctl;
     m.io.bot_cycles = &t->bot_cycles;
+    m.io.xbot_upd = &t->xbot_upd;
+    m.io.xbot_regs[0] = &t->xbot_regs1;
+    m.io.xbot_regs[1] = &t->xbot_regs2;
+    m.io.xbot_regs[2] = &t->xbot_regs3;
     m.observed_known = kObservedKnown;
     m.members = [](const uint8_t* r, std::vector<BoardMember>& out) { botsim_members(root_of(r), out); };
     m.counters = [](const uint8_t* r, std::vector<BoardCounter>& out) { botsim_counters(root_of(r), out); };

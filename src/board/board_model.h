@@ -59,6 +59,10 @@ struct BoardPorts {
     // The bot's registers at its ports, and its clock count (botsim's, not the design's).
     CData *bot_upd, *bot_locx, *bot_locy, *bot_info, *bot_sensors, *bot_lmdist, *bot_rmdist, *bot_motctl;
     QData* bot_cycles;
+    // The design's other bots: their upd_sysregs (bit k - 1 for bot k) and registers, packed
+    // as a SAMPLE's (board_abi.h).
+    CData* xbot_upd;
+    QData* xbot_regs[3];
 };
 
 // A design's model.

@@ -129,6 +129,9 @@ constexpr uint64_t kTrialPays = 4;
 // dimmed): more, and the mark is taken again. A skip writes one period's and a phase's; the
 // caller's buffer (model.rs's RECORDS) has room for both.
 constexpr size_t kMaxShown = 1 << 16;
+// The most records one evaluation writes: the display, the VGA pins, the LEDs, the lines, the
+// bot's outputs, its sample and the other bots' three.
+constexpr uint32_t kMaxPerEval = 9;
 
 // The fast-forward (a one-clock board whose KCPSM6s are models and whose bot is a model):
 // after a rising edge, when the whole model (every byte of Verilator's state, every KCPSM6
@@ -278,6 +281,8 @@ struct Board {
     uint64_t last_bot = 0;
     bool last_upd = false;
     uint64_t samples = 0;
+    uint8_t last_xupd = 0;        // the other bots' upd_sysregs
+    uint32_t xsamples[3] = {0, 0, 0};
     std::string fatal;
     std::string finish;      // where the design called $finish
     std::string error_said;  // the message of the design's last $error or $fatal
@@ -588,6 +593,8 @@ struct Shown {
     uint64_t bot;
     bool upd;
     uint64_t samples, evals;
+    uint8_t xupd;             // the other bots' upd_sysregs
+    uint32_t xsamples[3];     // and their samples
 };
 
 
@@ -953,11 +960,11 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
     f.proven = true;
     for (Counting& c : f.counters) c.early = 0;
     // The records of the skip: the period's once, one record repeating them, the phase's
-    // part; and room for one evaluation's (5) to spare.
+    // part; and room for one evaluation's to spare.
     const size_t per = f.shown.size();
     uint64_t k = 0;
     size_t phase = 0;
-    if (t < until_ps && cap - *n >= 2 * per + 8) {
+    if (t < until_ps && cap - *n >= 2 * per + 2 + kMaxPerEval) {
         const uint64_t ahead = until_ps - t;
         // Whole periods the counters allow (a phase of the next needs one more).
         uint64_t counted = ~0ull;
@@ -1065,10 +1072,11 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
     // picoseconds), after the oscillator's rising edges.
     const bool ff = b->ff.on && !b->vcd && clocks[0].den == 1 && !(vga && b->ff.observed_only);
     const bool rising_only = b->rising_only && !b->vcd;
-    Shown s{b->last_an, b->last_seg, b->last_dp, b->last_led, b->last_vga, b->last_lines, b->last_bot, b->last_upd, b->samples, b->evals};
+    Shown s{b->last_an, b->last_seg, b->last_dp, b->last_led, b->last_vga, b->last_lines, b->last_bot, b->last_upd,
+            b->samples, b->evals, b->last_xupd, {b->xsamples[0], b->xsamples[1], b->xsamples[2]}};
     uint32_t why = BOARD_BUFFER_FULL;
-    // Room for one evaluation's records (at most 6) must remain.
-    while (*n + 6 <= cap) {
+    // Room for one evaluation's records must remain.
+    while (*n + kMaxPerEval <= cap) {
         uint64_t t;
         if (kOneClock) {
             t = clocks[0].next_t;
@@ -1168,6 +1176,17 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
                 record(buf, n, t, BOARD_EVENT_BOT, (uint32_t)(v >> 48), v & 0xFFFFFFFFFFFFull, 0);
             }
         }
+        // The other bots' samples (before the first's, which may end the run).
+        const uint8_t xupd = *io.xbot_upd;
+        if (xupd != s.xupd) {
+            for (uint32_t k = 0; k < 3; k++) {
+                if ((xupd >> k & 1) && !(s.xupd >> k & 1)) {
+                    record(buf, n, t, BOARD_EVENT_OTHER_SAMPLE, s.xsamples[k]++ | (k + 1) << 28, *io.xbot_regs[k],
+                           *io.bot_cycles);
+                }
+            }
+            s.xupd = xupd;
+        }
         bool upd = *io.bot_upd;
         if (upd != s.upd) {
             s.upd = upd;
@@ -1208,6 +1227,8 @@ uint32_t run_loop(Board* b, uint64_t until_ps, uint64_t stop_after_samples, Boar
     b->last_upd = s.upd;
     b->samples = s.samples;
     b->evals = s.evals;
+    b->last_xupd = s.xupd;
+    for (int k = 0; k < 3; k++) b->xsamples[k] = s.xsamples[k];
     return why;
 }
 

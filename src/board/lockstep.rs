@@ -172,6 +172,9 @@ fn show(e: Option<&Event>) -> String {
         Some(Event::Sample { snapshot, motctl, .. }) => {
             format!("bot sample {} {:?} MotCtl {:02X}", snapshot.sample, snapshot.regs, motctl.0)
         }
+        Some(Event::OtherSample { bot, snapshot, motctl, .. }) => {
+            format!("bot {bot}'s sample {} {:?} MotCtl {:02X}", snapshot.sample, snapshot.regs, motctl.0)
+        }
         Some(Event::Vga { pins, .. }) => format!("VGA pins {pins:04X}"),
         Some(Event::Bot { upd, regs, .. }) => {
             format!("the bot's outputs upd_sysregs {} registers {regs:012X} (RMDist..LocX)", *upd as u8)

@@ -33,6 +33,9 @@ pub enum Event {
     /// upd_sysregs rose: the bot's registers (the cycle counted in the bot's clock from
     /// power-up) and the MotCtl it was given.
     Sample { time_ps: u64, snapshot: Snapshot, motctl: MotCtl },
+    /// upd_sysregs of another of the design's bots (`bot` 1.., in `Plan::other_bots`' order):
+    /// as `Sample` (the cycle counted in the first bot's clock).
+    OtherSample { time_ps: u64, bot: usize, snapshot: Snapshot, motctl: MotCtl },
     /// The VGA pins changed (recorded only after [`BoardModel::record_vga`]):
     /// `r << 8 | g << 4 | b | hsync << 12 | vsync << 13`.
     Vga { time_ps: u64, pins: u16 },
@@ -62,7 +65,7 @@ impl Event {
         Some(match e.kind {
             1 => Event::Display { time_ps: t, an: e.a as u8, seg: (e.a >> 8) as u8 & 0x7F, dp: e.a >> 15 & 1 == 1 },
             2 => Event::Leds { time_ps: t, leds: e.a as u16 },
-            3 => {
+            3 | 8 => {
                 let byte = |k: u32| (e.b >> (8 * k)) as u8;
                 let regs = Registers {
                     loc_x: byte(0),
@@ -72,10 +75,11 @@ impl Event {
                     lm_dist: byte(4),
                     rm_dist: byte(5),
                 };
-                Event::Sample {
-                    time_ps: t,
-                    snapshot: Snapshot { sample: e.a as u64, cycle: e.c, regs },
-                    motctl: MotCtl(byte(6)),
+                let (sample, bot) = if e.kind == 3 { (e.a, 0) } else { (e.a & 0x0FFF_FFFF, (e.a >> 28) as usize) };
+                let snapshot = Snapshot { sample: sample as u64, cycle: e.c, regs };
+                match bot {
+                    0 => Event::Sample { time_ps: t, snapshot, motctl: MotCtl(byte(6)) },
+                    _ => Event::OtherSample { time_ps: t, bot, snapshot, motctl: MotCtl(byte(6)) },
                 }
             }
             4 => Event::Vga { time_ps: t, pins: e.a as u16 },
@@ -92,6 +96,7 @@ impl Event {
             Event::Display { time_ps, .. }
             | Event::Leds { time_ps, .. }
             | Event::Sample { time_ps, .. }
+            | Event::OtherSample { time_ps, .. }
             | Event::Vga { time_ps, .. }
             | Event::Bot { time_ps, .. }
             | Event::Lines { time_ps, .. }
@@ -105,6 +110,7 @@ impl Event {
             Event::Display { time_ps, .. }
             | Event::Leds { time_ps, .. }
             | Event::Sample { time_ps, .. }
+            | Event::OtherSample { time_ps, .. }
             | Event::Vga { time_ps, .. }
             | Event::Bot { time_ps, .. }
             | Event::Lines { time_ps, .. }

@@ -30,6 +30,9 @@ pub struct Request {
     pub bot_firmware: Image,
     /// True when the request selects botsim's firmware even if the user has a `bot_pgm`.
     pub force_own_firmware: bool,
+    /// Of several bots, the one that options about the bot mean (`--bot-at`): its instance
+    /// path from the top, with or without the top's name.
+    pub first_bot: Option<String>,
 }
 
 /// A ROM to generate: the module name, its program, and where the program came from.
@@ -87,6 +90,9 @@ pub struct Plan {
     pub bot_cpu: Option<String>,
     /// The bot is the team's own module (a BotSim 3.1 `bot`), simulated from its RTL.
     pub team_bot: Option<TeamBot>,
+    /// The design's other bots (a game's monster beside its hero), each traced and reported
+    /// as the first is; at most [`MAX_BOTS`] in all.
+    pub other_bots: Vec<BotSite>,
     /// botsim's own module names that are the team's modules here (other ports than
     /// botsim's: [`foreign_port`]): kept as committed, botsim's left out of the build.
     pub kept: BTreeSet<String>,
@@ -94,6 +100,17 @@ pub struct Plan {
     pub loc_y_reg: bool,
     /// Every KCPSM6 instance: the team's and, last, the bot's.
     pub cpus: Vec<CpuSite>,
+}
+
+/// The most bots a design may have (the board's wrapper taps each: src/board/wrapper.rs).
+pub const MAX_BOTS: usize = 4;
+
+/// A bot of the design: its path from the top, its KCPSM6's, and its module when the team's.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BotSite {
+    pub path: String,
+    pub cpu: Option<String>,
+    pub team: Option<TeamBot>,
 }
 
 /// A bot the team defines (a module with the bot's ports, [`is_bot`], that is not botsim's
@@ -116,6 +133,22 @@ impl Plan {
     /// the design has no bot or its bot is the team's.
     pub fn own_bot(&self) -> Option<&str> {
         self.bot_path.as_deref().filter(|_| self.team_bot.is_none())
+    }
+
+    /// Some bot of the design is botsim's own (BotSim 2.0): `--bot` chooses what stands for
+    /// botsim's bots.
+    pub fn has_own_bot(&self) -> bool {
+        self.bots().iter().any(|b| b.team.is_none())
+    }
+
+    /// Every bot of the design, the first (the one options about "the bot" mean) first.
+    pub fn bots(&self) -> Vec<BotSite> {
+        let first = self.bot_path.as_ref().map(|path| BotSite {
+            path: path.clone(),
+            cpu: self.bot_cpu.clone(),
+            team: self.team_bot.clone(),
+        });
+        first.into_iter().chain(self.other_bots.iter().cloned()).collect()
     }
 }
 
@@ -241,28 +274,48 @@ impl Plan {
         if let Some(e) = missing {
             return Err(e);
         }
-        let every: Vec<&str> = bot_paths.iter().chain(team_bots.iter().map(|(p, _)| p)).map(String::as_str).collect();
-        if every.len() > 1 {
+        // Every bot, botsim's BotSim 2.0 ones first, each kind in the order of its path: the
+        // first is the one options about "the bot" mean.
+        bot_paths.sort();
+        team_bots.sort_by(|a, b| a.0.cmp(&b.0));
+        let mut bots: Vec<BotSite> = Vec::new();
+        for one in &bot_paths {
+            let cpu = format!("{one}.{BOT_CPU_INSTANCE}");
+            cpus.push(CpuSite { path: cpu.clone(), rom: Ok("bot_pgm".into()), at: "botsim's bot".into() });
+            bots.push(BotSite { path: one.clone(), cpu: Some(cpu), team: None });
+        }
+        for (path, team) in &team_bots {
+            let inside = format!("{path}.");
+            let cpu = cpus.iter().find(|c| c.path.starts_with(&inside)).map(|c| c.path.clone());
+            bots.push(BotSite { path: path.clone(), cpu, team: Some(team.clone()) });
+        }
+        if let Some(name) = &req.first_bot {
+            let named = |b: &BotSite| *name == b.path || *name == format!("{top}.{}", b.path);
+            let Some(k) = bots.iter().position(named) else {
+                let paths: Vec<String> = bots.iter().map(|b| format!("{top}.{}", b.path)).collect();
+                return Err(BoardError::plain(match paths.is_empty() {
+                    true => format!("--bot-at {name}: the design has no bot"),
+                    false => format!("--bot-at {name}: the design's bots are {}", paths.join(", ")),
+                }));
+            };
+            let chosen = bots.remove(k);
+            bots.insert(0, chosen);
+        }
+        if bots.len() > MAX_BOTS {
+            let paths: Vec<&str> = bots.iter().map(|b| b.path.as_str()).collect();
             return Err(BoardError::plain(format!(
-                "the design has {} bots ({}); botsim simulates one",
-                every.len(),
-                every.join(", ")
+                "the design has {} bots ({}); botsim simulates up to {MAX_BOTS}",
+                bots.len(),
+                paths.join(", ")
             )));
         }
-        let (bot_path, bot_cpu, team_bot) = match (bot_paths.first(), team_bots.first()) {
-            (Some(one), _) => {
-                let path = format!("{one}.{BOT_CPU_INSTANCE}");
-                cpus.push(CpuSite { path: path.clone(), rom: Ok("bot_pgm".into()), at: "botsim's bot".into() });
-                (Some(one.clone()), Some(path), None)
-            }
-            (None, Some((path, team))) => {
-                let inside = format!("{path}.");
-                let cpu = cpus.iter().find(|c| c.path.starts_with(&inside)).map(|c| c.path.clone());
-                (Some(path.clone()), cpu, Some(team.clone()))
-            }
-            (None, None) => (None, None, None),
+        let mut bots = bots.into_iter();
+        let (bot_path, bot_cpu, team_bot) = match bots.next() {
+            Some(b) => (Some(b.path), b.cpu, b.team),
+            None => (None, None, None),
         };
-        let own_bot = bot_path.is_some() && team_bot.is_none();
+        let other_bots: Vec<BotSite> = bots.collect();
+        let own_bot = !bot_paths.is_empty();
 
         // Substitutions.
         let mut replaced = Vec::new();
@@ -439,6 +492,7 @@ impl Plan {
             bot_path,
             bot_cpu,
             team_bot,
+            other_bots,
             kept,
             loc_y_reg,
             cpus,
@@ -528,7 +582,7 @@ mod tests {
     }
 
     fn request() -> Request {
-        Request { programs: vec![], bot_firmware: Image::zeroed(), force_own_firmware: false }
+        Request { programs: vec![], bot_firmware: Image::zeroed(), force_own_firmware: false, first_bot: None }
     }
 
     /// `sources` as the resolver gives them, with `top`.
@@ -543,6 +597,33 @@ mod tests {
             placed: None,
         };
         Plan::new(&design, req)
+    }
+
+    #[test]
+    fn every_bot_in_path_order_up_to_the_most_botsim_simulates() {
+        let design = |n: usize| {
+            let bots: String = (0..n).map(|k| format!(" bot b{k} (.clk(clk));\n")).collect();
+            src("top.v", &format!("module top(input clk, output [15:0] led);\n{bots}endmodule\n"))
+        };
+        let p = plan("top", vec![design(3)], &request()).unwrap();
+        assert_eq!(p.bot_path.as_deref(), Some("b0"));
+        let others: Vec<&str> = p.other_bots.iter().map(|b| b.path.as_str()).collect();
+        assert_eq!(others, ["b1", "b2"]);
+        assert_eq!(p.bots().len(), 3);
+        // Each bot's CPU is one the host gives the bot's firmware.
+        assert!(p.other_bots.iter().all(|b| p.cpus.iter().any(|c| Some(&c.path) == b.cpu.as_ref())));
+        // Another first, by its path with or without the top's name; one that is no bot's, said.
+        for name in ["b2", "top.b2"] {
+            let p = plan("top", vec![design(3)], &Request { first_bot: Some(name.into()), ..request() }).unwrap();
+            assert_eq!(p.bot_path.as_deref(), Some("b2"));
+            let others: Vec<&str> = p.other_bots.iter().map(|b| b.path.as_str()).collect();
+            assert_eq!(others, ["b0", "b1"]);
+        }
+        let e = plan("top", vec![design(3)], &Request { first_bot: Some("b7".into()), ..request() }).unwrap_err();
+        assert_eq!(e.to_string(), "--bot-at b7: the design's bots are top.b0, top.b1, top.b2");
+        let e = plan("top", vec![design(MAX_BOTS + 1)], &request()).unwrap_err().to_string();
+        assert!(e.contains(&format!("the design has {} bots (b0, b1", MAX_BOTS + 1)), "{e}");
+        assert!(e.ends_with(&format!("botsim simulates up to {MAX_BOTS}")), "{e}");
     }
 
     #[test]

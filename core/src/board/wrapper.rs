@@ -7,7 +7,9 @@
 //! `vga_r/g/b[3:0]`, `hsync`, `vsync` out (active low where the board's are, and "off" when
 //! the design has no such pin); and the substituted bot's `bot_upd`, registers, MotCtl and
 //! `bot_cycles` (rising edges of the bot's clock since power-up), read through hierarchical
-//! references.
+//! references; the design's other bots' `upd_sysregs` as the bits of `xbot_upd` and their
+//! registers and MotCtl packed as `bot_*` are, LocX in the low byte, as `xbot_regs1`..
+//! (`MAX_BOTS` in all; 0 where there is none).
 //!
 //! The peripherals (rtl/board/devices.v, instantiated when the design has their pins): the
 //! bytes the host sends to the USB-UART's line into the FPGA and to the keyboard come in
@@ -21,7 +23,7 @@ use kcpsm6::asm::RomSize;
 use kcpsm6::output::verilog_rom;
 
 use super::pins::{Peripheral, Role};
-use super::plan::Plan;
+use super::plan::{BotSite, Plan, MAX_BOTS};
 
 /// The wrapper module's name.
 pub const TOP: &str = "botsim_board";
@@ -174,7 +176,11 @@ pub fn board_top(plan: &Plan, params: &[(String, String)]) -> String {
          \x20   output wire [ 7:0] bot_lmdist,\n\
          \x20   output wire [ 7:0] bot_rmdist,\n\
          \x20   output wire [ 7:0] bot_motctl,\n\
-         \x20   output reg  [63:0] bot_cycles\n\
+         \x20   output reg  [63:0] bot_cycles,\n\
+         \x20   output wire [ 2:0] xbot_upd,\n\
+         \x20   output wire [55:0] xbot_regs1,\n\
+         \x20   output wire [55:0] xbot_regs2,\n\
+         \x20   output wire [55:0] xbot_regs3\n\
          );\n\
          {decl}\
          {devices}\
@@ -297,44 +303,78 @@ fn devices(plan: &Plan) -> (String, Vec<(&'static str, String)>) {
     (v, out)
 }
 
-/// The board's view of the bot: its registers through hierarchical references to the
-/// instance at `path` below the user's top, or all 0 (a clock that never ticks) without one.
+/// The board's view of the bots: the first's registers through hierarchical references to
+/// its instance below the user's top, or all 0 (a clock that never ticks) without one; the
+/// others' packed, each in its own `xbot_regs`.
 fn bot_taps(plan: &Plan) -> String {
-    let Some(path) = plan.bot_path.as_deref() else {
-        return "    // The design has no bot: its outputs are 0 and its clock stands still.\n    wire bot_clk = 1'b0;\n    assign {bot_upd, bot_locx, bot_locy, bot_info, bot_sensors, bot_lmdist, bot_rmdist, bot_motctl} = 57'd0;\n".to_string();
-    };
-    let bot = format!("user.{path}");
-    if let Some(team) = &plan.team_bot {
-        // The team's own bot (a BotSim 3.1 `bot`), seen at its ports.
-        return format!(
-            "    // The team's bot `{module}`, seen at its ports through hierarchical references.\n\
-             \x20   wire bot_clk = {bot}.clk;\n\
-             \x20   assign bot_upd = {bot}.upd_sysregs;\n\
-             \x20   assign bot_locx = {bot}.LocX_reg;\n\
-             \x20   assign bot_locy = {bot}.{locy};\n\
-             \x20   assign bot_info = {bot}.BotInfo_reg;\n\
-             \x20   assign bot_sensors = {bot}.Sensors_reg;\n\
-             \x20   assign bot_lmdist = {lmdist};\n\
-             \x20   assign bot_rmdist = {rmdist};\n\
-             \x20   assign bot_motctl = {bot}.MotCtl_in;\n",
-            module = team.module,
-            locy = team.locy,
-            lmdist = if team.has_distances { format!("{bot}.LMDist_reg") } else { "8'd0".into() },
-            rmdist = if team.has_distances { format!("{bot}.RMDist_reg") } else { "8'd0".into() },
-        );
+    let bots = plan.bots();
+    let mut out = String::new();
+    match bots.first() {
+        None => out.push_str(
+            "    // The design has no bot: its outputs are 0 and its clock stands still.\n    wire bot_clk = 1'b0;\n    assign {bot_upd, bot_locx, bot_locy, bot_info, bot_sensors, bot_lmdist, bot_rmdist, bot_motctl} = 57'd0;\n",
+        ),
+        Some(first) => {
+            let r = registers(first);
+            out.push_str(&format!(
+                "    // {what}, seen through hierarchical references.\n\
+                 \x20   wire bot_clk = {clk};\n\
+                 \x20   assign bot_upd = {upd};\n\
+                 \x20   assign {{bot_motctl, bot_rmdist, bot_lmdist, bot_sensors, bot_info, bot_locy, bot_locx}} = {regs};\n",
+                what = r.what,
+                clk = r.clk,
+                upd = r.upd,
+                regs = r.packed,
+            ));
+        }
     }
-    format!(
-        "    // The substituted bot, seen through hierarchical references.\n\
-         \x20   wire bot_clk = {bot}.clk;\n\
-         \x20   assign bot_upd = {bot}.upd_sysregs;\n\
-         \x20   assign bot_locx = {bot}.LocX_reg;\n\
-         \x20   assign bot_locy = {bot}.loc_y;\n\
-         \x20   assign bot_info = {bot}.BotInfo_reg;\n\
-         \x20   assign bot_sensors = {bot}.Sensors_reg;\n\
-         \x20   assign bot_lmdist = {bot}.LMDist_reg;\n\
-         \x20   assign bot_rmdist = {bot}.RMDist_reg;\n\
-         \x20   assign bot_motctl = {bot}.MotCtl_in;\n"
-    )
+    let mut upd = Vec::new();
+    for k in 1..MAX_BOTS {
+        match bots.get(k) {
+            Some(b) => {
+                let r = registers(b);
+                out.push_str(&format!("    // {}.\n    assign xbot_regs{k} = {};\n", r.what, r.packed));
+                upd.push(r.upd);
+            }
+            None => {
+                out.push_str(&format!("    assign xbot_regs{k} = 56'd0;\n"));
+                upd.push("1'b0".into());
+            }
+        }
+    }
+    upd.reverse();
+    out.push_str(&format!("    assign xbot_upd = {{{}}};\n", upd.join(", ")));
+    out
+}
+
+/// A bot's clock, `upd_sysregs` and registers (MotCtl down to LocX, 56 bits) as the wrapper
+/// reads them, and what it is.
+struct BotRegisters {
+    what: String,
+    clk: String,
+    upd: String,
+    packed: String,
+}
+
+fn registers(site: &BotSite) -> BotRegisters {
+    let bot = format!("user.{}", site.path);
+    let (what, locy, distances) = match &site.team {
+        // The team's own bot (a BotSim 3.1 `bot`), seen at its ports.
+        Some(t) => (format!("The team's bot `{}` at `{}`", t.module, site.path), t.locy.as_str(), t.has_distances),
+        None => (format!("The substituted bot at `{}`", site.path), "loc_y", true),
+    };
+    let (lm, rm) = if distances {
+        (format!("{bot}.LMDist_reg"), format!("{bot}.RMDist_reg"))
+    } else {
+        ("8'd0".into(), "8'd0".into())
+    };
+    BotRegisters {
+        what,
+        clk: format!("{bot}.clk"),
+        upd: format!("{bot}.upd_sysregs"),
+        packed: format!(
+            "{{{bot}.MotCtl_in, {rm}, {lm}, {bot}.Sensors_reg, {bot}.BotInfo_reg, {bot}.{locy}, {bot}.LocX_reg}}"
+        ),
+    }
 }
 
 /// The behavioural ROMs of the plan: (module name, Verilog). Their words are not in the
@@ -373,7 +413,12 @@ mod tests {
         let text = format!("{top}\nbot b (.clk(clk100));\nendmodule\n");
         let src = Source::new("top.v", text);
         let top = src.modules[0].name.clone();
-        let req = Request { programs: vec![], bot_firmware: kcpsm6::image::Image::zeroed(), force_own_firmware: false };
+        let req = Request {
+            programs: vec![],
+            bot_firmware: kcpsm6::image::Image::zeroed(),
+            force_own_firmware: false,
+            first_bot: None,
+        };
         let design = Design {
             top,
             project: None,

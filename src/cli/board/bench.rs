@@ -39,7 +39,7 @@ fn against_rtl(a: &Args, p: &Prepared) -> Result<(), String> {
     };
     let mut rtl_args = quiet(a.clone());
     // (A design without a bot has nothing to set it for.)
-    (rtl_args.cpu, rtl_args.bot) = (Some(CpuArg::Rtl), p.plan.own_bot().map(|_| BotArg::Rtl));
+    (rtl_args.cpu, rtl_args.bot) = (Some(CpuArg::Rtl), p.plan.has_own_bot().then_some(BotArg::Rtl));
     let rtl = prepare(&rtl_args)?;
     let run_args = quiet(a.clone());
     let (mut fast, mut slow, mut ratios, mut overhead) = (vec![], vec![], vec![], vec![]);

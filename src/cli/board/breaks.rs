@@ -102,7 +102,8 @@ pub fn write_save_file(
             ],
         );
     }
-    let in_bot = |path: &str| plan.own_bot().is_some_and(|b| path.strip_prefix(b).is_some_and(|r| r.starts_with('.')));
+    let own: Vec<String> = plan.bots().into_iter().filter(|b| b.team.is_none()).map(|b| b.path).collect();
+    let in_bot = |path: &str| own.iter().any(|b| path.strip_prefix(b.as_str()).is_some_and(|r| r.starts_with('.')));
     for site in plan.cpus.iter().filter(|c| !(bot_model && in_bot(&c.path))) {
         let at = format!("{top}.user.{}", site.path);
         let debug = if probed { format!("{at}.core") } else { at.clone() };

@@ -66,6 +66,8 @@ struct Board {
     leds: u16,
     samples: u64,
     bot: Option<BotView>,
+    /// The design's other bots: path and last sample.
+    others: Vec<(String, Option<BotView>)>,
     vga: Capture,
     /// Inputs so far, as a stimulus; buttons held now have `to` = u64::MAX.
     inputs: Stimulus,
@@ -202,6 +204,7 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
         leds: 0,
         samples: 0,
         bot: None,
+        others: p.plan.other_bots.iter().map(|b| (format!("{}.{}", p.plan.top, b.path), None)).collect(),
         vga: Capture::default(),
         inputs,
         dirty: true,
@@ -426,6 +429,13 @@ impl Board {
             }
             Event::Vga { time_ps, pins } => self.vga.pins(time_ps, pins),
             Event::Lines { time_ps, lines } => self.heard.lines(time_ps, lines),
+            Event::OtherSample { bot, snapshot, motctl, .. } => {
+                let view = bot_view(&snapshot, motctl.0);
+                if let Some(o) = self.others.get_mut(bot - 1) {
+                    self.dirty |= o.1.as_ref().map_or(true, |b| (b.x, b.y, b.info) != (view.x, view.y, view.info));
+                    o.1 = Some(view);
+                }
+            }
             Event::Bot { .. } | Event::Repeat { .. } => {}
         }
     }
@@ -633,6 +643,7 @@ impl Board {
             text: line.map_or(String::new(), |l| l.text.clone()),
             samples: self.samples,
             bot: self.bot.clone(),
+            others: self.others.clone(),
             frame_rate,
             motors: None,
             behind: None,

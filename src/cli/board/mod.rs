@@ -168,6 +168,12 @@ pub struct Args {
     /// rtl where the run looks inside the bot's CPU (--cpu-trace, --break) or with --cpu rtl]
     #[arg(long, value_enum)]
     bot: Option<BotArg>,
+    /// Of a design's several bots (a game's hero and monster), the one the options about the
+    /// bot mean (--trace-csv's own file, --break on the bot, --stop-at-line-end, the summary's
+    /// samples): its instance path as the run's first line lists them (`nexys4fpga.SYS.hero`
+    /// or `SYS.hero`) [default: the first listed]. The others' traces go beside its own.
+    #[arg(long, value_name = "PATH")]
+    bot_at: Option<String>,
     /// With --cpu iss --bot model the board skips the periods in which all the run records
     /// repeats itself (the same results, edge for edge); this simulates every edge
     #[arg(long)]

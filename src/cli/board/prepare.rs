@@ -208,7 +208,7 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
             .collect::<Result<Vec<_>, _>>()?,
     };
     let design = resolve(&a.sources, &options).map_err(|e| e.to_string())?;
-    let req = Request { programs, bot_firmware, force_own_firmware: a.firmware.any() };
+    let req = Request { programs, bot_firmware, force_own_firmware: a.firmware.any(), first_bot: a.bot_at.clone() };
     let mut plan = Plan::new(&design, &req).map_err(|e| e.to_string())?;
     // Every --param names a parameter of the top.
     if let Some((src, top)) = design.sources.iter().find_map(|s| s.module(&design.top).map(|m| (s, m))) {
@@ -241,29 +241,41 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
     for n in &design.notes {
         a.say(format!("note: {n}"));
     }
-    match &plan.bot_path {
-        Some(b) => {
-            a.say(format!("botsim board: top `{}`, bot at `{}.{b}`", plan.top, plan.top));
-            if let Some(t) = &plan.team_bot {
-                let which = match &t.config {
-                    Some(port) => format!("a later BotSim than 2.0 (port `{port}`; BotSim 3.1)"),
-                    None => "the bot's ports around a KCPSM6".to_string(),
-                };
-                a.say(format!(
-                    "  the team's bot `{}` ({}) is {which}: simulated from its own RTL, with botsim's kcpsm6 and the world from the map",
-                    t.module, t.at
-                ));
-                if a.bot == Some(BotArg::Model) {
-                    return Err(format!(
-                        "--bot model: the design's bot is the team's `{}` ({}), simulated from its RTL; botsim's model is BotSim 2.0's",
-                        t.module, t.at
-                    ));
-                }
-            }
-        }
-        None => {
+    let bots = plan.bots();
+    match bots.as_slice() {
+        [] => {
             bot_options_without_bot(a)?;
             a.say(format!("botsim board: top `{}`, no bot (the board alone)", plan.top));
+        }
+        [one] => a.say(format!("botsim board: top `{}`, bot at `{}.{}`", plan.top, plan.top, one.path)),
+        [first, rest @ ..] => {
+            let rest: Vec<String> = rest.iter().map(|b| format!("`{}.{}`", plan.top, b.path)).collect();
+            a.say(format!(
+                "botsim board: top `{}`, {} bots: `{}.{}` (the one options about the bot mean; --bot-at names another), {}",
+                plan.top,
+                bots.len(),
+                plan.top,
+                first.path,
+                rest.join(", ")
+            ));
+        }
+    }
+    let mut said = std::collections::BTreeSet::new();
+    for (k, b) in bots.iter().enumerate() {
+        let Some(t) = b.team.as_ref().filter(|t| said.insert(t.module.clone())) else { continue };
+        let which = match &t.config {
+            Some(port) => format!("a later BotSim than 2.0 (port `{port}`; BotSim 3.1)"),
+            None => "the bot's ports around a KCPSM6".to_string(),
+        };
+        a.say(format!(
+            "  the team's bot `{}` ({}) is {which}: simulated from its own RTL, with botsim's kcpsm6 and the world from the map",
+            t.module, t.at
+        ));
+        if k == 0 && a.bot == Some(BotArg::Model) && !plan.has_own_bot() {
+            return Err(format!(
+                "--bot model: the design's bot is the team's `{}` ({}), simulated from its RTL; botsim's model is BotSim 2.0's",
+                t.module, t.at
+            ));
         }
     }
     for r in &plan.replaced {
@@ -345,7 +357,7 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
     let looks_inside = a.cpu_trace.is_some() || !a.breaks.is_empty();
     let bot = match (a.bot, cpu_arg) {
         // Without a bot, nothing is built for one: the board's runs are as with a model.
-        _ if plan.own_bot().is_none() => BotKind::Model,
+        _ if !plan.has_own_bot() => BotKind::Model,
         (Some(BotArg::Model), _) => BotKind::Model,
         (None, CpuArg::Iss | CpuArg::Lockstep) if !looks_inside => BotKind::Model,
         _ => BotKind::Rtl,

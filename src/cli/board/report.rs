@@ -1,7 +1,10 @@
 //! What a run leaves: its output files and its summary (a line, or JSON).
 
+use std::path::{Path, PathBuf};
+
 use botsim::files::write_atomic;
-use botsim::render::{path_picture, PathStyle};
+use botsim::regs::Snapshot;
+use botsim::render::{paths_picture, PathStyle};
 
 use super::breaks::Stopped;
 use super::prepare::Prepared;
@@ -9,6 +12,7 @@ use super::session::{at_line_end, Outcome};
 use super::Args;
 use crate::cli::rows::{csv_row, CSV_HEADER};
 use botsim_core::board::pins::Role;
+use botsim_core::board::plan::BotSite;
 
 /// Below this fraction of its time skipped, a run says what kept it busy.
 const BUSY_SAID: f64 = 0.9;
@@ -77,15 +81,36 @@ pub fn report(a: &Args, p: &Prepared, mut o: Outcome) -> Result<Stopped, String>
         write_atomic(f, &audio.wav())?;
     }
     let has_uart = p.plan.pins.iter().any(|(_, r)| *r == Role::UartTx);
+    // The first bot's traces where the options say; each other bot's beside them, named by
+    // its instance path (`trace.csv` -> `trace.top.MONSTER.csv`).
+    let others: Vec<(&BotSite, &[Snapshot], &str)> = p
+        .plan
+        .other_bots
+        .iter()
+        .enumerate()
+        .map(|(k, b)| match o.rec.others.get(k) {
+            Some(t) => (b, &t.snapshots[..], t.json.as_str()),
+            None => (b, &[][..], ""),
+        })
+        .collect();
     if let Some(f) = &a.trace_csv {
-        let mut csv = format!("{CSV_HEADER}\n");
-        for s in &o.rec.snapshots {
-            csv.push_str(&csv_row(s));
+        let csv = |snapshots: &[Snapshot]| {
+            let mut csv = format!("{CSV_HEADER}\n");
+            for s in snapshots {
+                csv.push_str(&csv_row(s));
+            }
+            csv
+        };
+        write_atomic(f, csv(&o.rec.snapshots).as_bytes())?;
+        for (b, snapshots, _) in &others {
+            write_atomic(&per_bot(f, &b.path), csv(snapshots).as_bytes())?;
         }
-        write_atomic(f, csv.as_bytes())?;
     }
     if let Some(f) = &a.trace_json {
         write_atomic(f, o.rec.json.as_bytes())?;
+        for (b, _, json) in &others {
+            write_atomic(&per_bot(f, &b.path), json.as_bytes())?;
+        }
     }
     if let Some(f) = &a.pins {
         write_atomic(f, o.rec.pins_csv.as_deref().unwrap_or_default().as_bytes())?;
@@ -97,7 +122,9 @@ pub fn report(a: &Args, p: &Prepared, mut o: Outcome) -> Result<Stopped, String>
         write_atomic(f, o.rec.display_log.as_bytes())?;
     }
     if let Some(f) = &a.png {
-        let picture = path_picture(&p.world, &o.rec.snapshots, p.fw.threshold, &PathStyle::default());
+        let trails: Vec<&[Snapshot]> =
+            std::iter::once(&o.rec.snapshots[..]).chain(others.iter().map(|(_, s, _)| *s)).collect();
+        let picture = paths_picture(&p.world, &trails, p.fw.threshold, &PathStyle::default());
         write_atomic(f, &picture)?;
     }
     let skipped_fraction = if o.sim_ps == 0 { 0.0 } else { o.skipped_ps as f64 / o.sim_ps as f64 };
@@ -123,6 +150,19 @@ pub fn report(a: &Args, p: &Prepared, mut o: Outcome) -> Result<Stopped, String>
             })),
             "blocked_moves": blocked.len(),
             "first_blocked_sample": blocked.first(),
+            // Every bot, the first (the one above) first.
+            "bots": p.plan.bots().iter().enumerate().map(|(k, b)| {
+                let snapshots = if k == 0 { &o.rec.snapshots[..] } else { others[k - 1].1 };
+                serde_json::json!({
+                    "path": b.path,
+                    "module": b.team.as_ref().map_or("bot", |t| t.module.as_str()),
+                    "samples": snapshots.len(),
+                    "end": snapshots.last().map(|s| serde_json::json!({
+                        "loc_x": s.regs.loc_x, "loc_y": s.regs.loc_y, "sensors": s.regs.sensors,
+                        "orientation": s.orientation().name(), "movement": s.movement().name(),
+                    })),
+                })
+            }).collect::<Vec<_>>(),
             "display": last_display,
             "leds": o.rec.last_led,
             "vga_frames": o.rec.frames_seen,
@@ -159,7 +199,7 @@ pub fn report(a: &Args, p: &Prepared, mut o: Outcome) -> Result<Stopped, String>
         let mut v = v;
         if p.plan.bot_path.is_none() {
             // The board alone: nothing of a bot to say.
-            for key in ["samples", "end", "blocked_moves", "first_blocked_sample"] {
+            for key in ["samples", "end", "blocked_moves", "first_blocked_sample", "bots"] {
                 v.as_object_mut().expect("an object").remove(key);
             }
         }
@@ -192,6 +232,13 @@ pub fn report(a: &Args, p: &Prepared, mut o: Outcome) -> Result<Stopped, String>
                 b.times
             );
         }
+        for (b, snapshots, _) in &others {
+            let end = match snapshots.last() {
+                Some(s) => format!("ended at ({}, {})", s.regs.loc_x, s.regs.loc_y),
+                None => "had no sample yet".into(),
+            };
+            println!("  the bot at `{}`: {} samples, {end}", b.path, snapshots.len());
+        }
         if let Some(line) = o.rec.heard.uart_summary() {
             println!("  {line}");
         }
@@ -200,4 +247,15 @@ pub fn report(a: &Args, p: &Prepared, mut o: Outcome) -> Result<Stopped, String>
         }
     }
     Ok(o.stopped)
+}
+
+/// Where another bot's trace goes beside the first's `file`: its instance path before the
+/// extension (`trace.csv`, `top.MONSTER` -> `trace.top.MONSTER.csv`).
+fn per_bot(file: &Path, path: &str) -> PathBuf {
+    let stem = file.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = match file.extension() {
+        Some(e) => format!("{stem}.{path}.{}", e.to_string_lossy()),
+        None => format!("{stem}.{path}"),
+    };
+    file.with_file_name(name)
 }

@@ -60,6 +60,9 @@ pub struct Records {
     pub snapshots: Vec<Snapshot>,
     pub json: String,
     pub last_sample_ps: u64,
+    /// The design's other bots' samples (`Plan::other_bots`' order), as `snapshots` and
+    /// `json` are the first's.
+    pub others: Vec<BotTrace>,
     /// The VGA output (with `frames`, its frames are written there).
     pub vga: Capture,
     frames: Option<PathBuf>,
@@ -70,6 +73,13 @@ pub struct Records {
     pub heard: Heard,
     /// `--lines`: every change of the peripherals' lines (kept only when asked for).
     pub lines_csv: Option<String>,
+}
+
+/// Another bot's samples: its snapshots and their JSON rows.
+#[derive(Default)]
+pub struct BotTrace {
+    pub snapshots: Vec<Snapshot>,
+    pub json: String,
 }
 
 impl Records {
@@ -83,6 +93,7 @@ impl Records {
             snapshots: Vec::new(),
             json: String::new(),
             last_sample_ps: 0,
+            others: Vec::new(),
             vga: Capture::default(),
             frames,
             frame_every: frame_every.max(1),
@@ -117,6 +128,14 @@ impl Records {
                 self.last_sample_ps = time_ps;
                 self.json.push_str(&json_row(&snapshot, motctl));
                 self.snapshots.push(snapshot);
+            }
+            Event::OtherSample { bot, snapshot, motctl, .. } => {
+                if self.others.len() < bot {
+                    self.others.resize_with(bot, BotTrace::default);
+                }
+                let t = &mut self.others[bot - 1];
+                t.json.push_str(&json_row(&snapshot, motctl));
+                t.snapshots.push(snapshot);
             }
             Event::Vga { time_ps, pins } => self.vga.pins(time_ps, pins),
             Event::Lines { time_ps, lines } => {

@@ -47,7 +47,7 @@ fn open(chromium: PathBuf, url: &str) -> (Browser, std::sync::Arc<Tab>) {
 
 /// What the page shows, read in one go.
 const PAGE: &str = r#"(() => {
-  const on = (id) => document.getElementById(id).classList.contains("on");
+  const on = (id) => { const e = document.getElementById(id); return !!e && e.classList.contains("on"); };
   const text = (id) => document.getElementById(id).textContent;
   const img = document.getElementById("vga");
   return JSON.stringify({
@@ -465,4 +465,52 @@ fn the_page_draws_every_bot_of_a_game() {
     }
     let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
     std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-two-bots-page.png"), &shot).unwrap();
+}
+
+#[test]
+fn the_page_draws_a_nexys3_for_a_nexys3_design() {
+    // tests/board_designs/nexys3_dcm: four digits, eight LEDs and switches, its reset the
+    // centre button BTNS. The page draws that board, and its switches and digits work.
+    let Some(chromium) = chromium() else { return };
+    let live = Live::start(&["tests/board_designs/nexys3_dcm", "--param", "SIMULATE=1", "--speed", "max"]);
+    let (_browser, tab) = open(chromium, &live.url);
+    let drawn = |tab: &Tab| -> Value {
+        let v = tab
+            .evaluate(
+                r##"JSON.stringify({
+                     status: document.getElementById("status").textContent,
+                     title: document.querySelector("#board .silk.big").textContent,
+                     digits: digits.length, leds: leds.length, knobs: knobs.length,
+                     labels: Array.from(document.querySelectorAll("#board text.silk")).map((t) => t.textContent)
+                       .filter((t) => t.startsWith("BTN") || t === "CPU RESET"),
+                     lit: digits.map((segs) => segs.reduce((a, s, k) => a | (s.classList.contains("on") ? 1 << k : 0), 0)),
+                     state: state ? { digits: state.digits, switches: state.switches } : null })"##,
+                false,
+            )
+            .unwrap()
+            .value
+            .unwrap();
+        serde_json::from_str(v.as_str().unwrap()).unwrap()
+    };
+    let start = Instant::now();
+    let d = loop {
+        let d = drawn(&tab);
+        if d["status"] == "live"
+            && d["state"].is_object()
+            && d["lit"].as_array().is_some_and(|l| l.iter().any(|x| x != 0))
+        {
+            break d;
+        }
+        assert!(start.elapsed() < BUDGET, "the page never showed the design's digits: {d}");
+        std::thread::sleep(Duration::from_millis(100));
+    };
+    assert_eq!(d["title"], "NEXYS3", "{d}");
+    assert_eq!((d["digits"].as_u64(), d["leds"].as_u64(), d["knobs"].as_u64()), (Some(4), Some(8), Some(8)), "{d}");
+    let labels: Vec<&str> = d["labels"].as_array().unwrap().iter().filter_map(Value::as_str).collect();
+    assert_eq!(labels, ["BTNS", "BTNU", "BTNL", "BTNR", "BTND"], "{d}");
+    // The switch the page shows as SW3 is the design's sw[3].
+    tab.evaluate("document.getElementById('sw3').dispatchEvent(new MouseEvent('click'))", false).unwrap();
+    until(&tab, "switch 3 on", |p| p["switches"] == 8);
+    let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
+    std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-nexys3-page.png"), &shot).unwrap();
 }

@@ -554,7 +554,12 @@ fn two_bots_of_two_kinds_each_traced_as_the_one_bot_of_project_2() {
     let o = board_in(game.path(), &[".", "--param", "SIMULATE=1", "--bot-at", "SYS.hero"]);
     assert_eq!(o.status.code(), Some(1));
     let e = stderr(&o);
-    assert!(e.trim_end().ends_with(&format!("--bot-at SYS.hero: the design's bots are nexys4fpga.SYS.bot_64, nexys4fpga.{monster}")), "{e}");
+    assert!(
+        e.trim_end().ends_with(&format!(
+            "--bot-at SYS.hero: the design's bots are nexys4fpga.SYS.bot_64, nexys4fpga.{monster}"
+        )),
+        "{e}"
+    );
     // The picture of both paths (each bot's colour: a unit test of render.rs; here they
     // share their cells).
     let (w, h, _) = common::decode_png(&game.path().join("path.png"));

@@ -30,7 +30,21 @@ function send(msg) {
 // ---- The board drawing ----------------------------------------------------------------
 const leds = [], knobs = [], digits = [], buttons = {};
 
-function drawBoard() {
+// The board the design is made for (the server's hello says which: board.md's Nexys4, Nexys4
+// DDR or Nexys3): its digits, LEDs and switches, and its buttons as [botsim's name, label],
+// the reset first. Until the hello, a Nexys4.
+const NEXYS4 = {
+  name: "NEXYS4", digits: 8, leds: 16, switches: 16,
+  buttons: [["btnCpuReset", "CPU RESET"], ["btnU", "BTNU"], ["btnL", "BTNL"], ["btnC", "BTNC"], ["btnR", "BTNR"], ["btnD", "BTND"]],
+};
+let face = NEXYS4;
+
+function drawBoard(f) {
+  face = f;
+  board.replaceChildren();
+  board.setAttribute("aria-label", "The " + f.name + " board");
+  leds.length = knobs.length = digits.length = 0;
+  for (const k of Object.keys(buttons)) delete buttons[k];
   const defs = el("defs");
   const glow = el("filter", { id: "glow", x: "-50%", y: "-50%", width: "200%", height: "200%" }, defs);
   el("feGaussianBlur", { stdDeviation: "2.2", result: "b" }, glow);
@@ -41,35 +55,41 @@ function drawBoard() {
   el("rect", { class: "pcb", x: 6, y: 6, width: 648, height: 428, rx: 14 });
   for (const [x, y] of [[24, 24], [636, 24], [24, 416], [636, 416]]) el("circle", { cx: x, cy: y, r: 7, fill: "#c9b98f" });
   const t = el("text", { class: "silk big", x: 40, y: 44 });
-  t.textContent = "NEXYS4";
-  const s = el("text", { class: "silk", x: 116, y: 44 });
+  t.textContent = f.name;
+  const s = el("text", { class: "silk", x: 60 + 12 * f.name.length, y: 44 });
   s.textContent = "botsim live board";
 
-  // Eight digits, digit 7 on the left.
-  el("rect", { x: 108, y: 66, width: 404, height: 92, rx: 6, fill: "#0b0b0b" });
-  for (let i = 0; i < 8; i++) digits[7 - i] = drawDigit(124 + i * 48, 78);
+  // The digits, the highest on the left, centred over x = 310.
+  const box = f.digits * 48 + 20;
+  el("rect", { x: 310 - box / 2, y: 66, width: box, height: 92, rx: 6, fill: "#0b0b0b" });
+  for (let i = 0; i < f.digits; i++) digits[f.digits - 1 - i] = drawDigit(310 - box / 2 + 16 + i * 48, 78);
 
-  // The CPU reset button and the five push buttons.
-  drawButton("btnCpuReset", 590, 62, "CPU RESET", true);
+  // The buttons: a separate reset button (labelled CPU RESET), or the reset in the middle of
+  // the cross (a Nexys3's BTNS), and the others around it.
   const cx = 560, cy = 218, d = 44;
-  drawButton("btnU", cx, cy - d, "BTNU");
-  drawButton("btnL", cx - d, cy, "BTNL");
-  drawButton("btnC", cx, cy, "BTNC");
-  drawButton("btnR", cx + d, cy, "BTNR");
-  drawButton("btnD", cx, cy + d, "BTND");
+  const at = { btnU: [cx, cy - d], btnL: [cx - d, cy], btnC: [cx, cy], btnR: [cx + d, cy], btnD: [cx, cy + d] };
+  for (const [name, label] of f.buttons) {
+    if (name === "btnCpuReset" && label === "CPU RESET") drawButton(name, 590, 62, label, true);
+    else if (name === "btnCpuReset") drawButton(name, cx, cy, label, false);
+    else drawButton(name, at[name][0], at[name][1], label);
+  }
 
-  // Sixteen LEDs over sixteen switches, 15 on the left.
-  for (let i = 0; i < 16; i++) {
-    const x = 40 + (15 - i) * 36;
-    leds[i] = el("rect", { class: "led", id: "ld" + i, x: x - 6, y: 318, width: 12, height: 8, rx: 2 });
-    const l = el("text", { class: "silk", x: x, y: 312, "text-anchor": "middle" });
-    l.textContent = "LD" + i;
-    el("rect", { class: "sw-slot", x: x - 7, y: 344, width: 14, height: 44, rx: 3 });
-    const knob = el("rect", { class: "sw-knob", id: "sw" + i, x: x - 6, y: 368, width: 12, height: 18, rx: 2 });
-    knob.addEventListener("click", () => toggleSwitch(i));
-    knobs[i] = knob;
-    const sl = el("text", { class: "silk", x: x, y: 404, "text-anchor": "middle" });
-    sl.textContent = "SW" + i;
+  // The LEDs over the switches, the highest on the left, centred over x = 310.
+  for (let i = 0; i < Math.max(f.leds, f.switches); i++) {
+    const x = 310 + ((Math.max(f.leds, f.switches) - 1) / 2 - i) * 36;
+    if (i < f.leds) {
+      leds[i] = el("rect", { class: "led", id: "ld" + i, x: x - 6, y: 318, width: 12, height: 8, rx: 2 });
+      const l = el("text", { class: "silk", x: x, y: 312, "text-anchor": "middle" });
+      l.textContent = "LD" + i;
+    }
+    if (i < f.switches) {
+      el("rect", { class: "sw-slot", x: x - 7, y: 344, width: 14, height: 44, rx: 3 });
+      const knob = el("rect", { class: "sw-knob", id: "sw" + i, x: x - 6, y: 368, width: 12, height: 18, rx: 2 });
+      knob.addEventListener("click", () => toggleSwitch(i));
+      knobs[i] = knob;
+      const sl = el("text", { class: "silk", x: x, y: 404, "text-anchor": "middle" });
+      sl.textContent = "SW" + i;
+    }
   }
 }
 
@@ -118,6 +138,7 @@ window.addEventListener("mouseup", () => {
 });
 
 function press(name, down) {
+  if (!buttons[name]) return; // not on this board
   buttons[name].classList.toggle("down", down);
   send({ type: "button", name: name, down: down });
 }
@@ -311,11 +332,9 @@ function showSpeed(factor) {
 
 function showState(s) {
   state = s;
-  for (let i = 0; i < 16; i++) {
-    leds[i].classList.toggle("on", (s.leds >> i & 1) === 1);
-    knobs[i].setAttribute("transform", (s.switches >> i & 1) ? "translate(0,-22)" : "");
-  }
-  for (let d = 0; d < 8; d++) {
+  leds.forEach((led, i) => led.classList.toggle("on", (s.leds >> i & 1) === 1));
+  knobs.forEach((knob, i) => knob.setAttribute("transform", (s.switches >> i & 1) ? "translate(0,-22)" : ""));
+  for (let d = 0; d < digits.length; d++) {
     const lit = s.digits[d];
     digits[d].forEach((seg, k) => seg.classList.toggle("on", (lit >> k & 1) === 1));
   }
@@ -459,6 +478,7 @@ function onMessage(ev) {
   if (m.gpio) return; // ViDBo's shape, for ViDBo front ends
   switch (m.type) {
     case "hello":
+      if (m.board) drawBoard(m.board);
       world = m.world;
       worldImage = null;
       path.length = 0;
@@ -535,5 +555,5 @@ function connect() {
   ws.onmessage = onMessage;
 }
 
-drawBoard();
+drawBoard(NEXYS4);
 connect();

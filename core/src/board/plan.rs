@@ -11,6 +11,7 @@ use std::path::{Path, PathBuf};
 
 use kcpsm6::image::Image;
 
+use super::constraints::Board;
 use super::parts::{
     bot_locy_port, foreign_port, is_bot, is_program_rom, Replacement, HELPERS, OWN_MODULES, PRIMITIVES,
 };
@@ -77,6 +78,8 @@ pub struct Plan {
     pub warnings: Vec<String>,
     pub pins: Vec<(String, Role)>,
     pub unknown_pins: Vec<String>,
+    /// The board a constraint file places the top's pins on, if one does.
+    pub board: Option<Board>,
     /// The top's port widths.
     pub widths: BTreeMap<String, u32>,
     /// The top's input ports, and its inout ones.
@@ -486,6 +489,7 @@ impl Plan {
             warnings,
             pins,
             unknown_pins,
+            board: design.placed.as_ref().map(|p| p.board),
             widths,
             inputs,
             inouts,

@@ -178,6 +178,7 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
         },
         "tilt": tilt.unwrap_or(FLAT).map(|mg| mg as f64 / 1000.0),
         "design": {"top": p.plan.top, "sources": sources.join(" ")},
+        "board": face(&p.plan),
         "world": p.plan.bot_path.as_ref().map(|_| world_json(&p.world)),
         "mode": "board",
         "protocol": 1,
@@ -648,5 +649,40 @@ impl Board {
             motors: None,
             behind: None,
         }
+    }
+}
+
+/// The board the page draws: the one the design's constraint file places its pins on, else
+/// the one its pins are shaped for (a Nexys3's four digits and eight switches and LEDs, the
+/// Nexys4 DDR's upper-case names); its controls' counts, its buttons (botsim's names, which the
+/// commands use, with the board's labels: a Nexys3's centre button `BTNS` is its reset) and
+/// its name.
+fn face(plan: &botsim_core::board::plan::Plan) -> serde_json::Value {
+    use botsim_core::board::constraints::Board;
+    let width = |role: Role| {
+        plan.pins.iter().find(|(_, r)| *r == role).and_then(|(n, _)| plan.widths.get(n)).copied().unwrap_or(0)
+    };
+    let upper = plan
+        .pins
+        .iter()
+        .any(|(n, r)| matches!(r, Role::Button(_) | Role::Reset { .. }) && n.chars().all(|c| !c.is_ascii_lowercase()));
+    let board =
+        plan.board.unwrap_or(if width(Role::Anodes) == 4 || (width(Role::Switches) == 8 && width(Role::Leds) <= 8) {
+            Board::Nexys3
+        } else if upper {
+            Board::Nexys4Ddr
+        } else {
+            Board::Nexys4
+        });
+    match board {
+        Board::Nexys3 => json!({
+            "name": "NEXYS3", "digits": 4, "leds": 8, "switches": 8,
+            "buttons": [["btnCpuReset", "BTNS"], ["btnU", "BTNU"], ["btnL", "BTNL"], ["btnR", "BTNR"], ["btnD", "BTND"]],
+        }),
+        Board::Nexys4 | Board::Nexys4Ddr => json!({
+            "name": if board == Board::Nexys4 { "NEXYS4" } else { "NEXYS4 DDR" },
+            "digits": 8, "leds": 16, "switches": 16,
+            "buttons": [["btnCpuReset", "CPU RESET"], ["btnU", "BTNU"], ["btnL", "BTNL"], ["btnC", "BTNC"], ["btnR", "BTNR"], ["btnD", "BTND"]],
+        }),
     }
 }

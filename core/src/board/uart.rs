@@ -25,6 +25,10 @@ const SNAP: f64 = 0.04;
 pub const DEFAULT_BAUD: u32 = 115_200;
 /// Changes of the line that make a measurement (a few bytes of text).
 const MEASURE_EDGES: usize = 24;
+/// The shortest low pulse that is a bit: the fastest standard rate's, less [`SNAP`]. A
+/// shorter one (the line low for a few clocks while the design comes out of reset) is a
+/// glitch, neither a byte nor a measure of the rate.
+const SHORTEST_BIT_PS: f64 = PS / (921_600.0 * (1.0 + SNAP));
 
 /// Picoseconds per second.
 const PS: f64 = 1e12;
@@ -57,8 +61,10 @@ pub struct UartLine {
     /// The line's level and the changes not decoded yet (times in ps).
     level: bool,
     edges: Vec<(u64, bool)>,
-    /// Every change's interval so far while measuring (the shortest is the bit).
+    /// Every change's interval so far while measuring (the shortest is the bit), and what it
+    /// was before the last change (a glitch's changes are taken back).
     shortest: u64,
+    shortest_before: u64,
     seen: usize,
     pub received: Vec<Received>,
 }
@@ -69,7 +75,16 @@ impl UartLine {
             Rate::Given(b) => Some(PS / b.max(1) as f64),
             Rate::Measured => None,
         };
-        UartLine { rate, bit_ps, level: true, edges: Vec::new(), shortest: u64::MAX, seen: 0, received: Vec::new() }
+        UartLine {
+            rate,
+            bit_ps,
+            level: true,
+            edges: Vec::new(),
+            shortest: u64::MAX,
+            shortest_before: u64::MAX,
+            seen: 0,
+            received: Vec::new(),
+        }
     }
 
     /// The rate in use (baud), and whether it was measured; `None` before it is known.
@@ -82,6 +97,17 @@ impl UartLine {
         if high == self.level {
             return;
         }
+        if let Some(&(last, false)) = self.edges.last() {
+            if high && ((time_ps - last) as f64) < SHORTEST_BIT_PS {
+                // A glitch: as if the line had stayed high.
+                self.edges.pop();
+                self.level = true;
+                self.seen -= 1;
+                self.shortest = self.shortest_before;
+                return;
+            }
+        }
+        self.shortest_before = self.shortest;
         if let Some(&(last, _)) = self.edges.last() {
             self.shortest = self.shortest.min(time_ps - last);
         }
@@ -272,6 +298,26 @@ mod tests {
             assert_eq!(measured, rate == Rate::Measured);
             assert_eq!(b, if baud > 100_000.0 { 115_200 } else { 9600 });
         }
+    }
+
+    #[test]
+    fn a_glitch_at_reset_is_no_byte_and_no_rate() {
+        // The line low for 15 clocks of 100 MHz as the design comes out of reset: alone,
+        // nothing was sent; before a transmission, the rate is the transmission's.
+        let mut line = UartLine::new(Rate::Measured);
+        line.level(1_000_000, false);
+        line.level(1_150_000, true);
+        line.flush(1_000_000_000);
+        assert_eq!((line.text(), line.baud()), (String::new(), None));
+        let end = send(&mut line, 2_000_000_000, 115_200.0, b"OK", 1);
+        line.flush(end + 1_000_000_000);
+        assert_eq!((line.text(), line.baud()), ("OK".to_string(), Some((115_200, true))));
+        // A given rate too.
+        let mut line = UartLine::new(Rate::Given(115_200));
+        line.level(0, false);
+        line.level(150_000, true);
+        line.flush(1_000_000_000);
+        assert!(line.received.is_empty(), "{:?}", line.received);
     }
 
     #[test]

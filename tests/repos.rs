@@ -565,3 +565,19 @@ fn two_bots_of_two_kinds_each_traced_as_the_one_bot_of_project_2() {
     let (w, h, _) = common::decode_png(&game.path().join("path.png"));
     assert_eq!((w, h), (512, 512));
 }
+
+#[test]
+fn of_several_projects_one_that_does_not_build_says_why() {
+    // Project 2's top cut before its end (a bad merge): no project runs with the bot, and the
+    // one line is Project 2's own error, naming the projects here, not "name the one to run".
+    let clone = clone_of("two_projects");
+    let top = clone.path().join("proj2/hdl/nexys4fpga.v");
+    let text = std::fs::read_to_string(&top).unwrap();
+    std::fs::write(&top, text.replace("endmodule", "")).unwrap();
+    let o = board_in(clone.path(), &["."]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert_eq!(e.lines().count(), 1, "{e}");
+    assert!(e.starts_with("proj2/hdl/nexys4fpga.v:"), "{e}");
+    assert!(e.trim_end().ends_with("(of the projects here: proj1/proj1.xpr, proj2/proj2.xpr)"), "{e}");
+}

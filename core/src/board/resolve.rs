@@ -159,12 +159,13 @@ pub fn resolve(inputs: &[PathBuf], opts: &Options) -> Result<Design, BoardError>
     }
     // Several projects: the one whose design has a bot, or the user's choice.
     let mut with_bot = Vec::new();
+    let mut failed: Vec<BoardError> = Vec::new();
     for p in &projects {
-        let Ok(project) = Project::read(p) else { continue };
-        if let Ok(d) = pool.design(Some(&project), opts, &repo) {
-            if pool.reaches_bot(&d.top) {
-                with_bot.push(d);
-            }
+        let design = Project::read(p).and_then(|project| pool.design(Some(&project), opts, &repo));
+        match design {
+            Ok(d) if pool.reaches_bot(&d.top) => with_bot.push(d),
+            Ok(_) => {}
+            Err(e) => failed.push(e),
         }
     }
     let list = projects.iter().map(|p| p.display().to_string()).collect::<Vec<_>>().join(", ");
@@ -180,6 +181,17 @@ pub fn resolve(inputs: &[PathBuf], opts: &Options) -> Result<Design, BoardError>
                 ),
             );
             Ok(d)
+        }
+        // None runs with a bot, and one does not build: what stops it, which is likelier the
+        // user's than a project that runs without the bot.
+        0 if !failed.is_empty() => {
+            let more = match failed.len() {
+                1 => String::new(),
+                n => format!("; {} more do not build", n - 1),
+            };
+            let mut e = failed.remove(0);
+            e.message = format!("{} (of the projects here: {list}{more})", e.message);
+            Err(e)
         }
         _ => Err(BoardError::plain(format!(
             "several projects here: {list}; name the one to run (botsim board {})",

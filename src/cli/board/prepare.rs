@@ -110,7 +110,49 @@ fn peripheral_options(a: &Args, s: &Stimulus, plan: &Plan) -> Result<(), String>
 
 /// Check the arguments, find the design, plan it and build it.
 pub fn prepare(a: &Args) -> Result<Prepared, String> {
-    // Arguments first: every bad one is one line before anything is built.
+    let inputs = checked_arguments(a)?;
+    let (design, plan) = find_design(a, &inputs)?;
+    say_design(a, &design, &plan, &inputs.stimulus)?;
+    let models = choose_models(a, &plan, &inputs.fw)?;
+    let (built, twin) = build_boards(a, &plan, &inputs.params, &models)?;
+    let Inputs { stimulus, vcd_from, vcd_to, world, fw, .. } = inputs;
+    let Models { cpu, main_bot, bot, lockstep, maps, cpu_breaks, bot_breaks, trace_window } = models;
+    Ok(Prepared {
+        stimulus,
+        vcd_from,
+        vcd_to,
+        world,
+        fw,
+        design,
+        plan,
+        maps,
+        cpu_breaks,
+        bot_breaks,
+        cpu,
+        main_bot,
+        bot,
+        lockstep,
+        cpu_trace: a.cpu_trace.clone(),
+        trace_window,
+        built,
+        twin,
+    })
+}
+
+/// What the arguments give before any design is read.
+struct Inputs {
+    stimulus: Stimulus,
+    vcd_from: Mark,
+    vcd_to: Option<Mark>,
+    params: Vec<(String, String)>,
+    world: World,
+    fw: Firmware,
+    bot_firmware: botsim::kcpsm6::image::Image,
+    programs: Vec<(PathBuf, botsim::kcpsm6::image::Image)>,
+}
+
+/// The arguments checked, each bad one one line before anything is built.
+fn checked_arguments(a: &Args) -> Result<Inputs, String> {
     let mut stimulus = match &a.stimulus {
         Some(f) => {
             let text = std::fs::read_to_string(f).map_err(|e| format!("{}: error: cannot read: {e}", f.display()))?;
@@ -186,8 +228,13 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
         std::fs::create_dir_all(d).map_err(|e| format!("{}: error: cannot create the folder: {e}", d.display()))?;
         check_writable(&d.join("frame.png"))?;
     }
+    Ok(Inputs { stimulus, vcd_from, vcd_to, params, world, fw, bot_firmware, programs })
+}
 
-    // Find the design, plan and build.
+/// The repository resolved into a design and planned; every `--param` names a parameter of
+/// the top.
+fn find_design(a: &Args, inputs: &Inputs) -> Result<(Design, Plan), String> {
+    let params = &inputs.params;
     let clocks = a.clock.iter().map(|c| ClockSpec::parse(c)).collect::<Result<Vec<_>, _>>()?;
     let options = Options {
         top: a.top.clone(),
@@ -208,8 +255,14 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
             .collect::<Result<Vec<_>, _>>()?,
     };
     let design = resolve(&a.sources, &options).map_err(|e| e.to_string())?;
-    let req = Request { programs, bot_firmware, force_own_firmware: a.firmware.any(), first_bot: a.bot_at.clone() };
+    let req = Request {
+        programs: inputs.programs.clone(),
+        bot_firmware: inputs.bot_firmware.clone(),
+        force_own_firmware: a.firmware.any(),
+        first_bot: a.bot_at.clone(),
+    };
     let mut plan = Plan::new(&design, &req).map_err(|e| e.to_string())?;
+    plan.replaced.extend(design.generated.iter().cloned());
     // Every --param names a parameter of the top.
     if let Some((src, top)) = design.sources.iter().find_map(|s| s.module(&design.top).map(|m| (s, m))) {
         // A parameter declaration the scanner could not read (`parameter SIMULATE <= 0;`) is
@@ -234,7 +287,12 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
             ));
         }
     }
-    plan.replaced.extend(design.generated.iter().cloned());
+    Ok((design, plan))
+}
+
+/// Every decision about the design in a line of its own (the project, the bots, what botsim
+/// replaced, the pins), and the options that cannot apply to it.
+fn say_design(a: &Args, design: &Design, plan: &Plan, stimulus: &Stimulus) -> Result<(), String> {
     if let Some(p) = &design.project {
         a.say(format!("botsim board: the project {}", p.display()));
     }
@@ -289,10 +347,26 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
     for (device, names) in &reached {
         a.say(format!("  the board's {}: {}", device.name(), names.join(", ")));
     }
-    peripheral_options(a, &stimulus, &plan)?;
+    peripheral_options(a, stimulus, plan)?;
     if !plan.unknown_pins.is_empty() {
         a.say(format!("  ports with no board pin (inputs held low, outputs open): {}", plan.unknown_pins.join(", ")));
     }
+    Ok(())
+}
+
+/// What runs the KCPSM6s and the bot, and what the run looks at inside them.
+struct Models {
+    cpu: CpuModel,
+    main_bot: BotKind,
+    bot: BotKind,
+    lockstep: bool,
+    maps: BTreeMap<String, SourceMap>,
+    cpu_breaks: BTreeMap<String, Breaks>,
+    bot_breaks: Vec<BreakSpec>,
+    trace_window: (u64, u64),
+}
+
+fn choose_models(a: &Args, plan: &Plan, fw: &Firmware) -> Result<Models, String> {
     let trace_window = (
         a.cpu_trace_from
             .as_deref()
@@ -351,8 +425,8 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
         return Err("--bench measures one board: --cpu rtl or iss".into());
     }
     // Assembled once: the breakpoints, the traces, the stop message and the save file use it.
-    let maps = sources(&plan);
-    let (cpu_breaks, bot_breaks) = breakpoints(&a.breaks, &plan, &maps)?;
+    let maps = sources(plan);
+    let (cpu_breaks, bot_breaks) = breakpoints(&a.breaks, plan, &maps)?;
     // The models' programs are known before anything is built.
     let looks_inside = a.cpu_trace.is_some() || !a.breaks.is_empty();
     let bot = match (a.bot, cpu_arg) {
@@ -366,10 +440,22 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
     let main_bot = if lockstep { BotKind::Rtl } else { bot };
     // The models' hosts can be made (every KCPSM6 has its program) before anything is built.
     if cpu != CpuModel::Rtl {
-        Host::for_plan(&plan, lockstep).map_err(|e| e.to_string())?;
+        Host::for_plan(plan, lockstep).map_err(|e| e.to_string())?;
     }
+    Ok(Models { cpu, main_bot, bot, lockstep, maps, cpu_breaks, bot_breaks, trace_window })
+}
+
+/// The board built (or found in the cache), and the lock-step's ISS board; what the build
+/// found said.
+fn build_boards(
+    a: &Args,
+    plan: &Plan,
+    params: &[(String, String)],
+    m: &Models,
+) -> Result<(Built, Option<Built>), String> {
+    let (cpu, main_bot, bot, lockstep) = (m.cpu, m.main_bot, m.bot, m.lockstep);
     let debug = a.vcd.is_some();
-    let built = build(&plan, &params, cpu, main_bot, debug, a.quiet || a.json).map_err(|e| e.to_string())?;
+    let built = build(plan, params, cpu, main_bot, debug, a.quiet || a.json).map_err(|e| e.to_string())?;
     match built.seconds {
         Some(s) => {
             a.say(format!("  built in {s:.1} s with Verilator {} ({})", built.verilator, built.library.display()))
@@ -403,7 +489,7 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
     }
 
     let twin = if lockstep {
-        let b = build(&plan, &params, CpuModel::Iss, bot, false, a.quiet || a.json).map_err(|e| e.to_string())?;
+        let b = build(plan, params, CpuModel::Iss, bot, false, a.quiet || a.json).map_err(|e| e.to_string())?;
         match b.seconds {
             Some(s) => a.say(format!("  built the ISS board in {s:.1} s")),
             None => a.say("  reused the ISS board's build".into()),
@@ -412,27 +498,7 @@ pub fn prepare(a: &Args) -> Result<Prepared, String> {
     } else {
         None
     };
-    let prepared = Prepared {
-        stimulus,
-        vcd_from,
-        vcd_to,
-        world,
-        fw,
-        design,
-        plan,
-        maps,
-        cpu_breaks,
-        bot_breaks,
-        cpu,
-        main_bot,
-        bot,
-        lockstep,
-        cpu_trace: a.cpu_trace.clone(),
-        trace_window,
-        built,
-        twin,
-    };
-    Ok(prepared)
+    Ok((built, twin))
 }
 
 /// The options that need a bot, on a design without one: the first is an error.

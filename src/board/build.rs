@@ -264,6 +264,68 @@ pub fn build(
     }
     let program = std::env::var("VERILATOR").unwrap_or_else(|_| "verilator".into());
     let v = verilator::find(&program).map_err(BoardError::plain)?;
+    let key = build_key(plan, &f, &v)?;
+    let boards = cache_dir().join("boards");
+    let dir = boards.join(format!("{}-{key}", plan.top));
+    let library = dir.join("libboard.so");
+    // One build per design at a time: a second run waits for the first's, then reuses it.
+    let lock = cache_dir().join("locks").join(format!("{}-{key}.lock", plan.top));
+    let _lock = if library.exists() { None } else { Some(Lock::take(&lock, quiet)?) };
+    if library.exists() {
+        return Ok(reused(plan, &f, &dir, v.version));
+    }
+    let t0 = Instant::now();
+    remove_stale_builds(&boards);
+    let tmp = dir.with_extension(format!("tmp{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&tmp);
+    std::fs::create_dir_all(&tmp)
+        .map_err(|e| BoardError::at(&tmp, 0, 0, format!("cannot create the build folder: {e}")))?;
+    tag_cache(&cache_dir());
+    let step = Step { tmp: tmp.clone(), budget: build_budget(), t0 };
+    if !quiet {
+        eprintln!(
+            "botsim board: building `{}` (Verilator, then C++; the next run with these sources reuses it)",
+            plan.top
+        );
+    }
+    // Whatever fails, the files so far are kept where BOTSIM_KEEP_GENERATED asks.
+    let fail = |e| {
+        keep_generated(&tmp);
+        let _ = std::fs::remove_dir_all(&tmp);
+        e
+    };
+    let made = write_sources(&step, &f).and_then(|_| verilate(&step, &program, plan, &f, debug)).and_then(
+        |(stderr, delays)| {
+            let checked = analyse(&step, delays.as_deref())?;
+            let stderr = compile(&step, &v, plan, &f, delays.is_some(), stderr)?;
+            Ok((stderr, delays, checked))
+        },
+    );
+    let (stderr, delays, checked) = made.map_err(fail)?;
+    std::fs::rename(tmp.join("obj/libboard.so"), tmp.join("libboard.so"))
+        .and_then(|_| std::fs::write(tmp.join("warnings.txt"), &stderr))
+        .and_then(|_| checked.verdicts.save(&tmp))
+        .and_then(|_| std::fs::write(tmp.join(DELAYS_FILE), delays.as_deref().unwrap_or("")))
+        .and_then(|_| super::checks::save_unshown(&tmp, &checked.unshown))
+        .map_err(|e| BoardError::at(&tmp, 0, 0, format!("cannot keep the build: {e}")))?;
+    keep_generated(&tmp);
+    let _ = std::fs::remove_dir_all(tmp.join("obj"));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::rename(&tmp, &dir).map_err(|e| BoardError::at(&dir, 0, 0, format!("cannot keep the build: {e}")))?;
+    Ok(Built {
+        library,
+        warnings: parse_warnings(&stderr, &f),
+        widths: explain::replacement_widths(&stderr, &explained(&f), &|m| stands_for(plan, m)),
+        seconds: Some(t0.elapsed().as_secs_f64()),
+        delays,
+        verilator: v.version,
+        names: names(&f),
+    })
+}
+
+/// The cache key of a build: everything it is built from (botsim's version, the Verilator,
+/// the harness and the analyses, the flags, the design's files as Verilator is given them).
+fn build_key(plan: &Plan, f: &Files, v: &verilator::Verilator) -> Result<String, BoardError> {
     let mut h = DefaultHasher::new();
     env!("CARGO_PKG_VERSION").hash(&mut h);
     // A design built by another Verilator is another build.
@@ -316,57 +378,76 @@ pub fn build(
             }
         }
     }
-    let key = format!("{:016x}", h.finish());
-    let boards = cache_dir().join("boards");
-    let dir = boards.join(format!("{}-{key}", plan.top));
-    let library = dir.join("libboard.so");
-    // One build per design at a time: a second run waits for the first's, then reuses it.
-    let lock = cache_dir().join("locks").join(format!("{}-{key}.lock", plan.top));
-    let _lock = if library.exists() { None } else { Some(Lock::take(&lock, quiet)?) };
-    if library.exists() {
-        keep_generated(&dir);
-        let warnings =
-            std::fs::read_to_string(dir.join("warnings.txt")).map(|t| parse_warnings(&t, &f)).unwrap_or_default();
-        let delays = std::fs::read_to_string(dir.join(DELAYS_FILE)).ok().filter(|d| !d.is_empty());
-        let stderr = std::fs::read_to_string(dir.join("warnings.txt")).unwrap_or_default();
-        let widths = explain::replacement_widths(&stderr, &explained(&f), &|m| stands_for(plan, m));
-        return Ok(Built { library, warnings, widths, seconds: None, delays, verilator: v.version, names: names(&f) });
+    Ok(format!("{:016x}", h.finish()))
+}
+
+/// A build the cache has, as it was kept.
+fn reused(plan: &Plan, f: &Files, dir: &Path, verilator: String) -> Built {
+    keep_generated(dir);
+    let stderr = std::fs::read_to_string(dir.join("warnings.txt")).unwrap_or_default();
+    Built {
+        library: dir.join("libboard.so"),
+        warnings: parse_warnings(&stderr, f),
+        widths: explain::replacement_widths(&stderr, &explained(f), &|m| stands_for(plan, m)),
+        seconds: None,
+        delays: std::fs::read_to_string(dir.join(DELAYS_FILE)).ok().filter(|d| !d.is_empty()),
+        verilator,
+        names: names(f),
     }
-    let t0 = Instant::now();
-    remove_stale_builds(&boards);
-    let tmp = dir.with_extension(format!("tmp{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&tmp);
-    std::fs::create_dir_all(&tmp)
-        .map_err(|e| BoardError::at(&tmp, 0, 0, format!("cannot create the build folder: {e}")))?;
-    tag_cache(&cache_dir());
-    let write = |name: &str, text: &str| {
-        std::fs::write(tmp.join(name), text)
-            .map_err(|e| BoardError::at(&tmp.join(name), 0, 0, format!("cannot write: {e}")))
-    };
+}
+
+/// A build in progress: its folder, and the time it may take from when it began.
+struct Step {
+    tmp: PathBuf,
+    budget: Duration,
+    t0: Instant,
+}
+
+impl Step {
+    fn write(&self, name: &str, text: &str) -> Result<(), BoardError> {
+        let path = self.tmp.join(name);
+        std::fs::write(&path, text).map_err(|e| BoardError::at(&path, 0, 0, format!("cannot write: {e}")))
+    }
+
+    fn run(&self, cmd: &mut Command) -> Result<Output, BoardError> {
+        run_with_budget(cmd, self.budget, self.t0)
+    }
+}
+
+/// The build's sources in its folder: botsim's, the harness, the user's edited files.
+fn write_sources(step: &Step, f: &Files) -> Result<(), BoardError> {
     for (name, text) in &f.generated {
-        write(name, text)?;
+        step.write(name, text)?;
     }
-    write("harness.cpp", HARNESS)?;
-    write("board_model.h", MODEL_H)?;
-    write("board_model.cpp", MODEL_CPP)?;
-    write("board_abi.h", ABI)?;
-    write("botsim_print.h", PRINT)?;
-    write("botsim_disasm.h", DISASM)?;
+    for (name, text) in [
+        ("harness.cpp", HARNESS),
+        ("board_model.h", MODEL_H),
+        ("board_model.cpp", MODEL_CPP),
+        ("board_abi.h", ABI),
+        ("botsim_print.h", PRINT),
+        ("botsim_disasm.h", DISASM),
+    ] {
+        step.write(name, text)?;
+    }
     for (name, text, _) in &f.user {
         if let Some(t) = text {
-            write(name, t)?;
+            step.write(name, t)?;
         }
     }
-    if !quiet {
-        eprintln!(
-            "botsim board: building `{}` (Verilator, then C++; the next run with these sources reuses it)",
-            plan.top
-        );
-    }
-    let jobs = std::thread::available_parallelism().map_or(2, |n| n.get());
-    let budget = build_budget();
-    let mut cmd = Command::new(&program);
-    cmd.current_dir(&tmp)
+    Ok(())
+}
+
+/// Verilator on the sources: its messages, and where the design's first delay is when it has
+/// delays (built again with Verilator's timing then).
+fn verilate(
+    step: &Step,
+    program: &str,
+    plan: &Plan,
+    f: &Files,
+    debug: bool,
+) -> Result<(String, Option<String>), BoardError> {
+    let mut cmd = Command::new(program);
+    cmd.current_dir(&step.tmp)
         .args(["--cc", "--exe"])
         .args(["--prefix", "Vboard", "--top-module", wrapper::TOP, "--Mdir", "obj", "-o", "libboard.so"])
         .args(VERILATOR_FLAGS);
@@ -391,12 +472,7 @@ pub fn build(
         }
     }
     cmd.args(["harness.cpp", "board_model.cpp"]);
-    let fail = |e| {
-        keep_generated(&tmp);
-        let _ = std::fs::remove_dir_all(&tmp);
-        e
-    };
-    let mut out = run_with_budget(&mut cmd, budget, t0).map_err(fail)?;
+    let mut out = step.run(&mut cmd)?;
     // A design with delays (`q <= #1 d`, `initial #10_000_000 $finish`): Verilator asks how
     // to treat them, and botsim simulates them (Vivado's synthesis ignores them; a
     // simulation of the board keeps what the design says). Said once, at the first.
@@ -405,21 +481,24 @@ pub fn build(
         let text = String::from_utf8_lossy(&out.stderr).into_owned();
         if let Some(line) = text.lines().find(|l| l.starts_with("%Error-NEEDTIMINGOPT: ")) {
             let at = line["%Error-NEEDTIMINGOPT: ".len()..].split(": ").next().unwrap_or("").to_string();
-            delays = Some(user_paths(&at, &f));
-            let _ = std::fs::remove_dir_all(tmp.join("obj"));
+            delays = Some(user_paths(&at, f));
+            let _ = std::fs::remove_dir_all(step.tmp.join("obj"));
             cmd.arg("--timing").args(["-CFLAGS", "-DBOTSIM_TIMING"]);
-            out = run_with_budget(&mut cmd, budget, t0).map_err(fail)?;
+            out = step.run(&mut cmd)?;
         }
     }
-    let mut stderr = String::from_utf8_lossy(&out.stderr).into_owned();
-    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
     if !out.status.success() {
-        return Err(fail(first_error(&stderr, &stdout, &f, plan)));
+        return Err(first_error(&stderr, &String::from_utf8_lossy(&out.stdout), f, plan));
     }
-    // What the harness may assume of the design (BoardModel::load reads the verdicts; the
-    // harness compiles in which variables a run observes), then the C++.
-    let mut checked = super::checks::Checked::of(&tmp.join("obj"));
-    if let Some(at) = &delays {
+    Ok((stderr, delays))
+}
+
+/// What the harness may assume of the design (BoardModel::load reads the verdicts; the
+/// harness is given which variables a run observes through botsim_observed.h).
+fn analyse(step: &Step, delays: Option<&str>) -> Result<super::checks::Checked, BoardError> {
+    let mut checked = super::checks::Checked::of(&step.tmp.join("obj"));
+    if let Some(at) = delays {
         // Timed events wait in Verilator's own queue, outside the state the fast-forward
         // compares; every edge is evaluated.
         let why = format!("the design has delays ({at}): every edge is simulated, and the delays with them");
@@ -428,57 +507,50 @@ pub fn build(
         checked.verdicts.observed = Some(why.clone());
         checked.unshown = Err(why);
     }
-    write(
+    step.write(
         "botsim_observed.h",
         &super::observed::header(&checked.members, &checked.counters, checked.triggers_fn.as_deref()),
     )?;
-    // Verilator's run-time library and the precompiled header, compiled once for every build
-    // of these flags.
-    let obj = tmp.join("obj");
-    write("obj/botsim_pch.h", PCH)?;
-    write("obj/botsim_pch.mk", PCH_RULE)?;
-    let runtime = Runtime::new(&v, delays.is_some(), &obj);
+    Ok(checked)
+}
+
+/// The C++: the model and board_model.cpp into the library, with Verilator's run-time
+/// objects, the harness and the precompiled header from the cache (compiled and kept by the
+/// first build of these flags). Verilator's messages `stderr` with the compiler's after them.
+fn compile(
+    step: &Step,
+    v: &verilator::Verilator,
+    plan: &Plan,
+    f: &Files,
+    timing: bool,
+    mut stderr: String,
+) -> Result<String, BoardError> {
+    let obj = step.tmp.join("obj");
+    step.write("obj/botsim_pch.h", PCH)?;
+    step.write("obj/botsim_pch.mk", PCH_RULE)?;
+    let runtime = Runtime::new(v, timing, &obj);
     runtime.lend();
     if !obj.join(Runtime::PCH).exists() {
         let mut make = Command::new("make");
         make.current_dir(&obj).args(["-f", "Vboard.mk", "-f", "botsim_pch.mk"]).args(MAKE_VARS).arg(Runtime::PCH);
-        let out = run_with_budget(&mut make, budget, t0).map_err(fail)?;
+        let out = step.run(&mut make)?;
         if !out.status.success() {
             // Every file parses botsim_pch.h itself instead.
             let _ = std::fs::remove_file(obj.join(Runtime::PCH));
         }
     }
+    let jobs = std::thread::available_parallelism().map_or(2, |n| n.get());
     let mut make = Command::new("make");
     make.current_dir(&obj).args(["-f", "Vboard.mk", "-j"]).arg(jobs.to_string()).args(MAKE_VARS).arg(FORCED);
-    let out = run_with_budget(&mut make, budget, t0).map_err(fail)?;
+    let out = step.run(&mut make)?;
     if out.status.success() {
         runtime.keep();
     }
     stderr.push_str(&String::from_utf8_lossy(&out.stderr));
-    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
-    if !out.status.success() || !tmp.join("obj/libboard.so").exists() {
-        return Err(fail(first_error(&stderr, &stdout, &f, plan)));
+    if !out.status.success() || !obj.join("libboard.so").exists() {
+        return Err(first_error(&stderr, &String::from_utf8_lossy(&out.stdout), f, plan));
     }
-    let verdicts = checked.verdicts;
-    std::fs::rename(tmp.join("obj/libboard.so"), tmp.join("libboard.so"))
-        .and_then(|_| std::fs::write(tmp.join("warnings.txt"), &stderr))
-        .and_then(|_| verdicts.save(&tmp))
-        .and_then(|_| std::fs::write(tmp.join(DELAYS_FILE), delays.as_deref().unwrap_or("")))
-        .and_then(|_| super::checks::save_unshown(&tmp, &checked.unshown))
-        .map_err(|e| BoardError::at(&tmp, 0, 0, format!("cannot keep the build: {e}")))?;
-    keep_generated(&tmp);
-    let _ = std::fs::remove_dir_all(tmp.join("obj"));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::rename(&tmp, &dir).map_err(|e| BoardError::at(&dir, 0, 0, format!("cannot keep the build: {e}")))?;
-    Ok(Built {
-        library,
-        warnings: parse_warnings(&stderr, &f),
-        widths: explain::replacement_widths(&stderr, &explained(&f), &|m| stands_for(plan, m)),
-        seconds: Some(t0.elapsed().as_secs_f64()),
-        delays,
-        verilator: v.version,
-        names: names(&f),
-    })
+    Ok(stderr)
 }
 
 /// An exclusive lock on a build (a lock file beside its folder, `flock`), released when

@@ -163,26 +163,8 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
     if a.stimulus.is_some() || !a.press.is_empty() {
         return Err("--live takes its inputs from the page (--switches sets where they start)".into());
     }
-    let sources: Vec<String> = a.sources.iter().map(|s| s.display().to_string()).collect();
     let has_vga = p.plan.pins.iter().any(|(_, r)| *r == Role::Vsync);
-    let has = |x: Peripheral| p.plan.pins.iter().any(|(_, r)| r.peripheral() == Some(x));
-    // (prepare checked it.)
-    let tilt = a.tilt.as_deref().and_then(|t| parse_tilt(t).ok());
-    let hello = json!({
-        "vga": has_vga,
-        "peripherals": {
-            "uart": has(Peripheral::Uart),
-            "keyboard": has(Peripheral::Keyboard),
-            "accelerometer": has(Peripheral::Accelerometer),
-            "audio": has(Peripheral::Audio),
-        },
-        "tilt": tilt.unwrap_or(FLAT).map(|mg| mg as f64 / 1000.0),
-        "design": {"top": p.plan.top, "sources": sources.join(" ")},
-        "board": face(&p.plan),
-        "world": p.plan.bot_path.as_ref().map(|_| world_json(&p.world)),
-        "mode": "board",
-        "protocol": 1,
-    });
+    let hello = hello(a, p, has_vga);
     let server = a.live.serve(hello)?;
     let printing = Printing { log: a.design_log.clone(), lines: if a.quiet { 0 } else { 200 } };
     let mut model = load(&p.built.library, &p.world, &p.plan.roms, p.main_host()?, &printing)?;
@@ -190,40 +172,7 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
     let skip_mode =
         if skips && model.fast_forward_blocker().is_none() { FastForward::Recorded } else { FastForward::Off };
     model.fast_forward(skip_mode);
-    let mut inputs = Stimulus::default();
-    if let Some(h) = &a.switches {
-        inputs.initial_switches = u16::from_str_radix(h.trim_start_matches("0x"), 16)
-            .map_err(|_| format!("--switches {h}: expected up to four hexadecimal digits"))?;
-    }
-    if let Some(t) = tilt {
-        inputs.tilts.push((0, t));
-    }
-    let mut b = Board {
-        model,
-        buf: vec![RawEvent::default(); RECORDS],
-        display: Display::default(),
-        leds: 0,
-        samples: 0,
-        bot: None,
-        others: p.plan.other_bots.iter().map(|b| (format!("{}.{}", p.plan.top, b.path), None)).collect(),
-        vga: Capture::default(),
-        inputs,
-        dirty: true,
-        drawn: None,
-        last_pixels: None,
-        animated: false,
-        fresh: Vec::new(),
-        feeder: Feeder::default(),
-        feed_at: None,
-        heard: Heard::new(a.uart_baud, has(Peripheral::Audio)),
-        uart_told: 0,
-    };
-    let (r, btn, sw) = b.inputs.inputs_at(0);
-    b.model.set_inputs(r, btn, sw);
-    b.model.set_uart_div(b.heard.uart_div);
-    let [x, y, z] = b.inputs.tilt_at(0);
-    b.model.set_tilt(x, y, z);
-
+    let mut b = new_board(a, p, model)?;
     let mut running = !a.live.paused;
     let mut pace = Pace::new(a.live.speed.0, 0);
     // A Step: to the bot's next sample (its count), or on a board without a bot to a time.
@@ -243,39 +192,27 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
         let wait = if running { Duration::ZERO } else { Duration::from_millis(20) };
         let mut next = if wait.is_zero() { server.try_command() } else { server.command_within(wait) };
         while let Some((client, command)) = next.take() {
+            let pages = Pages { server: &server, client };
+            let at = b.model.time_ps();
             match command {
                 Command::Run => {
                     running = true;
                     (step_to, step_until) = (None, None);
-                    pace.restart(b.model.time_ps());
+                    pace.restart(at);
                 }
                 Command::Pause => running = false,
                 Command::Step => {
                     running = true;
                     if alone {
-                        step_until = Some(aligned(b.model.time_ps() + STEP_PS));
+                        step_until = Some(aligned(at + STEP_PS));
                     } else {
                         step_to = Some(b.samples + 1);
                     }
-                    pace.restart(b.model.time_ps());
+                    pace.restart(at);
                 }
-                Command::Speed(f) => pace.set_speed(f, b.model.time_ps()),
-                Command::Save => server
-                    .reply(client, json!({"type": "stimulus", "text": b.inputs.text(b.model.time_ps(), HEADER)})),
+                Command::Speed(f) => pace.set_speed(f, at),
                 Command::Stop => stopped = true,
-                Command::Motors(_) => server.reply(
-                    client,
-                    json!({"type": "error", "message": "the board's motors are its design's: use the switches and buttons"}),
-                ),
-                Command::Switch { .. }
-                | Command::Switches(_)
-                | Command::Button { .. }
-                | Command::Key { .. }
-                | Command::Uart(_)
-                | Command::Tilt(_) => match b.input(&command) {
-                    Ok(entry) => server.log(entry),
-                    Err(Refused(message)) => server.reply(client, json!({"type": "error", "message": message})),
-                },
+                other => b.answer(&pages, other),
             }
             next = server.try_command();
         }
@@ -355,23 +292,97 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
         write_atomic(f, b.inputs.text(t, HEADER).as_bytes())?;
     }
     if !a.quiet {
-        let recorded = a.live.record.as_ref().map_or(String::new(), |f| format!("; its inputs in {}", f.display()));
-        let wall = started.elapsed().as_secs_f64();
-        let shown = if has_vga {
-            format!(", {frames_shown} VGA frames ({:.1}/s)", frames_shown as f64 / wall)
-        } else {
-            String::new()
-        };
-        let samples = if alone { String::new() } else { format!(", {} samples", b.samples) };
-        eprintln!(
-            "botsim board --live: ran {:.3} s of board time in {wall:.1} s ({:.2} x real time){samples}{shown}{recorded}",
-            t as f64 / 1e12,
-            t as f64 / 1e12 / wall,
-        );
+        eprintln!("{}", summary(a, &b, has_vga, alone, frames_shown, started.elapsed().as_secs_f64()));
     }
     // Give the pages a moment to hear that the run ended.
     std::thread::sleep(Duration::from_millis(100));
     Ok(())
+}
+
+/// The `hello` every page gets first: the design, its board, its world and peripherals.
+fn hello(a: &Args, p: &Prepared, has_vga: bool) -> serde_json::Value {
+    let sources: Vec<String> = a.sources.iter().map(|s| s.display().to_string()).collect();
+    let has = |x: Peripheral| p.plan.pins.iter().any(|(_, r)| r.peripheral() == Some(x));
+    // (prepare checked it.)
+    let tilt = a.tilt.as_deref().and_then(|t| parse_tilt(t).ok());
+    json!({
+        "vga": has_vga,
+        "peripherals": {
+            "uart": has(Peripheral::Uart),
+            "keyboard": has(Peripheral::Keyboard),
+            "accelerometer": has(Peripheral::Accelerometer),
+            "audio": has(Peripheral::Audio),
+        },
+        "tilt": tilt.unwrap_or(FLAT).map(|mg| mg as f64 / 1000.0),
+        "design": {"top": p.plan.top, "sources": sources.join(" ")},
+        "board": face(&p.plan),
+        "world": p.plan.bot_path.as_ref().map(|_| world_json(&p.world)),
+        "mode": "board",
+        "protocol": 1,
+    })
+}
+
+/// The board at power-up: the loaded model with the inputs the arguments start it with.
+fn new_board(a: &Args, p: &Prepared, model: BoardModel) -> Result<Board, String> {
+    let has_audio = p.plan.pins.iter().any(|(_, r)| r.peripheral() == Some(Peripheral::Audio));
+    let mut inputs = Stimulus::default();
+    if let Some(h) = &a.switches {
+        inputs.initial_switches = u16::from_str_radix(h.trim_start_matches("0x"), 16)
+            .map_err(|_| format!("--switches {h}: expected up to four hexadecimal digits"))?;
+    }
+    // (prepare checked it.)
+    if let Some(t) = a.tilt.as_deref().and_then(|t| parse_tilt(t).ok()) {
+        inputs.tilts.push((0, t));
+    }
+    let mut b = Board {
+        model,
+        buf: vec![RawEvent::default(); RECORDS],
+        display: Display::default(),
+        leds: 0,
+        samples: 0,
+        bot: None,
+        others: p.plan.other_bots.iter().map(|b| (format!("{}.{}", p.plan.top, b.path), None)).collect(),
+        vga: Capture::default(),
+        inputs,
+        dirty: true,
+        drawn: None,
+        last_pixels: None,
+        animated: false,
+        fresh: Vec::new(),
+        feeder: Feeder::default(),
+        feed_at: None,
+        heard: Heard::new(a.uart_baud, has_audio),
+        uart_told: 0,
+    };
+    let (r, btn, sw) = b.inputs.inputs_at(0);
+    b.model.set_inputs(r, btn, sw);
+    b.model.set_uart_div(b.heard.uart_div);
+    let [x, y, z] = b.inputs.tilt_at(0);
+    b.model.set_tilt(x, y, z);
+    Ok(b)
+}
+
+/// The page a command came from, to answer it alone.
+struct Pages<'a> {
+    server: &'a botsim_live::server::Server,
+    client: botsim_live::server::ClientId,
+}
+
+/// The run's last line: how far it ran, how fast, what it showed and kept.
+fn summary(a: &Args, b: &Board, has_vga: bool, alone: bool, frames_shown: u64, wall: f64) -> String {
+    let t = b.model.time_ps();
+    let recorded = a.live.record.as_ref().map_or(String::new(), |f| format!("; its inputs in {}", f.display()));
+    let shown = if has_vga {
+        format!(", {frames_shown} VGA frames ({:.1}/s)", frames_shown as f64 / wall)
+    } else {
+        String::new()
+    };
+    let samples = if alone { String::new() } else { format!(", {} samples", b.samples) };
+    format!(
+        "botsim board --live: ran {:.3} s of board time in {wall:.1} s ({:.2} x real time){samples}{shown}{recorded}",
+        t as f64 / 1e12,
+        t as f64 / 1e12 / wall,
+    )
 }
 
 impl Board {
@@ -503,6 +514,22 @@ impl Board {
                 let pcm: Vec<u8> = samples.iter().map(|&v| (v * 255.0).round() as u8).collect();
                 self.fresh.push(json!({"kind": "audio", "first": first, "rate": RATE, "samples": pcm}));
             }
+        }
+    }
+
+    /// A page's command that is not about running: an input (applied, and logged for every
+    /// page, or refused to that page), the inputs so far, or the motors a board does not take.
+    fn answer(&mut self, pages: &Pages, command: Command) {
+        let reply = |message: serde_json::Value| pages.server.reply(pages.client, message);
+        match command {
+            Command::Save => reply(json!({"type": "stimulus", "text": self.inputs.text(self.model.time_ps(), HEADER)})),
+            Command::Motors(_) => reply(
+                json!({"type": "error", "message": "the board's motors are its design's: use the switches and buttons"}),
+            ),
+            command => match self.input(&command) {
+                Ok(entry) => pages.server.log(entry),
+                Err(Refused(message)) => reply(json!({"type": "error", "message": message})),
+            },
         }
     }
 

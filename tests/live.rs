@@ -33,6 +33,8 @@ fn a_page_gets_the_board_and_its_inputs_reach_the_design_at_the_stated_time() {
     assert_eq!(hello["design"]["top"], "nexys4fpga");
     assert_eq!(hello["vga"], false, "the shapes design has no VGA pins");
     assert_eq!(hello["world"]["cells"].as_str().map(str::len), Some(128 * 128));
+    // The board it is made for: a Nexys4 (lower-case names, no constraint file).
+    assert_eq!((&hello["board"]["name"], &hello["board"]["digits"]), (&json!("NEXYS4"), &json!(8)), "{hello}");
     let s = a.state("a state", |s| s["samples"].as_u64() > Some(3));
     assert_eq!((s["switches"].as_u64(), s["leds"].as_u64().map(|l| l & 0x1F)), (Some(0), Some(0)), "{s}");
     // A second page, on another path, sees the same board.
@@ -526,4 +528,21 @@ fn the_console_plays_live_keys_and_uart_and_replays_exactly() {
     assert_eq!(std::fs::read(&uart).unwrap(), b"botsim console\r\nlive\r");
     let v: Value = serde_json::from_slice(&o.stdout).unwrap();
     assert_eq!((v["leds"].as_u64(), v["display"].as_str()), (Some(0xF01A), Some("    0001")), "{v}");
+}
+
+#[test]
+fn a_nexys4_ddr_project_gets_a_nexys4_ddr_page() {
+    // tests/board_designs/repos/final_project: its .xdc places the pins on a Nexys4 DDR
+    // (`CPU_RESETN`, `BTNC`, ...): the page is told that board, with the Nexys4's controls.
+    let clone = common::repo::clone_of("final_project");
+    let live = Live::start_in(clone.path(), "board", &[".", "--speed", "max"]);
+    let mut page = live.client("/");
+    let hello = page.next(BUDGET).unwrap();
+    let board = &hello["board"];
+    assert_eq!(
+        (&board["name"], &board["digits"], &board["leds"]),
+        (&json!("NEXYS4 DDR"), &json!(8), &json!(16)),
+        "{hello}"
+    );
+    assert_eq!(board["buttons"][0], json!(["btnCpuReset", "CPU RESET"]), "{hello}");
 }

@@ -709,6 +709,71 @@ impl Cpu {
         (v, c, v == 0)
     }
 
+    /// The instruction in its second cycle now (decoded in the cycle before): whether an
+    /// interrupt pre-empted it, and its opcode ([`crate::counting`] follows it).
+    pub(crate) fn in_flight(&self) -> Option<(RetireKind, Opcode)> {
+        self.pending.map(|p| (p.kind, p.op))
+    }
+
+    /// The second operand of the word on `instruction` (its constant, or sY), and the
+    /// scratch-pad address it makes.
+    pub(crate) fn operand_now(&self) -> u8 {
+        self.operand()
+    }
+    pub(crate) fn spm_addr_now(&self) -> usize {
+        self.spm_addr()
+    }
+
+    /// The bytes and flags a count may live in, by number (see [`crate::counting`]): bytes
+    /// 0-31 the registers, 32-287 the scratch pad, 288 the ALU result in flight; flags 0 C,
+    /// 1 Z, 2 and 3 the carry and zero in flight, 4 + k and 36 + k those of stack entry k.
+    /// Nothing in flight reads as 0 and ignores writes.
+    pub(crate) fn byte_at(&self, at: usize) -> u8 {
+        match at {
+            0..=31 => self.regs[at],
+            32..=287 => self.spm[at - 32],
+            _ => self.pending.map_or(0, |p| p.result),
+        }
+    }
+    pub(crate) fn set_byte_at(&mut self, at: usize, v: u8) {
+        match at {
+            0..=31 => self.regs[at] = v,
+            32..=287 => self.spm[at - 32] = v,
+            _ => {
+                if let Some(p) = &mut self.pending {
+                    p.result = v;
+                }
+            }
+        }
+    }
+    pub(crate) fn flag_at(&self, at: usize) -> bool {
+        match at {
+            0 => self.c,
+            1 => self.z,
+            2 => self.pending.is_some_and(|p| p.carry),
+            3 => self.pending.is_some_and(|p| p.zero),
+            4..=35 => self.stack[at - 4].c,
+            _ => self.stack[at - 36].z,
+        }
+    }
+    pub(crate) fn set_flag_at(&mut self, at: usize, v: bool) {
+        match at {
+            0 => self.c = v,
+            1 => self.z = v,
+            2 | 3 => {
+                if let Some(p) = &mut self.pending {
+                    if at == 2 {
+                        p.carry = v;
+                    } else {
+                        p.zero = v;
+                    }
+                }
+            }
+            4..=35 => self.stack[at - 4].c = v,
+            _ => self.stack[at - 36].z = v,
+        }
+    }
+
     /// Run with all pins low until `n` instructions have completed; returns the last record.
     pub fn run_instructions<B: Bus>(&mut self, n: u64, bus: &mut B) -> Result<Retired, Timeout> {
         let mut last = None;

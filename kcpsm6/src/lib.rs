@@ -14,6 +14,7 @@
 //! ```
 
 pub mod asm;
+pub mod counting;
 pub mod diag;
 pub mod disasm;
 pub mod image;

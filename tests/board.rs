@@ -850,7 +850,7 @@ fn a_late_waveform_of_a_vga_design_skips_ahead_and_shows_x_for_what_the_run_did_
         assert!(skipping.keys().any(|k| k.ends_with(n)) && !is_x(n), "{n} is x or missing");
     }
     // A model's handle and a temporary file's name differ from run to run.
-    let per_process = ["cpu[63:0]", "model[63:0]", "rom_file[32767:0]", "world_path[32767:0]"];
+    let per_process = ["botsim_iss_cpu[63:0]", "model[63:0]", "rom_file[32767:0]", "world_path[32767:0]"];
     let mut compared = 0;
     for (name, c) in skipping {
         if x.contains(&name) || per_process.iter().any(|p| name.ends_with(&format!(".{p}"))) {

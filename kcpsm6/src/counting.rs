@@ -86,6 +86,10 @@ const STACK_Z: usize = 36;
 /// The widest count, in bytes (its arithmetic stays within u128 with a period count).
 const MAX_WIDTH: usize = 8;
 
+/// The refusal of a moment that is not the end of a period at all (the core's control state,
+/// or all its bytes, differ from the mark's): it says nothing of the periods from the mark.
+pub const NOT_A_PERIOD: &str = "not the end of a period";
+
 /// Why a period is not one that counts: what the proof met, and where.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Refusal {
@@ -257,7 +261,7 @@ impl CountingPeriod {
     pub fn find(mark: &Cpu, now: &Cpu, pins: Pins, inputs: &[u8], out_port_free: bool) -> Result<Self, Refusal> {
         let refuse = |what| Err(Refusal { what, pc: None });
         if now.cycle() <= mark.cycle() || mark.config() != now.config() {
-            return refuse("not a period");
+            return refuse(NOT_A_PERIOD);
         }
         // Only bytes and flags may differ.
         let mut same = now.clone();
@@ -267,12 +271,9 @@ impl CountingPeriod {
         for at in 0..FLAGS {
             same.set_flag_at(at, mark.flag_at(at));
         }
-        if !same.same_state_as(mark) {
-            return refuse("the core's control state differs");
-        }
         let differs = |at: usize| mark.byte_at(at) != now.byte_at(at);
-        if !(0..BYTES).any(differs) {
-            return refuse("nothing counts");
+        if !same.same_state_as(mark) || !(0..BYTES).any(differs) {
+            return refuse(NOT_A_PERIOD);
         }
 
         // The first runs find the homes and how the period leaves every byte and flag: each

@@ -40,18 +40,21 @@ module kcpsm6 #(
     import "DPI-C" function longint botsim_iss_state(input chandle cpu);
     import "DPI-C" function longint botsim_iss_tick(input chandle cpu, input longint pins);
 
-    chandle cpu;
-    reg [63:0] state;  // bits 63:33 are zero
+    // The model, and its outputs of the current cycle (bits 63:33 zero). The board's
+    // fast-forward finds both by these names: it compares the model itself, not its outputs
+    // here, and sets them from the model after a skip (src/board/counts.rs).
+    chandle botsim_iss_cpu;
+    reg [63:0] botsim_iss_q;
 
     initial begin
-        cpu = botsim_iss_new($sformatf("%m"), {24'd0, hwbuild}, {20'd0, interrupt_vector},
-                             scratch_pad_memory_size);
-        state = botsim_iss_state(cpu);
+        botsim_iss_cpu = botsim_iss_new($sformatf("%m"), {24'd0, hwbuild}, {20'd0, interrupt_vector},
+                                        scratch_pad_memory_size);
+        botsim_iss_q = botsim_iss_state(botsim_iss_cpu);
     end
 
 `ifndef BOTSIM_DEBUG
     always @(posedge clk)
-        state <= botsim_iss_tick(cpu, {35'd0, reset, sleep, interrupt, in_port, instruction});
+        botsim_iss_q <= botsim_iss_tick(botsim_iss_cpu, {35'd0, reset, sleep, interrupt, in_port, instruction});
 `else
     // Debug signals (botsim board --vcd builds), with the names and the format of
     // rtl/kcpsm6.v's: the text of the word on `instruction`, the status, the active bank's
@@ -70,9 +73,9 @@ module kcpsm6 #(
     end
     always @(instruction) botsim_disasm({14'd0, instruction}, kcpsm6_opcode);
     always @(posedge clk) begin
-        next_state = botsim_iss_tick(cpu, {35'd0, reset, sleep, interrupt, in_port, instruction});
-        botsim_iss_debug(cpu, next_registers, next_flags);
-        state <= next_state;
+        next_state = botsim_iss_tick(botsim_iss_cpu, {35'd0, reset, sleep, interrupt, in_port, instruction});
+        botsim_iss_debug(botsim_iss_cpu, next_registers, next_flags);
+        botsim_iss_q <= next_state;
         active_registers <= next_registers;
         flags <= next_flags;
     end
@@ -89,12 +92,12 @@ module kcpsm6 #(
     wire [7:0] sim_sE = active_registers[119:112], sim_sF = active_registers[127:120];
 `endif
 
-    assign address        = state[11:0];
-    assign bram_enable    = state[12];
-    assign out_port       = state[20:13];
-    assign port_id        = state[28:21];
-    assign write_strobe   = state[29];
-    assign k_write_strobe = state[30];
-    assign read_strobe    = state[31];
-    assign interrupt_ack  = state[32];
+    assign address        = botsim_iss_q[11:0];
+    assign bram_enable    = botsim_iss_q[12];
+    assign out_port       = botsim_iss_q[20:13];
+    assign port_id        = botsim_iss_q[28:21];
+    assign write_strobe   = botsim_iss_q[29];
+    assign k_write_strobe = botsim_iss_q[30];
+    assign read_strobe    = botsim_iss_q[31];
+    assign interrupt_ack  = botsim_iss_q[32];
 endmodule

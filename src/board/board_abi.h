@@ -48,6 +48,9 @@ typedef struct BoardCpuFns {
     /* Debug builds: the active bank's s0..sF (s0 in the low byte of regs[0]) and the flags
      * bank | zero << 1 | carry << 2 | ie << 3 | reset << 4 | sleep << 5 | entry << 6. */
     void (*debug)(void* cpu, uint32_t* regs, uint32_t* flags);
+    /* The design reads this instance's out_port only under a write strobe (the analysis of
+     * src/board/strobes.rs): a count shown there between OUTPUTs cannot change the board. */
+    void (*out_port_free)(void* cpu);
 } BoardCpuFns;
 
 /* A probe on one RTL KCPSM6's ports (the lock-step build), which begins with a pointer to
@@ -81,7 +84,8 @@ typedef struct BoardHost {
     /* The fast-forward (harness.cpp): counted up by the models at every interrupt, write of
      * the bot's firmware and change of the bot's inputs; mark every model's state; take a
      * phase snapshot of every model's state (the snapshots since the mark are numbered from
-     * 1); are the KCPSM6 models as marked (their cycle counts aside); how many periods (each
+     * 1); are the KCPSM6 models as marked (their cycle counts aside: 1), or as marked but for
+     * a count their firmware keeps (2, src/board/counts.rs; 0: neither); how many periods (each
      * as long as the time since the mark) the bot's outputs stay as they are with its inputs
      * held, at most `periods`; do they stay so for `periods` periods and then up to phase
      * snapshot `phase`; run every model `periods` periods on and then to phase snapshot

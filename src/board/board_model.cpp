@@ -74,6 +74,7 @@ DesignModel botsim_model_new(VerilatedContext* ctx) {
     m.io.xbot_regs[1] = &t->xbot_regs2;
     m.io.xbot_regs[2] = &t->xbot_regs3;
     m.observed_known = kObservedKnown;
+    m.out_port_free = botsim_out_port_free;
     m.members = [](const uint8_t* r, std::vector<BoardMember>& out) { botsim_members(root_of(r), out); };
     m.counters = [](const uint8_t* r, std::vector<BoardCounter>& out) { botsim_counters(root_of(r), out); };
     m.eval = [](void* top) { top_of(top)->eval(); };

@@ -75,6 +75,9 @@ struct DesignModel {
     // the root's variables and its counters.
     bool observed_known;
     void (*members)(const uint8_t* root, std::vector<BoardMember>& out);
+    // The KCPSM6 models (by the Verilator name of their instance) whose out_port the design
+    // reads only under a write strobe (src/board/strobes.rs); null-terminated.
+    const char* const* out_port_free;
     void (*counters)(const uint8_t* root, std::vector<BoardCounter>& out);
     // Vboard::eval(); the evaluation proper, which eval() wraps; the trigger computation
     // alone, or null when the Verilator has none (BOTSIM_EVAL_TRIGGERS).

@@ -509,7 +509,12 @@ fn analyse(step: &Step, delays: Option<&str>) -> Result<super::checks::Checked, 
     }
     step.write(
         "botsim_observed.h",
-        &super::observed::header(&checked.members, &checked.counters, checked.triggers_fn.as_deref()),
+        &super::observed::header(
+            &checked.members,
+            &checked.counters,
+            &checked.out_port_free,
+            checked.triggers_fn.as_deref(),
+        ),
     )?;
     Ok(checked)
 }

@@ -94,6 +94,9 @@ pub struct Checked {
     pub unshown: Result<Vec<Unshown>, String>,
     /// The counters the fast-forward moves on by arithmetic (super::counters).
     pub counters: Vec<Counter>,
+    /// The KCPSM6 models whose out_port the design reads only under a write strobe
+    /// (super::strobes).
+    pub out_port_free: Vec<String>,
     /// The generated function that computes the active triggers alone (its name differs
     /// between Verilator versions), for the harness's rising-edges-only evaluation.
     pub triggers_fn: Option<String>,
@@ -125,7 +128,9 @@ impl Checked {
                     observed: members.as_ref().err().cloned(),
                 };
                 let triggers_fn = g.triggers_fn.clone();
-                Checked { verdicts, members, unshown, counters, triggers_fn }
+                let eval: Vec<&str> = g.eval.iter().map(String::as_str).collect();
+                let out_port_free = super::strobes::out_port_free(&g.root, &eval);
+                Checked { verdicts, members, unshown, counters, out_port_free, triggers_fn }
             }
             None => {
                 let why = "Verilator's output could not be read".to_string();
@@ -139,6 +144,7 @@ impl Checked {
                     members: Err(why.clone()),
                     unshown: Err(why),
                     counters: Vec::new(),
+                    out_port_free: Vec::new(),
                     triggers_fn: None,
                 }
             }

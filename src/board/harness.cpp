@@ -122,7 +122,7 @@ constexpr size_t kMaxPhases = 64;
 // many periods.
 constexpr int kTurnsBeforeTrial = 3;
 constexpr uint64_t kMaxTurnEveryPs = (1ull << 16) * 10000;
-constexpr uint64_t kTurnPeriods = 8;
+constexpr uint64_t kTurnPeriods = 2;
 constexpr uint64_t kMaxTrialTurns = 4;
 constexpr uint64_t kTrialPays = 4;
 // The most records a period may show (the display's pins multiplexed every few clocks, an LED
@@ -219,8 +219,16 @@ struct Phase {
     size_t shown = 0;           // the period's records up to then
 };
 
+// A KCPSM6 model's outputs register in kcpsm6_iss.v and the model: the fast-forward compares
+// the model (ff_same), not its outputs, and sets them from the model after a skip (a core that
+// counts shows its count on out_port).
+struct IssShim {
+    size_t q, cpu;
+};
+
 struct FastForward {
     bool on = false;
+    std::vector<IssShim> shims;
     std::vector<uint8_t> mark;  // Verilator's state at the mark
     std::vector<ClockPhase> mark_clocks;  // and every clock's
     bool marked = false;
@@ -485,6 +493,36 @@ int board_rising_edges_only(Board* b, int on) {
     return b->rising_only;
 }
 
+// The KCPSM6 models of the design (kcpsm6_iss.v's `botsim_iss_q` and `botsim_iss_cpu`), and
+// what the build found of each: the design reads its out_port only under a write strobe.
+void find_shims(Board* b, const std::vector<BoardMember>& ms) {
+    static const char kQ[] = "__DOT__botsim_iss_q", kCpu[] = "__DOT__botsim_iss_cpu";
+    FastForward& f = b->ff;
+    f.shims.clear();
+    for (const BoardMember& m : ms) {
+        const std::string name = m.name;
+        if (name.size() <= sizeof kQ - 1 || name.compare(name.size() - (sizeof kQ - 1), std::string::npos, kQ) != 0)
+            continue;
+        const std::string core = name.substr(0, name.size() - (sizeof kQ - 1));
+        for (const BoardMember& c : ms) {
+            if (c.name != core + kCpu) continue;
+            f.shims.push_back({m.off, c.off});
+            void* cpu = *(void* const*)(b->model.root + c.off);
+            bool free = false;
+            for (const char* const* p = b->model.out_port_free; p && *p; p++) free |= core == *p;
+            if (cpu && free) (*(const BoardCpuFns* const*)cpu)->out_port_free(cpu);
+        }
+    }
+}
+
+// After a skip: every KCPSM6 model's outputs register as the model's outputs now.
+inline void refresh_shims(Board* b) {
+    for (const IssShim& x : b->ff.shims) {
+        void* cpu = *(void* const*)(b->model.root + x.cpu);
+        if (cpu) *(uint64_t*)(b->model.root + x.q) = (*(const BoardCpuFns* const*)cpu)->state(cpu);
+    }
+}
+
 // The fast-forward off (0), comparing the whole state (1: a run that opens a waveform later),
 // or what a run observes (2: a run that records only what the board shows); the caller knows
 // when the run allows it (no VGA capture, no traces, breakpoints or lock-step). Returns
@@ -514,11 +552,17 @@ int board_fast_forward(Board* b, int mode) {
         b->model.members(b->model.root, ms);
         std::sort(ms.begin(), ms.end(), [](const BoardMember& x, const BoardMember& y) { return x.off < y.off; });
         f.busy.assign(ms.size(), 0);
+        find_shims(b, ms);
+        auto shim_at = [&](size_t off) {
+            for (const IssShim& x : f.shims)
+                if (x.q == off) return true;
+            return false;
+        };
         // Observed variables, neighbours merged across padding (no variable between them); the
         // counters apart.
         bool open = false;  // the last span may grow: no unobserved variable since it began
         for (const BoardMember& m : ms) {
-            if (!m.observed || counter_at(m.off)) {
+            if (!m.observed || counter_at(m.off) || shim_at(m.off)) {
                 open = false;
             } else if (open) {
                 f.spans.back().len = (uint32_t)(m.off + m.len - f.spans.back().off);
@@ -531,6 +575,7 @@ int board_fast_forward(Board* b, int mode) {
         f.spans.push_back({0, (uint32_t)b->model.root_size});
         f.members.clear();
         f.busy.clear();
+        f.shims.clear();
     }
     // Comparing the whole state (for a waveform that opens later) finds a period only on a
     // one-clock board: a second clock's part (a VGA frame) and the rest repeat together too
@@ -1035,6 +1080,7 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
         for (size_t i = 0; i < nspans; i++) std::memcpy(root + spans[i].off, p.root.data() + spans[i].off, spans[i].len);
         skipped += p.at;
     }
+    refresh_shims(b);
     f.mark_t += (k + 1) * period;  // the start of the period the board is now in
     FF_TRACE("ff %.6f ms: period %llu clocks, %zu shown, skip %llu periods + phase %zu (%.6f ms)\n", t / 1e9,
              (unsigned long long)(period / 10000), per, (unsigned long long)k, phase, skipped / 1e9);

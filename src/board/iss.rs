@@ -20,6 +20,7 @@ use kcpsm6::source::SourceMap;
 use kcpsm6::trace::Tracer;
 use kcpsm6::Image;
 
+use super::counts::{Same, Watch};
 use super::replay::{DebugWords, Replay};
 
 use botsim_core::sim::iss::{IssBot, LazyBot};
@@ -31,9 +32,15 @@ struct CpuFns {
     tick: unsafe extern "C" fn(*mut IssCpu, u64) -> u64,
     state: unsafe extern "C" fn(*mut IssCpu) -> u64,
     debug: unsafe extern "C" fn(*mut IssCpu, *mut u32, *mut u32),
+    out_port_free: unsafe extern "C" fn(*mut IssCpu),
 }
 
-static FNS: CpuFns = CpuFns { tick: tick_ffi, state: state_ffi, debug: debug_ffi };
+static FNS: CpuFns = CpuFns { tick: tick_ffi, state: state_ffi, debug: debug_ffi, out_port_free: out_port_free_ffi };
+
+unsafe extern "C" fn out_port_free_ffi(cpu: *mut IssCpu) {
+    // SAFETY: the model pointer is one `Host::create` made.
+    unsafe { (*cpu).watch.out_port_free = true };
+}
 
 unsafe extern "C" fn debug_ffi(cpu: *mut IssCpu, regs: *mut u32, flags: *mut u32) {
     // SAFETY: the model pointer is one `Host::create` made; regs holds four words, flags one.
@@ -117,6 +124,10 @@ pub struct IssCpu {
     /// breakpoints or is recorded): bring the core up to date ([`IssCpu::core`]) before
     /// reading or changing it.
     replay: Replay,
+    /// The outputs of the current cycle (the last tick's), and what the fast-forward of
+    /// firmware that counts records since its mark.
+    out: u64,
+    watch: Watch,
 }
 
 pub use botsim_core::debug::Breaks;
@@ -183,6 +194,8 @@ impl IssCpu {
             activity: std::ptr::null_mut(),
             mark: None,
             phases: Vec::new(),
+            out: 0,
+            watch: Watch::new(),
         }
     }
 
@@ -191,6 +204,7 @@ impl IssCpu {
     fn debug_now(&mut self) -> DebugWords {
         if !self.debug {
             self.debug = true;
+            self.watch.enabled = false; // the waveform shows the registers
             self.core(); // a trip recorded without them is not replayed
         }
         self.replay.debug().unwrap_or_else(|| debug_words(&self.cpu))
@@ -235,6 +249,13 @@ impl IssCpu {
     /// One cycle with the inputs `pins` (kcpsm6_iss.v's packing); the next cycle's outputs.
     #[inline]
     fn tick(&mut self, pins: u64) -> u64 {
+        self.watch.cycle(pins, self.out);
+        self.out = self.tick_core(pins);
+        self.out
+    }
+
+    #[inline(always)]
+    fn tick_core(&mut self, pins: u64) -> u64 {
         if self.replay.active() {
             let before = self.record.is_some().then(|| self.replay.current());
             if let Some(out) = self.replay.next(pins) {
@@ -554,6 +575,9 @@ impl Host {
                 }
             }
         }
+        // A core that is traced, stops at breakpoints or is recorded runs every cycle.
+        cpu.watch.enabled = cpu.trace.is_none() && cpu.breaks.is_none() && cpu.record.is_none();
+        cpu.out = cpu.state();
         let ptr = &mut *cpu as *mut IssCpu;
         self.cpus.push((path.clone(), cpu));
         ptr
@@ -565,6 +589,7 @@ impl Host {
         for (_, c) in &mut self.cpus {
             c.mark = Some(Box::new(c.core().clone()));
             c.phases.clear();
+            c.watch.mark();
         }
         for b in &mut self.bots {
             b.mark = b.bot.edges();
@@ -583,22 +608,35 @@ impl Host {
         }
     }
 
-    /// Every KCPSM6 model is in its marked state (its cycle count aside).
-    fn ff_same(&mut self) -> bool {
-        self.cpus.iter_mut().all(|(_, c)| {
+    /// Every KCPSM6 model is in its marked state (its cycle count aside), or in it but for a
+    /// count (firmware that counts, proven: [`super::counts`]).
+    fn ff_same(&mut self) -> Same {
+        let mut all = Same::Yes;
+        for (_, c) in &mut self.cpus {
             c.core();
-            c.mark.as_ref().is_some_and(|m| c.cpu.same_state_as(m))
-        })
+            let Some(m) = c.mark.as_deref() else { return Same::No };
+            match c.watch.same(m, &c.cpu) {
+                Same::No => return Same::No,
+                Same::Counting => all = Same::Counting,
+                Same::Yes => {}
+            }
+        }
+        all
     }
 
     /// How many periods (each as long as the time since the mark), at most `periods`, every
     /// bot's outputs stay as they are with its inputs held; none without a bot model, all
     /// on a board without a bot.
     fn ff_room(&mut self, periods: u64) -> u64 {
-        if self.bots.is_empty() {
-            return if self.board_alone { periods } else { 0 };
-        }
         let mut n = periods;
+        for (_, c) in &self.cpus {
+            if let Some(room) = c.watch.room() {
+                n = n.min(room);
+            }
+        }
+        if self.bots.is_empty() {
+            return if self.board_alone { n } else { 0 };
+        }
         for b in &mut self.bots {
             let per = b.bot.edges() - b.mark;
             if per == 0 {
@@ -613,6 +651,10 @@ impl Host {
     /// Every bot's outputs stay as they are for `periods` periods and then up to phase
     /// snapshot `phase` (1-based) of the next.
     fn ff_fits(&mut self, periods: u64, phase: usize) -> bool {
+        // A core that counts is moved on by whole periods only.
+        if self.cpus.iter().any(|(_, c)| c.watch.counting()) {
+            return false;
+        }
         if self.bots.is_empty() {
             return self.board_alone;
         }
@@ -632,6 +674,14 @@ impl Host {
     fn ff_skip(&mut self, periods: u64, phase: usize) -> u64 {
         for (_, c) in &mut self.cpus {
             let now = c.core().cycle();
+            if let Some(end) = c.watch.skip(periods) {
+                // Where the proof says the periods leave it; the mark is the start of the next.
+                c.mark = Some(Box::new(end.clone()));
+                c.phases.clear();
+                c.cpu = end;
+                c.out = c.state();
+                continue;
+            }
             let Some(mark) = c.mark.as_mut() else { continue };
             let per = now - mark.cycle();
             let moved = (periods + 1) * per;
@@ -704,9 +754,14 @@ unsafe extern "C" fn ff_mark_ffi(ctx: *mut c_void) {
     unsafe { (*(ctx as *mut Host)).ff_mark() }
 }
 
+/// 0: not as marked; 1: as marked; 2: as marked but for a count (board_abi.h).
 unsafe extern "C" fn ff_same_ffi(ctx: *mut c_void) -> c_int {
     // SAFETY: as for ff_mark_ffi.
-    unsafe { (*(ctx as *mut Host)).ff_same() as c_int }
+    match unsafe { (*(ctx as *mut Host)).ff_same() } {
+        Same::No => 0,
+        Same::Yes => 1,
+        Same::Counting => 2,
+    }
 }
 
 unsafe extern "C" fn ff_snap_ffi(ctx: *mut c_void) {

@@ -5,6 +5,7 @@
 pub mod build;
 pub mod checks;
 pub mod counters;
+mod counts;
 pub mod cpp;
 pub mod demand;
 pub mod dialect;
@@ -14,6 +15,7 @@ pub mod lockstep;
 pub mod model;
 pub mod observed;
 mod replay;
+pub mod strobes;
 pub mod waveform;
 
 pub use botsim_core::board::*;

@@ -357,6 +357,12 @@ impl CountingPeriod {
         self.cycles
     }
 
+    /// Where the counts live: their home bytes (numbered as the core's bytes: 0-31 the
+    /// registers, 32-287 the scratch pad, 288 the result in flight), low byte first.
+    pub fn homes(&self) -> Vec<usize> {
+        self.counts.iter().flat_map(|c| c.homes.iter().map(|&(at, _)| at)).collect()
+    }
+
     /// The core `periods` periods after the end of this one (within [`CountingPeriod::room`]):
     /// as simulating them leaves it.
     pub fn state_after(&self, periods: u64) -> Cpu {

@@ -38,7 +38,7 @@ enum Proof {
     Untried,
     /// Tried and refused: not again for this mark.
     Refused,
-    Counting(CountingPeriod),
+    Counting(Box<CountingPeriod>),
 }
 
 /// One model's records since the fast-forward's mark, and its proof.
@@ -54,7 +54,28 @@ pub(crate) struct Watch {
     /// The combinations of reset, sleep and interrupt seen (a bit each).
     pins: u8,
     proof: Proof,
+    /// Nested loops: see [`Nest`].
+    nest: Nest,
 }
+
+/// An inner loop's count that ends again and again (a delay's inner loop, reloaded at every
+/// turn of an outer one) is tried as state: its periods are refused so that the board finds
+/// the outer loop's period, whose count is the outer one. A trial that finds no other count
+/// within a few marks ends, and the next waits for twice as many ends.
+#[derive(Default)]
+struct Nest {
+    /// The homes of the count whose room the last skips used up, and how many times in a row.
+    ended: Vec<usize>,
+    times: u32,
+    /// Marks since the trial began (0: none on).
+    trial_marks: u32,
+    /// Trials that found nothing.
+    failed: u32,
+}
+
+/// Ends of the same count in a row before a trial; marks a trial lasts.
+const ENDS_BEFORE_TRIAL: u32 = 2;
+const TRIAL_MARKS: u32 = 4;
 
 impl Watch {
     pub fn new() -> Watch {
@@ -66,6 +87,7 @@ impl Watch {
             too_many: false,
             pins: 0,
             proof: Proof::Untried,
+            nest: Nest::default(),
         }
     }
 
@@ -92,6 +114,15 @@ impl Watch {
 
     /// The fast-forward's mark: record from now on.
     pub fn mark(&mut self) {
+        if self.nest.trial_marks > 0 {
+            self.nest.trial_marks += 1;
+            if self.nest.trial_marks > TRIAL_MARKS {
+                // No outer count found: the inner one counts again.
+                self.nest.trial_marks = 0;
+                self.nest.times = 0;
+                self.nest.failed += 1;
+            }
+        }
         self.recording = self.enabled;
         self.inputs.clear();
         self.too_many = false;
@@ -124,11 +155,23 @@ impl Watch {
                 let bits = self.pins.trailing_zeros();
                 let pins = Pins { interrupt: bits & 1 != 0, sleep: bits & 2 != 0, reset: bits & 4 != 0 };
                 match CountingPeriod::find(mark, now, pins, &self.inputs, self.out_port_free) {
+                    Ok(p) if self.nest.tried_as_state(&p.homes()) => {
+                        if trace() {
+                            eprintln!("ff: a core's inner count is state (a trial): {p:?}");
+                        }
+                        self.proof = Proof::Refused;
+                        Same::No
+                    }
                     Ok(p) => {
+                        if self.nest.trial_marks > 0 && p.homes() != self.nest.ended {
+                            // Another count on trial: an outer one, found.
+                            self.nest.trial_marks = 0;
+                            self.nest.failed = 0;
+                        }
                         if trace() {
                             eprintln!("ff: a core counts: {p:?}");
                         }
-                        self.proof = Proof::Counting(p);
+                        self.proof = Proof::Counting(Box::new(p));
                         Same::Counting
                     }
                     Err(e) => {
@@ -163,8 +206,32 @@ impl Watch {
     /// period did not count.
     pub fn skip(&mut self, periods: u64) -> Option<Cpu> {
         let Proof::Counting(p) = &mut self.proof else { return None };
+        if periods >= p.room() {
+            // The count ends in the next period.
+            let homes = p.homes();
+            if homes == self.nest.ended {
+                self.nest.times += 1;
+            } else {
+                self.nest.ended = homes;
+                self.nest.times = 1;
+            }
+        }
         p.advance(periods);
         Some(p.state_after(0))
+    }
+}
+
+impl Nest {
+    /// Is a count at `homes` the inner one on trial as state? (Starts the trial when its
+    /// ends are enough.)
+    fn tried_as_state(&mut self, homes: &[usize]) -> bool {
+        if homes != self.ended || self.times < ENDS_BEFORE_TRIAL << self.failed.min(8) {
+            return false;
+        }
+        if self.trial_marks == 0 {
+            self.trial_marks = 1;
+        }
+        true
     }
 }
 

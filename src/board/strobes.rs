@@ -88,11 +88,14 @@ fn member<'a>(t: &[Tok<'a>], i: usize) -> Option<&'a str> {
     }
 }
 
+/// A write of a root variable: its function, the index of its first token, its value's tokens.
+type Write = (usize, usize, std::ops::Range<usize>);
+
 /// The guards of outputs register `q`: root variables whose every write is a strobe's
 /// condition, each after `q`'s last write in its function.
 fn guards(bodies: &[Vec<Tok>], q: &str) -> BTreeSet<String> {
     // Every write `vlSelf->g = ...;`: its function, where, and its value's tokens.
-    let mut writes: BTreeMap<&str, Vec<(usize, usize, std::ops::Range<usize>)>> = BTreeMap::new();
+    let mut writes: BTreeMap<&str, Vec<Write>> = BTreeMap::new();
     let mut q_last: Vec<Option<usize>> = vec![None; bodies.len()];
     for (f, t) in bodies.iter().enumerate() {
         for i in 0..t.len() {
@@ -215,6 +218,8 @@ enum Cond {
     And(Box<Cond>, Box<Cond>),
     Or(Box<Cond>, Box<Cond>),
     Eq(Box<Cond>, Box<Cond>),
+    /// `!=`.
+    Ne(Box<Cond>, Box<Cond>),
     Other,
 }
 
@@ -244,6 +249,11 @@ fn strobe(c: &Cond, guards: &BTreeSet<String>) -> bool {
                 _ => false,
             }
         }
+        // 0 != x: x is not zero.
+        Cond::Ne(a, b) => match (&**a, &**b) {
+            (Cond::Const(0), x) | (x, Cond::Const(0)) => strobe(x, guards),
+            _ => false,
+        },
         Cond::Var(g) => guards.contains(g),
         _ => false,
     }
@@ -309,7 +319,10 @@ impl Parser<'_, '_> {
         if self.eat("==") {
             return Cond::Eq(Box::new(c), Box::new(self.shift()));
         }
-        if self.eat("!=") || self.eat("^") || self.eat("<") || self.eat(">") || self.eat("<=") || self.eat(">=") {
+        if self.eat("!=") {
+            return Cond::Ne(Box::new(c), Box::new(self.shift()));
+        }
+        if self.eat("^") || self.eat("<") || self.eat(">") || self.eat("<=") || self.eat(">=") {
             self.shift();
             return Cond::Other;
         }
@@ -382,6 +395,10 @@ mod tests {
             "vlSelf->u__DOT__in_port = ((1U & (IData)((Q >> 0x15U))) ? 1U : 2U);\n\
              if ((1U & (IData)((Q >> 0x1eU)))) {\n vlSelf->u__DOT__led = (0xffU & (IData)((Q >> 0xdU)));\n}"
         ));
+        // Either strobe: `0 != (0x60000000 & q)`.
+        assert!(free(
+            "if ((IData)((0ULL != (0x60000000ULL & Q)))) {\n vlSelf->u__DOT__led = (0xffU & (IData)((Q >> 0xdU)));\n}"
+        ));
         // A guard wire: we = write_strobe & port_id[1], computed after the register's commit.
         assert!(free(
             "if (vlSelf->u__DOT__we) {\n vlSelf->u__DOT__led = (0xffU & (IData)((Q >> 0xdU)));\n}\n\
@@ -412,6 +429,10 @@ mod tests {
             "vlSelf->u__DOT__we = (IData)((0x20400000ULL == (0x20400000ULL & Q)));\n\
              if (vlSelf->u__DOT__we) {\n vlSelf->u__DOT__led = (0xffU & (IData)((Q >> 0xdU)));\n}\n\
              Q = __Vdly__u__DOT__cpu__DOT__botsim_iss_q;"
+        ));
+        // Any of the strobes, read_strobe among them.
+        assert!(!free(
+            "if ((IData)((0ULL != (0xe0000000ULL & Q)))) {\n vlSelf->u__DOT__led = (0xffU & (IData)((Q >> 0xdU)));\n}"
         ));
         // Either strobe or not: an `or` with something else.
         assert!(!free(

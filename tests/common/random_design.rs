@@ -306,10 +306,14 @@ pub fn generate(seed: u64) -> Design {
     let bot_reset = bot_reset.map_or("sysreset".to_string(), |b| format!("sysreset | {b}"));
 
     // The team's program.
-    let kind = *r.pick(&[Program::Semaphore, Program::PollSwitches, Program::Countdown(0)]);
+    let kind = *r.pick(&[Program::Semaphore, Program::PollSwitches, Program::Countdown(0), Program::Countdown(0)]);
     let kind = match kind {
         // Tame: a trip of 36, 60 or 108 clocks, which the course modules' 48 divide well.
-        Program::Countdown(_) => Program::Countdown(if tame { *r.pick(&[2, 5, 11]) } else { r.range(1, 200) }),
+        Program::Countdown(_) if r.chance(40) => {
+            Program::Countdown(if tame { *r.pick(&[2, 5, 11]) } else { r.range(1, 200) })
+        }
+        // Or a software delay as teams write them (see Delay).
+        Program::Countdown(_) => Program::Delay(Delay::draw(&mut r)),
         k => k,
     };
     parts_text.push(format!("team program: {kind:?}"));
@@ -342,6 +346,15 @@ pub fn generate(seed: u64) -> Design {
             }
         };
         leds.push(s);
+    }
+    // Sometimes a team shows what out_port shows between OUTPUTs (a debugging LED): then a
+    // count the program keeps there can be told apart, and may not be skipped.
+    let mut watch_stream = Rng::new(seed ^ 0x4F55_5450);
+    let out_watch = watch_stream.chance(15);
+    if out_watch {
+        let k = watch_stream.range(0, 14) as usize;
+        leds[k] = "out_zero".into();
+        parts_text.push(format!("LED {k} shows out_port == 0 at every clock (no strobe)"));
     }
     leds.reverse();
     let mut digits = Vec::new();
@@ -404,7 +417,12 @@ pub fn generate(seed: u64) -> Design {
 
     // Whether the generator knows the design to repeat within reach (the peripherals' traffic
     // at random times aside).
-    let reach = match (uart || keyboard, reach(&parts, &clocks, simulate, kind, vga.is_some() && vga_on_led)) {
+    let reach = reach(&parts, &clocks, simulate, kind, vga.is_some() && vga_on_led);
+    let reach = match (out_watch, kind, reach) {
+        (true, Program::Delay(_), Ok(_)) => Err("an LED shows out_port, where the delay's count is".into()),
+        (_, _, r) => r,
+    };
+    let reach = match (uart || keyboard, reach) {
         (false, r) => r,
         (true, Ok(p)) => {
             Err(format!("the peripherals' traffic comes at random times (the rest repeats every {p} clocks)"))
@@ -559,7 +577,7 @@ module nexys4fpga #(
         .d7({d7}), .d6({d6}), .d5({d5}), .d4({d4}), .d3({d3}), .d2({d2}), .d1({d1}), .d0({d0}),
         .dp({{{points}}}), .seg({{dp, seg}}), .an(an), .digits_out());
 
-{periph_verilog}
+{periph_verilog}{out_watch_verilog}
     assign led = {{{leds}}}{periph_xor};
 endmodule
 {modules}",
@@ -573,6 +591,11 @@ endmodule
         d0 = digits[0],
         points = points.join(", "),
         leds = leds.join(", "),
+        out_watch_verilog = if out_watch {
+            "    reg out_zero = 1'b0;\n    always @(posedge clk) out_zero <= (out_port == 8'h00);\n"
+        } else {
+            ""
+        },
     );
 
     // Random inputs: switch changes and presses, and one CPU reset.
@@ -632,6 +655,188 @@ enum Program {
     PollSwitches,
     /// Counts down from N, then toggles an LED and a digit.
     Countdown(u64),
+    /// A software delay, then toggles an LED and a digit.
+    Delay(Delay),
+}
+
+/// How a software delay counts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Count {
+    /// `SUB`, `SUBCY`..., `JUMP NZ` (to zero) or `JUMP NC` (past it).
+    DownToZero,
+    DownPastZero,
+    /// `ADD`, `ADDCY`..., `JUMP NC` (to the carry out of the top byte).
+    UpToCarry,
+    /// `ADD`, `ADDCY`..., `COMPARE`, `COMPARECY`..., `JUMP NZ` (to a limit).
+    UpToLimit(u64),
+    /// Down in the scratch pad: `FETCH`, `SUB`, `SUBCY`..., `STORE`, `JUMP NZ`.
+    InScratchPad,
+    /// An inner count of `u8` reloaded at every turn of this one (down to zero, one byte).
+    Nested(u8),
+}
+
+/// A software delay of the team's program: `bytes` registers counting from `value` as
+/// `count` says, in a subroutine or inline, at `addr`; the mnemonics in lower case or not,
+/// constants in hex or decimal (`1'd`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Delay {
+    count: Count,
+    bytes: u32,
+    value: u64,
+    regs: [u8; 3],
+    call: bool,
+    addr: u16,
+    lower: bool,
+    decimal: bool,
+}
+
+impl Delay {
+    fn draw(r: &mut Rng) -> Delay {
+        let bytes = r.range(1, 3) as u32;
+        // s3 and s4 are the program's own; the count anywhere else.
+        let mut pool: Vec<u8> = (5..16).collect();
+        let mut regs = [0u8; 3];
+        for reg in &mut regs {
+            *reg = pool.remove(r.range(0, pool.len() as u64 - 1) as usize);
+        }
+        let top = 1u64 << (8 * bytes);
+        // Turns: up to a few tens of milliseconds of the board at 8-12 clocks a turn.
+        let turns = r.range(2, (top - 1).min(200_000));
+        let count = match r.range(0, 5) {
+            0 => Count::DownToZero,
+            1 => Count::DownPastZero,
+            2 => Count::UpToCarry,
+            3 => Count::UpToLimit(0),
+            4 => Count::InScratchPad,
+            _ => Count::Nested(r.range(2, 255) as u8),
+        };
+        let (count, bytes, value) = match count {
+            Count::DownToZero | Count::InScratchPad => (count, bytes, turns),
+            Count::DownPastZero => (count, bytes, turns - 1),
+            Count::UpToCarry => (count, bytes, top - turns),
+            Count::UpToLimit(_) => {
+                let from = r.range(0, top - 1 - turns);
+                (Count::UpToLimit(from + turns), bytes, from)
+            }
+            Count::Nested(inner) => (Count::Nested(inner), 1, r.range(2, 255)),
+        };
+        Delay {
+            count,
+            bytes,
+            value,
+            regs,
+            call: r.chance(50),
+            addr: r.range(0x10, 0x2C0) as u16,
+            lower: r.chance(30),
+            decimal: r.chance(30),
+        }
+    }
+
+    /// The instructions: (label, text), the delay's loop labelled `delay`.
+    fn lines(&self) -> Vec<(Option<&'static str>, String)> {
+        let k = |v: u64| if self.decimal { format!("{v}'d") } else { format!("{v:02X}") };
+        let r = |i: usize| format!("s{:X}", self.regs[i]);
+        let byte = |v: u64, i: usize| (v >> (8 * i)) & 0xFF;
+        let n = self.bytes as usize;
+        let mut out: Vec<(Option<&'static str>, String)> = Vec::new();
+        let chain = |out: &mut Vec<(Option<&'static str>, String)>, op: &str, label: Option<&'static str>| {
+            for i in 0..n {
+                let mnemonic = if i == 0 { op.to_string() } else { format!("{op}CY") };
+                out.push((if i == 0 { label } else { None }, format!("{mnemonic} {}, {}", r(i), k(u64::from(i == 0)))));
+            }
+        };
+        match self.count {
+            Count::Nested(inner) => {
+                out.push((None, format!("LOAD {}, {}", r(0), k(self.value))));
+                out.push((Some("outer"), format!("LOAD {}, {}", r(1), k(inner as u64))));
+                out.push((Some("delay"), format!("SUB {}, {}", r(1), k(1))));
+                out.push((None, "JUMP NZ, delay".into()));
+                out.push((None, format!("SUB {}, {}", r(0), k(1))));
+                out.push((None, "JUMP NZ, outer".into()));
+            }
+            Count::InScratchPad => {
+                for i in 0..n {
+                    out.push((None, format!("LOAD {}, {}", r(i), k(byte(self.value, i)))));
+                    out.push((None, format!("STORE {}, {}", r(i), k(0x20 + i as u64))));
+                }
+                for i in 0..n {
+                    let label = if i == 0 { Some("delay") } else { None };
+                    out.push((label, format!("FETCH {}, {}", r(i), k(0x20 + i as u64))));
+                }
+                chain(&mut out, "SUB", None);
+                for i in 0..n {
+                    out.push((None, format!("STORE {}, {}", r(i), k(0x20 + i as u64))));
+                }
+                out.push((None, "JUMP NZ, delay".into()));
+            }
+            _ => {
+                for i in 0..n {
+                    out.push((None, format!("LOAD {}, {}", r(i), k(byte(self.value, i)))));
+                }
+                let (op, jump) = match self.count {
+                    Count::DownToZero => ("SUB", "JUMP NZ, delay"),
+                    Count::DownPastZero => ("SUB", "JUMP NC, delay"),
+                    Count::UpToCarry => ("ADD", "JUMP NC, delay"),
+                    _ => ("ADD", "JUMP NZ, delay"),
+                };
+                chain(&mut out, op, Some("delay"));
+                if let Count::UpToLimit(limit) = self.count {
+                    for i in 0..n {
+                        let m = if i == 0 { "COMPARE" } else { "COMPARECY" };
+                        out.push((None, format!("{m} {}, {}", r(i), k(byte(limit, i)))));
+                    }
+                }
+                out.push((None, jump.into()));
+            }
+        }
+        out
+    }
+
+    /// The clocks of one turn of the loop that counts (the outer loop, when nested).
+    fn trip(&self) -> u64 {
+        let lines = self.lines();
+        let at = lines.iter().position(|(l, _)| *l == Some("delay")).unwrap();
+        let turn = 2 * (lines.len() - at) as u64;
+        match self.count {
+            Count::Nested(inner) => 2 * (1 + 2 * inner as u64 + 2),
+            _ => turn,
+        }
+    }
+
+    /// Its turns (the outer loop's, when nested).
+    fn turns(&self) -> u64 {
+        match self.count {
+            Count::DownToZero | Count::InScratchPad | Count::Nested(_) => self.value,
+            Count::DownPastZero => self.value + 1,
+            Count::UpToCarry => (1 << (8 * self.bytes)) - self.value,
+            Count::UpToLimit(l) => l - self.value,
+        }
+    }
+
+    /// The address of the loop that counts: its JUMP shows the register bits 7:4 of that
+    /// address name on port_id in every cycle (the hardware does: a count there cannot be
+    /// skipped exactly).
+    fn loop_address(&self) -> u16 {
+        let lines = self.lines();
+        let at = lines.iter().position(|(l, _)| *l == Some("delay")).unwrap();
+        self.addr + u16::from(self.call) * 4 + at as u16
+    }
+
+    /// Why botsim may not skip it whole, if it may not.
+    fn unskippable(&self) -> Option<String> {
+        let shown = (self.loop_address() >> 4 & 15) as u8;
+        let outer = self.loop_address() - 1;
+        if self.regs[..self.bytes as usize].contains(&shown) {
+            return Some(format!("its delay's JUMP shows its count (s{shown:X}) on port_id"));
+        }
+        if let Count::Nested(_) = self.count {
+            if (outer >> 4 & 15) as u8 == self.regs[0] {
+                return Some("its delay's outer JUMP shows its count on port_id".into());
+            }
+            return Some("a nested delay (each inner loop is skipped alone)".into());
+        }
+        None
+    }
 }
 
 /// The program of `kind`, and the clocks of its loop's period once settled.
@@ -695,6 +900,35 @@ poll:       INPUT   s0, PA_SW
             JUMP    poll
 "
         .to_string(),
+        Program::Delay(d) => {
+            let mut body = String::from(
+                "            ADDRESS 000
+main:       LOAD    s3, 00
+            INPUT   s4, PA_SW_HI
+            OUTPUT  s4, PA_MOTCTL
+            JUMP    top
+",
+            );
+            body += &format!("            ADDRESS {:03X}\n", d.addr);
+            let toggle = "            XOR     s3, 01\n            OUTPUT  s3, PA_LEDS\n            OUTPUT  s3, PA_DIG0\n            JUMP    top\n";
+            let mut delay = String::new();
+            for (label, text) in d.lines() {
+                let text = if d.lower { text.to_lowercase() } else { text };
+                delay += &format!("{:<12}{text}\n", label.map_or(String::new(), |l| format!("{l}:")));
+            }
+            if d.call {
+                body += "top:        CALL    wait\n";
+                body += toggle;
+                body += "wait:\n";
+                body += &delay;
+                body += "            RETURN\n";
+            } else {
+                body += "top:\n";
+                body += &delay;
+                body += toggle;
+            }
+            body
+        }
         Program::Countdown(n) => format!(
             "            ADDRESS 000
 main:       LOAD    s3, 00
@@ -720,6 +954,8 @@ fn program_period(kind: Program) -> u64 {
         Program::Semaphore | Program::PollSwitches => 6,
         // LOAD, N x (SUB, JUMP), XOR, OUTPUT, OUTPUT, JUMP; s3 toggles: two trips.
         Program::Countdown(n) => 2 * 2 * (1 + 2 * n + 4),
+        // The loop's turn: the count is moved on whole, up to its end.
+        Program::Delay(d) => d.trip(),
     }
 }
 
@@ -1138,6 +1374,13 @@ fn reach(parts: &[Part], clocks: &[Clock], simulate: bool, kind: Program, vga_ob
         shortest = 200_000;
     }
     period = period.lcm(osc.times(program_period(kind)));
+    if let Program::Delay(d) = kind {
+        if let Some(why) = d.unskippable() {
+            return Err(why);
+        }
+        // The delay's end is a boundary, as a counter's.
+        shortest = shortest.min(d.trip() * d.turns());
+    }
     let mut used = vec![false; clocks.len()];
     used[0] = true;
     for p in parts {

@@ -691,7 +691,7 @@ impl<'a> Proof<'a> {
             let k = kb << (8 * i as u32);
             let r = if add { off.wrapping_add(k) } else { off.wrapping_sub(k) };
             let chain = |carry| Chain { g, c: off, add, k, s: i, m: i + 1, carry };
-            return Ok((view(g, i, r), self.flag(chain(true)), self.flag(chain(false))));
+            return Ok((view(g, i, r), Flag::Chain(chain(true)), Flag::Chain(chain(false))));
         }
         let Flag::Chain(ch) = cin else {
             if self.strict() && (self.varies(sx) || matches!(zin, Flag::Chain(_))) {
@@ -729,19 +729,13 @@ impl<'a> Proof<'a> {
         // stays clear; one that was set starts at this byte.
         let zero = match zin {
             Flag::Chain(z) if !z.carry && (z.g, z.c, z.add, z.k, z.m) == (ch.g, ch.c, ch.add, ch.k, ch.m) => {
-                self.flag(next(false, z.s))
+                Flag::Chain(next(false, z.s))
             }
             Flag::Invariant if !c.zero() => Flag::Invariant,
-            Flag::Invariant => self.flag(next(false, i)),
+            Flag::Invariant => Flag::Chain(next(false, i)),
             Flag::Chain(_) => return self.refuse("a chain's zero from another chain"),
         };
-        Ok((view(g, i, r), self.flag(next(true, ch.s)), zero))
-    }
-
-    /// A chain's flag (one that cannot change, of an empty or a full interval, stays a
-    /// chain: the next step may carry it on).
-    fn flag(&self, ch: Chain) -> Flag {
-        Flag::Chain(ch)
+        Ok((view(g, i, r), Flag::Chain(next(true, ch.s)), zero))
     }
 
     /// The first runs: byte `at` becomes byte `i` of count `g` plus `c` (wherever its start

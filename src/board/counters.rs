@@ -37,7 +37,7 @@
 
 use std::collections::{BTreeMap, HashSet};
 
-use super::cpp::{functions, strip_comments, tokens, Tok};
+use super::cpp::{closing, functions, strip_comments, tokens, Tok};
 use super::demand::{demands, Demand};
 
 /// A counter of the root, as the harness moves it on.
@@ -170,7 +170,7 @@ struct Seen {
 
 /// The root's scalar integer variables (`CData`..`QData`, not ports) and their widths, from
 /// the `/*H:L*/` comment Verilator writes beside each.
-fn scalar_widths(root: &str) -> BTreeMap<String, u32> {
+pub(super) fn scalar_widths(root: &str) -> BTreeMap<String, u32> {
     let mut out = BTreeMap::new();
     for line in root.lines() {
         let t = line.trim();
@@ -438,7 +438,7 @@ fn kinds(
 
 /// `from..to` without the parentheses that enclose all of it.
 fn strip(rhs: &[Tok], mut from: usize, mut to: usize) -> (usize, usize) {
-    while to >= from + 2 && rhs[from] == Tok::P("(") && rhs[to - 1] == Tok::P(")") && closes(rhs, from) == Some(to - 1)
+    while to >= from + 2 && rhs[from] == Tok::P("(") && rhs[to - 1] == Tok::P(")") && closing(rhs, from) == Some(to - 1)
     {
         from += 1;
         to -= 1;
@@ -469,7 +469,7 @@ fn one_kind(rhs: &[Tok], from: usize, to: usize, name: &str, widths: &BTreeMap<S
                 && rhs[a + 2] == Tok::P(")")
             {
                 a += 3;
-            } else if b >= a + 2 && rhs[a] == Tok::P("(") && closes(rhs, a) == Some(b - 1) {
+            } else if b >= a + 2 && rhs[a] == Tok::P("(") && closing(rhs, a) == Some(b - 1) {
                 a += 1;
                 b -= 1;
             } else {
@@ -519,23 +519,6 @@ fn one_kind(rhs: &[Tok], from: usize, to: usize, name: &str, widths: &BTreeMap<S
     }
 }
 
-/// The index of the bracket that closes the one at `open`.
-fn closes(toks: &[Tok], open: usize) -> Option<usize> {
-    let mut depth = 0usize;
-    for (j, t) in toks.iter().enumerate().skip(open) {
-        match t {
-            Tok::P("(" | "[" | "{") => depth += 1,
-            Tok::P(")" | "]" | "}") => {
-                depth = depth.checked_sub(1)?;
-                if depth == 0 {
-                    return Some(j);
-                }
-            }
-            _ => {}
-        }
-    }
-    None
-}
 
 #[cfg(test)]
 mod tests {

@@ -41,6 +41,25 @@ pub fn functions(code: &str) -> Vec<(&str, &str)> {
     out
 }
 
+/// The index of the bracket that closes the one at `open` (any of `(`, `[`, `{`), if the
+/// tokens close it.
+pub fn closing(toks: &[Tok], open: usize) -> Option<usize> {
+    let mut depth = 0usize;
+    for (j, t) in toks.iter().enumerate().skip(open) {
+        match t {
+            Tok::P("(" | "[" | "{") => depth += 1,
+            Tok::P(")" | "]" | "}") => {
+                depth = depth.checked_sub(1)?;
+                if depth == 0 {
+                    return Some(j);
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
 /// The line without its `/* */` and `//` comments.
 pub fn strip_comments(line: &str) -> String {
     let mut out = String::new();

@@ -28,7 +28,7 @@
 //! assert!(flat.contains("vlSelf->__VactTriggered.at(1U)=((IData)(vlSelf->q)&(~(IData)(vlSelf->__Vtrigprevexpr___TOP__q__0)));"));
 //! ```
 
-use super::cpp::{functions, tokens, Tok};
+use super::cpp::{closing, functions, tokens, Tok};
 
 /// The trigger vectors of the scheduler's regions.
 const VECTORS: [&str; 4] = ["stl", "ico", "act", "nba"];
@@ -130,24 +130,6 @@ fn text(toks: &[Tok<'_>]) -> String {
     out
 }
 
-/// The index of the `)` that closes the `(` at `open`.
-fn close(toks: &[Tok<'_>], open: usize) -> Option<usize> {
-    let mut depth = 0;
-    for (i, t) in toks.iter().enumerate().skip(open) {
-        match t {
-            Tok::P("(") => depth += 1,
-            Tok::P(")") => {
-                depth -= 1;
-                if depth == 0 {
-                    return Some(i);
-                }
-            }
-            _ => {}
-        }
-    }
-    None
-}
-
 /// The expression without its outer parentheses and casts (`(QData)((IData)(e))` is `e`).
 fn strip<'a, 'b>(mut toks: &'b [Tok<'a>]) -> &'b [Tok<'a>] {
     loop {
@@ -156,11 +138,11 @@ fn strip<'a, 'b>(mut toks: &'b [Tok<'a>]) -> &'b [Tok<'a>] {
             [Tok::P("("), Tok::Id(t), Tok::P(")"), rest @ ..]
                 if ["QData", "IData", "CData", "SData"].contains(t)
                     && rest.first() == Some(&Tok::P("("))
-                    && close(rest, 0) == Some(rest.len() - 1) =>
+                    && closing(rest, 0) == Some(rest.len() - 1) =>
             {
                 toks = rest;
             }
-            [Tok::P("("), .., Tok::P(")")] if close(toks, 0) == Some(toks.len() - 1) => toks = &toks[1..toks.len() - 1],
+            [Tok::P("("), .., Tok::P(")")] if closing(toks, 0) == Some(toks.len() - 1) => toks = &toks[1..toks.len() - 1],
             _ => return toks,
         }
     }

@@ -23,7 +23,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use super::cpp::{functions, tokens, Tok};
+use super::cpp::{closing, functions, tokens, Tok};
 use super::demand::{demands, Demand};
 
 /// The outputs register's name in a kcpsm6_iss.v instance (after its instance's name).
@@ -35,7 +35,7 @@ const STROBES: u64 = 3 << 29;
 /// The KCPSM6 models (their instances' Verilator names) whose `out_port` the evaluation
 /// `code` (the root's functions) reads only under a write strobe.
 pub fn out_port_free(root: &str, code: &[&str]) -> Vec<String> {
-    let widths = root_widths(root);
+    let widths = super::counters::scalar_widths(root);
     let mut bodies: Vec<Vec<Tok>> = Vec::new();
     for c in code {
         for (_, body) in functions(c) {
@@ -58,26 +58,6 @@ pub fn out_port_free(root: &str, code: &[&str]) -> Vec<String> {
         })
         .map(str::to_string)
         .collect()
-}
-
-/// The root's scalar variables and their widths (`QData/*63:0*/ name;`).
-fn root_widths(root: &str) -> BTreeMap<String, u32> {
-    let mut out = BTreeMap::new();
-    for line in root.lines() {
-        let t = line.trim();
-        let Some(rest) = ["CData/*", "SData/*", "IData/*", "QData/*"].iter().find_map(|p| t.strip_prefix(p)) else {
-            continue;
-        };
-        let Some((range, decl)) = rest.split_once("*/") else { continue };
-        let Some((hi, _)) = range.split_once(':') else { continue };
-        let name = decl.trim().trim_end_matches(';').trim();
-        if let Ok(hi) = hi.parse::<u32>() {
-            if !name.is_empty() && name.chars().all(|c| c.is_alphanumeric() || c == '_') {
-                out.insert(name.to_string(), hi + 1);
-            }
-        }
-    }
-    out
 }
 
 /// `vlSelf->name` (or `vlSelfRef.name`) at `i`: the name.
@@ -142,7 +122,7 @@ fn gated(t: &[Tok], q: &str, guards: &BTreeSet<String>, widths: &BTreeMap<String
     while i < t.len() {
         match t[i] {
             Tok::Id("if") if t.get(i + 1) == Some(&Tok::P("(")) => {
-                let Some(close) = matching(t, i + 1) else { return false };
+                let Some(close) = closing(t, i + 1) else { return false };
                 // The condition's own reads, then its block.
                 for j in i + 2..close {
                     if !read_ok(t, j, q, &reads, &blocks) {
@@ -187,24 +167,6 @@ fn read_ok(t: &[Tok], i: usize, q: &str, reads: &std::collections::HashMap<usize
         _ => u64::MAX,
     };
     bits & OUT_PORT == 0 || blocks.iter().any(|&b| b)
-}
-
-/// The index of the `)` that closes the `(` at `open`.
-fn matching(t: &[Tok], open: usize) -> Option<usize> {
-    let mut depth = 0usize;
-    for (j, tok) in t.iter().enumerate().skip(open) {
-        match tok {
-            Tok::P("(") => depth += 1,
-            Tok::P(")") => {
-                depth -= 1;
-                if depth == 0 {
-                    return Some(j);
-                }
-            }
-            _ => {}
-        }
-    }
-    None
 }
 
 /// A condition, as much of it as tells a strobe.

@@ -813,13 +813,14 @@ impl Delay {
         }
     }
 
-    /// The address of the loop that counts: its JUMP shows the register bits 7:4 of that
+    /// The address of the loop that counts (after `top: CALL wait` and the four lines of the
+    /// toggle when it is called): its JUMP shows the register bits 7:4 of that
     /// address name on port_id in every cycle (the hardware does: a count there cannot be
     /// skipped exactly).
     fn loop_address(&self) -> u16 {
         let lines = self.lines();
         let at = lines.iter().position(|(l, _)| *l == Some("delay")).unwrap();
-        self.addr + u16::from(self.call) * 4 + at as u16
+        self.addr + u16::from(self.call) * 5 + at as u16
     }
 
     /// Why botsim may not skip it whole, if it may not.

@@ -519,7 +519,6 @@ fn one_kind(rhs: &[Tok], from: usize, to: usize, name: &str, widths: &BTreeMap<S
     }
 }
 
-
 #[cfg(test)]
 mod tests {
     use super::*;

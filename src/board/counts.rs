@@ -54,14 +54,17 @@ pub(crate) struct Watch {
     /// The combinations of reset, sleep and interrupt seen (a bit each).
     pins: u8,
     proof: Proof,
+    /// Periods since the mark found not to count.
+    refusals: u32,
     /// Nested loops: see [`Nest`].
     nest: Nest,
 }
 
 /// An inner loop's count that ends again and again (a delay's inner loop, reloaded at every
-/// turn of an outer one) is tried as state: its periods are refused so that the board finds
-/// the outer loop's period, whose count is the outer one. A trial that finds no other count
-/// within a few marks ends, and the next waits for twice as many ends.
+/// turn of an outer one; a UART routine's timeout in a main loop) is tried as state: its
+/// periods are refused so that the board finds the outer loop's period (whose count is the
+/// outer one, or which does not count). A trial that finds neither within a few marks (the
+/// board's patience doubling at each) ends, and the next waits for twice as many ends.
 #[derive(Default)]
 struct Nest {
     /// The homes of the count whose room the last skips used up, and how many times in a row.
@@ -73,9 +76,13 @@ struct Nest {
     failed: u32,
 }
 
+/// The periods one mark may find not to count before it stops looking (each proof re-runs
+/// its period).
+const REFUSALS_PER_MARK: u32 = 4;
+
 /// Ends of the same count in a row before a trial; marks a trial lasts.
 const ENDS_BEFORE_TRIAL: u32 = 2;
-const TRIAL_MARKS: u32 = 4;
+const TRIAL_MARKS: u32 = 10;
 
 impl Watch {
     pub fn new() -> Watch {
@@ -87,6 +94,7 @@ impl Watch {
             too_many: false,
             pins: 0,
             proof: Proof::Untried,
+            refusals: 0,
             nest: Nest::default(),
         }
     }
@@ -128,6 +136,7 @@ impl Watch {
         self.too_many = false;
         self.pins = 0;
         self.proof = Proof::Untried;
+        self.refusals = 0;
     }
 
     /// Is `now` the core at `mark` again, or again but for a count? (A count proven is moved
@@ -135,8 +144,9 @@ impl Watch {
     pub fn same(&mut self, mark: &Cpu, now: &Cpu) -> Same {
         if now.same_state_as(mark) {
             // This period does not count (a proof of a shorter one since the mark is not
-            // this one's).
+            // this one's); on a trial, it is the outer period found.
             self.proof = Proof::Untried;
+            self.nest.trial_marks = self.nest.trial_marks.min(1);
             return Same::Yes;
         }
         match &mut self.proof {
@@ -178,9 +188,14 @@ impl Watch {
                         if trace() && e.what != kcpsm6::counting::NOT_A_PERIOD {
                             eprintln!("ff: a core does not only count: {e}");
                         }
-                        // A moment that is not the period's end says nothing of the mark.
+                        // A moment that is not the period's end says nothing of the mark; a
+                        // period that does not count is tried a few times (a longer one may,
+                        // an inner count reloaded within it), then no more for this mark.
                         if e.what != kcpsm6::counting::NOT_A_PERIOD {
-                            self.proof = Proof::Refused;
+                            self.refusals += 1;
+                            if self.refusals >= REFUSALS_PER_MARK {
+                                self.proof = Proof::Refused;
+                            }
                         }
                         Same::No
                     }

@@ -142,7 +142,9 @@ fn strip<'a, 'b>(mut toks: &'b [Tok<'a>]) -> &'b [Tok<'a>] {
             {
                 toks = rest;
             }
-            [Tok::P("("), .., Tok::P(")")] if closing(toks, 0) == Some(toks.len() - 1) => toks = &toks[1..toks.len() - 1],
+            [Tok::P("("), .., Tok::P(")")] if closing(toks, 0) == Some(toks.len() - 1) => {
+                toks = &toks[1..toks.len() - 1]
+            }
             _ => return toks,
         }
     }

@@ -976,7 +976,8 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
     }
     // The models not as marked: not the period yet (the design may repeat a few times per
     // trip of a CPU's loop; marking again here would never reach the trip).
-    if (!h->ff_same(h->ctx)) {  // (2: as marked but for a count)
+    const int models = h->ff_same(h->ctx);  // 2: as marked but for a count
+    if (!models) {
         ff_snap(b, t);
         return 0;
     }
@@ -1082,6 +1083,9 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
     }
     refresh_shims(b);
     f.mark_t += (k + 1) * period;  // the start of the period the board is now in
+    // A core's count that ends in the next period (its room used up): the period is looked
+    // for again within a few, not after the long wait a mark may have grown to.
+    if (models == 2 && h->ff_room(h->ctx, 1) == 0) f.patience = std::max(4 * period, kShortPatiencePs);
     FF_TRACE("ff %.6f ms: period %llu clocks, %zu shown, skip %llu periods + phase %zu (%.6f ms)\n", t / 1e9,
              (unsigned long long)(period / 10000), per, (unsigned long long)k, phase, skipped / 1e9);
     if (k == 0 && phase == 0) return 0;

@@ -339,6 +339,8 @@ fn build_key(plan: &Plan, f: &Files, v: &verilator::Verilator) -> Result<String,
     // The analyses whose results the harness is compiled with.
     include_str!("observed.rs").hash(&mut h);
     include_str!("counters.rs").hash(&mut h);
+    include_str!("demand.rs").hash(&mut h);
+    include_str!("strobes.rs").hash(&mut h);
     include_str!("cpp.rs").hash(&mut h);
     include_str!("dialect.rs").hash(&mut h);
     ABI.hash(&mut h);

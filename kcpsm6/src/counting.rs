@@ -90,12 +90,21 @@ const MAX_WIDTH: usize = 8;
 /// or all its bytes, differ from the mark's): it says nothing of the periods from the mark.
 pub const NOT_A_PERIOD: &str = "not the end of a period";
 
+/// The refusal of a period in which a count is set to something else (its homes in
+/// [`Refusal::count`]).
+pub const RELOADED: &str = "a count's byte ends as something else";
+
 /// Why a period is not one that counts: what the proof met, and where.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Refusal {
     pub what: &'static str,
     /// The address of the word on `instruction` when it was met (none: at the period's end).
     pub pc: Option<u16>,
+    /// The homes of the count refused, when one is: set to something else within the period
+    /// (an inner loop's count, reloaded at every turn of an outer one) or used otherwise than
+    /// counted (shown on port_id, say). Taken as state, it may show a longer period that
+    /// counts.
+    pub count: Option<Vec<usize>>,
 }
 
 impl std::fmt::Display for Refusal {
@@ -254,12 +263,24 @@ impl std::fmt::Debug for CountingPeriod {
     }
 }
 
+/// Are the bytes at `homes` (numbered as [`CountingPeriod::homes`]) the same in both cores?
+///
+/// ```
+/// use kcpsm6::counting::same_bytes;
+/// use kcpsm6::iss::Cpu;
+/// let cpu = Cpu::new(Default::default(), &[0; 4096]);
+/// assert!(same_bytes(&cpu, &cpu.clone(), &[0, 5, 32]));
+/// ```
+pub fn same_bytes(a: &Cpu, b: &Cpu, homes: &[usize]) -> bool {
+    homes.iter().all(|&at| a.byte_at(at) == b.byte_at(at))
+}
+
 impl CountingPeriod {
     /// Prove that the period the core ran from `mark` to `now` only counts, with its pins
     /// held at `pins` and `inputs` read by its INPUTs in order; `out_port_free`: the design
     /// reads `out_port` only under a write strobe.
     pub fn find(mark: &Cpu, now: &Cpu, pins: Pins, inputs: &[u8], out_port_free: bool) -> Result<Self, Refusal> {
-        let refuse = |what| Err(Refusal { what, pc: None });
+        let refuse = |what| Err(Refusal { what, pc: None, count: None });
         if now.cycle() <= mark.cycle() || mark.config() != now.config() {
             return refuse(NOT_A_PERIOD);
         }
@@ -477,12 +498,16 @@ impl<'a> Proof<'a> {
     /// The counts this run found: their homes, their values at the period's start (from
     /// `mark`) and their moves (the top byte's offset at the end).
     fn counts_found(&self, mark: &Cpu) -> Result<Vec<Count>, Refusal> {
-        let refuse = |what| Err(Refusal { what, pc: None });
+        let refuse = |what| Err(Refusal { what, pc: None, count: None });
         let mut counts = Vec::new();
         for (g, homes) in self.homes.iter().enumerate() {
             let (top, c_top) = homes[homes.len() - 1];
             let Byte::View { c: end, .. } = self.bytes[top] else {
-                return refuse("a count's byte ends as something else");
+                return Err(Refusal {
+                    what: RELOADED,
+                    pc: None,
+                    count: Some(homes.iter().map(|&(at, _)| at).collect()),
+                });
             };
             let d = end.wrapping_sub(c_top) & mask(8 * homes.len() as u32);
             // W from the bytes at the start: byte i of W + c_i is home i's, low byte first.
@@ -525,7 +550,7 @@ impl<'a> Proof<'a> {
     }
 
     fn refuse<T>(&self, what: &'static str) -> Result<T, Refusal> {
-        Err(Refusal { what, pc: Some(self.pc) })
+        Err(Refusal { what, pc: Some(self.pc), count: None })
     }
 
     /// The second run, which proves: a count is a count there.
@@ -539,10 +564,14 @@ impl<'a> Proof<'a> {
 
     /// A byte read as a value (not counted): refused if it is a count's.
     fn plain(&self, b: Byte, what: &'static str) -> Result<(), Refusal> {
-        if self.strict() && self.varies(b) {
-            return self.refuse(what);
+        match (b, self.counts) {
+            (Byte::View { g, .. }, Some(counts)) => Err(Refusal {
+                what,
+                pc: Some(self.pc),
+                count: Some(counts[g as usize].homes.iter().map(|&(at, _)| at).collect()),
+            }),
+            _ => Ok(()),
         }
-        Ok(())
     }
 
     fn plain_flag(&self, f: usize, what: &'static str) -> Result<(), Refusal> {
@@ -561,10 +590,10 @@ impl<'a> Proof<'a> {
             cpu.tick(pins, &mut bus);
         }
         if bus.short || bus.next != inputs.len() {
-            return Err(Refusal { what: "the inputs are not the period's", pc: None });
+            return Err(Refusal { what: "the inputs are not the period's", pc: None, count: None });
         }
         if cpu != *now {
-            return Err(Refusal { what: "the period does not run again as it ran", pc: None });
+            return Err(Refusal { what: "the period does not run again as it ran", pc: None, count: None });
         }
         Ok(())
     }
@@ -908,6 +937,37 @@ mod tests {
         }
         let e = CountingPeriod::find(&mark, &cpu, Pins::default(), &[], true).unwrap_err();
         assert_eq!(e.what, "a count on port_id");
+    }
+
+    #[test]
+    fn an_inner_loop_reloaded_is_named_and_the_outer_period_counts() {
+        // s1 counts down 3 turns inside each turn of s0 (a turn of the outer loop is
+        // 2 (1 + 2 x 3 + 2) = 18 cycles).
+        let src = "LOAD s0, 50\nouter: LOAD s1, 03\ninner: SUB s1, 01\nJUMP NZ, inner\nSUB s0, 01\nJUMP NZ, outer\nhalt: JUMP halt\n";
+        // Marked in the inner loop after its first JUMP: a turn and one more inner one on
+        // (22 cycles) is the same place with s1 one lower, but s1 was reloaded on the way.
+        let (mark, now) = period(src, 4, 22);
+        let e = CountingPeriod::find(&mark, &now, Pins::default(), &[], true).unwrap_err();
+        assert_eq!((e.what, e.count), (RELOADED, Some(vec![1])));
+        // Its inner count the same at both ends: one outer turn counts s0 down by one.
+        let (mark, now) = period(src, 4, 18);
+        assert!(same_bytes(&mark, &now, &[1]));
+        let p = CountingPeriod::find(&mark, &now, Pins::default(), &[], true).unwrap();
+        assert_eq!(p.homes(), vec![0]);
+        assert_eq!(p.cycles(), 18);
+        // s0 is 4F now: the next 4E turns leave it above zero.
+        assert_eq!(p.room(), 0x4E);
+        let mut sim = now.clone();
+        let mut bus = NullBus::default();
+        for _ in 0..18 * 5 {
+            sim.tick(Pins::default(), &mut bus);
+        }
+        assert!(p.state_after(5).same_state_as(&sim));
+        // A count shown on port_id is named too (it may be an inner one).
+        let shown = "LOAD s0, 50\nloop: ADD s0, 01\nLOAD s4, s0\nAND s4, 01\nJUMP loop\n";
+        let (mark, now) = period(shown, 5, 8);
+        let e = CountingPeriod::find(&mark, &now, Pins::default(), &[], true).unwrap_err();
+        assert_eq!((e.what, e.count), ("a count on port_id", Some(vec![0])));
     }
 
     #[test]

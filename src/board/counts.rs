@@ -10,7 +10,7 @@
 //! outputs register, kcpsm6_iss.v's `botsim_iss_q`) is the model's, compared through it and
 //! set from it after a skip by the harness.
 
-use kcpsm6::counting::CountingPeriod;
+use kcpsm6::counting::{same_bytes, CountingPeriod};
 use kcpsm6::iss::{Cpu, Pins};
 
 /// The most inputs kept for one mark (a period that reads more is not proven).
@@ -56,23 +56,34 @@ pub(crate) struct Watch {
     proof: Proof,
     /// Periods since the mark found not to count.
     refusals: u32,
+    /// The room of the period found, when found.
+    room_found: u64,
     /// Nested loops: see [`Nest`].
     nest: Nest,
 }
 
-/// An inner loop's count that ends again and again (a delay's inner loop, reloaded at every
-/// turn of an outer one; a UART routine's timeout in a main loop) is tried as state: its
-/// periods are refused so that the board finds the outer loop's period (whose count is the
-/// outer one, or which does not count). A trial that finds neither within a few marks (the
-/// board's patience doubling at each) ends, and the next waits for twice as many ends.
+/// Inner loops' counts that end again and again (a delay's inner loops, reloaded at every
+/// turn of an outer one; a UART routine's timeout in a main loop) are taken as state: a
+/// moment where one differs from the mark is not a period's end, so that the board finds the
+/// outer loop's period (whose count is the outer one, or which does not count). Loops nest
+/// to any depth: each inner count joins the state in turn, and stays while the outer
+/// periods it shows are found. A count on trial (just taken as state) whose outer period is
+/// not found within a few marks (the board's patience doubling at each) counts again, and
+/// is tried again only after twice as many ends.
 #[derive(Default)]
 struct Nest {
-    /// The homes of the count whose room the last skips used up, and how many times in a row.
-    ended: Vec<usize>,
-    times: u32,
-    /// Marks since the trial began (0: none on).
+    /// Per byte of a count: its ends since its last trial, and its trials that found nothing.
+    ends: Vec<Ends>,
+    /// The bytes taken as state.
+    state: Vec<usize>,
+    /// The bytes on trial (the last taken), and the marks since their trial began.
+    trial: Vec<usize>,
     trial_marks: u32,
-    /// Trials that found nothing.
+}
+
+struct Ends {
+    at: usize,
+    times: u32,
     failed: u32,
 }
 
@@ -80,7 +91,11 @@ struct Nest {
 /// its period).
 const REFUSALS_PER_MARK: u32 = 4;
 
-/// Ends of the same count in a row before a trial; marks a trial lasts.
+/// The most periods a count may have had room for, when found, for its end to count
+/// towards a trial as state: a count skipped further is an outer loop doing its work.
+const SHORT_ROOM: u64 = 8;
+
+/// Ends of a count before a trial; marks a trial lasts.
 const ENDS_BEFORE_TRIAL: u32 = 2;
 const TRIAL_MARKS: u32 = 10;
 
@@ -95,6 +110,7 @@ impl Watch {
             pins: 0,
             proof: Proof::Untried,
             refusals: 0,
+            room_found: 0,
             nest: Nest::default(),
         }
     }
@@ -122,15 +138,7 @@ impl Watch {
 
     /// The fast-forward's mark: record from now on.
     pub fn mark(&mut self) {
-        if self.nest.trial_marks > 0 {
-            self.nest.trial_marks += 1;
-            if self.nest.trial_marks > TRIAL_MARKS {
-                // No outer count found: the inner one counts again.
-                self.nest.trial_marks = 0;
-                self.nest.times = 0;
-                self.nest.failed += 1;
-            }
-        }
+        self.nest.mark();
         self.recording = self.enabled;
         self.inputs.clear();
         self.too_many = false;
@@ -146,8 +154,12 @@ impl Watch {
             // This period does not count (a proof of a shorter one since the mark is not
             // this one's); on a trial, it is the outer period found.
             self.proof = Proof::Untried;
-            self.nest.trial_marks = self.nest.trial_marks.min(1);
+            self.nest.repeats();
             return Same::Yes;
+        }
+        if !same_bytes(mark, now, &self.nest.state) {
+            // An inner count taken as state differs: not an outer period's end.
+            return Same::No;
         }
         match &mut self.proof {
             Proof::Counting(p) => match p.periods_to(now) {
@@ -165,22 +177,12 @@ impl Watch {
                 let bits = self.pins.trailing_zeros();
                 let pins = Pins { interrupt: bits & 1 != 0, sleep: bits & 2 != 0, reset: bits & 4 != 0 };
                 match CountingPeriod::find(mark, now, pins, &self.inputs, self.out_port_free) {
-                    Ok(p) if self.nest.tried_as_state(&p.homes()) => {
-                        if trace() {
-                            eprintln!("ff: a core's inner count is state (a trial): {p:?}");
-                        }
-                        self.proof = Proof::Refused;
-                        Same::No
-                    }
                     Ok(p) => {
-                        if self.nest.trial_marks > 0 && p.homes() != self.nest.ended {
-                            // Another count on trial: an outer one, found.
-                            self.nest.trial_marks = 0;
-                            self.nest.failed = 0;
-                        }
+                        self.nest.found();
                         if trace() {
                             eprintln!("ff: a core counts: {p:?}");
                         }
+                        self.room_found = p.room();
                         self.proof = Proof::Counting(Box::new(p));
                         Same::Counting
                     }
@@ -191,6 +193,9 @@ impl Watch {
                         // A moment that is not the period's end says nothing of the mark; a
                         // period that does not count is tried a few times (a longer one may,
                         // an inner count reloaded within it), then no more for this mark.
+                        if let Some(homes) = &e.count {
+                            self.nest.ended(homes);
+                        }
                         if e.what != kcpsm6::counting::NOT_A_PERIOD {
                             self.refusals += 1;
                             if self.refusals >= REFUSALS_PER_MARK {
@@ -221,15 +226,9 @@ impl Watch {
     /// period did not count.
     pub fn skip(&mut self, periods: u64) -> Option<Cpu> {
         let Proof::Counting(p) = &mut self.proof else { return None };
-        if periods >= p.room() {
-            // The count ends in the next period.
-            let homes = p.homes();
-            if homes == self.nest.ended {
-                self.nest.times += 1;
-            } else {
-                self.nest.ended = homes;
-                self.nest.times = 1;
-            }
+        if periods >= p.room() && self.room_found <= SHORT_ROOM {
+            // The count ends in the next period, having been skipped little.
+            self.nest.ended(&p.homes());
         }
         p.advance(periods);
         Some(p.state_after(0))
@@ -237,16 +236,65 @@ impl Watch {
 }
 
 impl Nest {
-    /// Is a count at `homes` the inner one on trial as state? (Starts the trial when its
-    /// ends are enough.)
-    fn tried_as_state(&mut self, homes: &[usize]) -> bool {
-        if homes != self.ended || self.times < ENDS_BEFORE_TRIAL << self.failed.min(8) {
-            return false;
+    /// A count at `homes` ended (its room used up, or set to something else within a
+    /// period): enough ends take it as state, on trial.
+    fn ended(&mut self, homes: &[usize]) {
+        for &at in homes {
+            if self.state.contains(&at) {
+                continue;
+            }
+            let i = match self.ends.iter().position(|e| e.at == at) {
+                Some(i) => i,
+                None => {
+                    self.ends.push(Ends { at, times: 0, failed: 0 });
+                    self.ends.len() - 1
+                }
+            };
+            let e = &mut self.ends[i];
+            e.times += 1;
+            if e.times >= ENDS_BEFORE_TRIAL << e.failed.min(8) {
+                if trace() {
+                    eprintln!("ff: a core's inner count at byte {at} is state (a trial)");
+                }
+                self.state.push(at);
+                self.trial.push(at);
+                self.trial_marks = self.trial_marks.max(1);
+            }
         }
+    }
+
+    /// A period that counts found (its count is not the state's): the trial's outer period.
+    fn found(&mut self) {
+        for at in self.trial.drain(..) {
+            if let Some(e) = self.ends.iter_mut().find(|e| e.at == at) {
+                e.failed = 0;
+            }
+        }
+        self.trial_marks = 0;
+    }
+
+    /// A period that does not count found: a trial holds while it repeats.
+    fn repeats(&mut self) {
+        self.trial_marks = self.trial_marks.min(1);
+    }
+
+    /// The fast-forward's mark: a trial that found nothing within its marks ends, and its
+    /// counts count again.
+    fn mark(&mut self) {
         if self.trial_marks == 0 {
-            self.trial_marks = 1;
+            return;
         }
-        true
+        self.trial_marks += 1;
+        if self.trial_marks > TRIAL_MARKS {
+            for at in self.trial.drain(..) {
+                self.state.retain(|&s| s != at);
+                if let Some(e) = self.ends.iter_mut().find(|e| e.at == at) {
+                    e.times = 0;
+                    e.failed += 1;
+                }
+            }
+            self.trial_marks = 0;
+        }
     }
 }
 
@@ -254,4 +302,100 @@ impl Nest {
 fn trace() -> bool {
     static ON: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
     *ON.get_or_init(|| std::env::var_os("BOTSIM_FF_TRACE").is_some())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use kcpsm6::asm::assemble_str;
+    use kcpsm6::iss::{Config, NullBus};
+
+    /// A delay of three loops (s2 in s1 in s0), placed at 0F0 so that its JUMPs show sF on
+    /// port_id; one inner turn is 4 cycles, one middle turn 2 (1 + 2 x 3 + 2) = 18, one
+    /// outer turn 2 (1 + 3 x 9 + 2) = 60.
+    const NEST: &str = "JUMP start\nADDRESS 0F0\nstart: LOAD s0, 60\nouter: LOAD s1, 03\nmiddle: LOAD s2, 03\ninner: SUB s2, 01\nJUMP NZ, inner\nSUB s1, 01\nJUMP NZ, middle\nSUB s0, 01\nJUMP NZ, outer\nhalt: JUMP halt\n";
+
+    fn core(warm: u64) -> Cpu {
+        let p = assemble_str(NEST).unwrap();
+        let mut cpu = Cpu::new(Config::default(), &p.image.words[..]);
+        cpu.run_instructions(warm, &mut NullBus::default()).unwrap();
+        cpu
+    }
+
+    fn on(cpu: &Cpu, cycles: u64) -> Cpu {
+        let mut c = cpu.clone();
+        for _ in 0..cycles {
+            c.tick(Pins::default(), &mut NullBus::default());
+        }
+        c
+    }
+
+    /// What the harness does: a mark, then the moments a board of period `board` cycles is
+    /// as marked, until the core is (or is but for a count).
+    fn look(w: &mut Watch, mark: &Cpu, board: u64, looks: u64) -> Option<(u64, Same)> {
+        w.mark();
+        for k in 1..=looks {
+            let now = on(mark, board * k);
+            for _ in 0..board {
+                w.cycle(0, 0);
+            }
+            match w.same(mark, &now) {
+                Same::No => continue,
+                s => return Some((board * k, s)),
+            }
+        }
+        None
+    }
+
+    #[test]
+    fn inner_counts_become_state_and_the_outer_period_counts() {
+        let mut w = Watch::new();
+        w.out_port_free = true;
+        // Marked in the inner loop (after its first JUMP): a board whose period is 4 cycles
+        // finds the inner count's short period, whose room is a turn or two.
+        let mark = core(6);
+        assert_eq!(look(&mut w, &mark, 4, 1), Some((4, Same::Counting)));
+        // Periods of 22 cycles (a middle turn and an inner turn) span s2's reload: refused,
+        // and twice makes s2 state, on trial.
+        let mut found = None;
+        for _ in 0..3 {
+            found = look(&mut w, &mark, 22, 3);
+        }
+        assert!(w.nest.state.contains(&2), "{:?}", w.nest.state);
+        // With s2 as state, a board of 18 cycles finds the middle loop's period: s1 counts.
+        assert_eq!(found, None);
+        assert_eq!(look(&mut w, &mark, 18, 3), Some((18, Same::Counting)));
+        assert!(w.nest.trial.is_empty(), "the trial found its outer period");
+        assert_eq!(w.room(), Some(1), "s1 is 2 now: one more middle turn before it ends");
+    }
+
+    #[test]
+    fn a_trial_that_finds_nothing_ends_and_waits_twice_as_long() {
+        let mut n = Nest::default();
+        n.ended(&[7]);
+        assert!(n.state.is_empty());
+        n.ended(&[7]);
+        assert_eq!((n.state.clone(), n.trial.clone()), (vec![7], vec![7]));
+        // The trial began within a mark: it lasts that one and TRIAL_MARKS - 1 more.
+        for _ in 1..TRIAL_MARKS {
+            n.mark();
+        }
+        assert_eq!(n.state, vec![7], "still on trial");
+        n.mark();
+        assert!(n.state.is_empty() && n.trial.is_empty(), "the trial ended");
+        for _ in 0..3 {
+            n.ended(&[7]);
+        }
+        assert!(n.state.is_empty(), "four ends now");
+        n.ended(&[7]);
+        assert_eq!(n.state, vec![7]);
+        // Found: it stays state, and a later trial of another count leaves it.
+        n.found();
+        n.ended(&[9]);
+        n.ended(&[9]);
+        for _ in 0..=TRIAL_MARKS {
+            n.mark();
+        }
+        assert_eq!(n.state, vec![7]);
+    }
 }

@@ -89,6 +89,26 @@ fn drives(role: Role, u: &str, w: u32) -> Vec<(&'static str, String)> {
     }
 }
 
+/// The user's top port (of a plan's `pins`) that a variable of the wrapper (Verilator's
+/// name) carries: the wire that connects it (`botsim_board__DOT__user_an`), or a board output
+/// it drives (`an`, `led`, `vga_r`); `None` for every other name.
+///
+/// ```
+/// use botsim_core::board::pins::Role;
+/// use botsim_core::board::wrapper::top_port;
+/// let pins = vec![("AN".to_string(), Role::Anodes)];
+/// assert_eq!(top_port(&pins, "an"), Some("AN"));
+/// assert_eq!(top_port(&pins, "botsim_board__DOT__user_AN"), Some("AN"));
+/// assert_eq!(top_port(&pins, "led"), None);
+/// ```
+pub fn top_port<'a>(pins: &'a [(String, Role)], verilator_name: &str) -> Option<&'a str> {
+    let wire = verilator_name.strip_prefix("botsim_board__DOT__user_");
+    pins.iter().find_map(|(port, role)| {
+        let carries = wire == Some(port) || drives(*role, "", 1).iter().any(|(out, _)| *out == verilator_name);
+        carries.then_some(port.as_str())
+    })
+}
+
 /// The Verilog of `botsim_board` for `plan`, with `params` overriding the top's parameters.
 pub fn board_top(plan: &Plan, params: &[(String, String)]) -> String {
     let width = |port: &str| plan.widths.get(port).copied().unwrap_or(1).max(1);

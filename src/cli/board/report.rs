@@ -30,7 +30,14 @@ pub struct Busy {
 impl Busy {
     pub fn of(p: &Prepared, verilator_name: &str, times: u64) -> Busy {
         use botsim_core::board::locate::{declared, design_path};
-        use botsim_core::board::wrapper::board_part;
+        use botsim_core::board::wrapper::{board_part, top_port};
+        if let Some(port) = top_port(&p.plan.pins, verilator_name) {
+            // A pin of the user's top (the wire botsim's board connects to it, or the board's
+            // output it drives): the port where the top declares it.
+            if let Some(d) = declared(&p.design, &p.plan.top, port) {
+                return Busy { path: d.path, module: Some(d.module), file: Some(d.file), line: Some(d.line), times };
+            }
+        }
         if let (None, Some(part)) = (design_path(verilator_name), board_part(verilator_name)) {
             // botsim's own part of the board, named as the user knows it.
             let inner = verilator_name.trim_start_matches("botsim_board__DOT__").replace("__DOT__", ".");

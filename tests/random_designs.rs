@@ -115,6 +115,28 @@ fn check_one(seed: u64) -> f64 {
     ] {
         assert!(a == b, "{what}: {}\n{}", first_difference(a, b), about());
     }
+    // Every other bot's trace, beside the first's (named by its instance path).
+    let others = |name: &str| -> Vec<(String, String)> {
+        let prefix = format!("{name}.trace.");
+        let mut found: Vec<(String, String)> = std::fs::read_dir(&dir)
+            .unwrap()
+            .filter_map(|e| e.ok()?.file_name().into_string().ok())
+            .filter(|f| f.starts_with(&prefix) && f.ends_with(".csv") && f.len() > prefix.len() + ".csv".len())
+            .map(|f| (f[prefix.len()..].to_string(), std::fs::read_to_string(dir.join(&f)).unwrap()))
+            .collect();
+        found.sort();
+        found
+    };
+    let every_others = others("every");
+    assert_eq!(every_others.len(), usize::from(d.monster.is_some()), "{}", about());
+    for name in ["fast", "fast_pins"] {
+        let theirs = others(name);
+        assert_eq!(theirs.len(), every_others.len(), "{name}: {}", about());
+        for ((path, a), (_, b)) in every_others.iter().zip(&theirs) {
+            assert!(a.lines().count() >= 2, "the second bot {path} has no sample: {}", about());
+            assert!(a == b, "{name}: the second bot's trace ({path}): {}\n{}", first_difference(a, b), about());
+        }
+    }
     let ff = &fast.summary["fast_forward"];
     // What kept it busy is named in the design's words (a variable or port of its source,
     // or a part of botsim's board), never by a name only Verilator knows.

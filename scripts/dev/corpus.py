@@ -17,8 +17,9 @@ corpus as its entry says and writes a table of what happened against what must h
         Runs `botsim board` (target/release/botsim) on each restored clone: first as committed
         (with `--param SIMULATE=1` where the top has it), checked against `first`; then with
         `args`, checked against `expect`; then, for every design that runs, `--bench` at `hw`
-        timing with SIMULATE 1 and 0 (where the top has it), and the live page at `--speed
-        max` for designs with VGA. Writes the table as Markdown (default docs/ECOSYSTEM.md's
+        timing with SIMULATE 1 and 0 (where the top has it), and `--live --speed max` for
+        15 s of wall time with no page attached (its pace against real time, and the VGA
+        frames it shows a second where it has VGA). Writes the table as Markdown (default docs/ECOSYSTEM.md's
         table between its markers) and every run's words as JSON.
 
 The corpus's code is third-party of unknown licence: nothing of it enters this repository; the
@@ -29,6 +30,7 @@ import csv
 import json
 import os
 import re
+import signal
 import subprocess
 import sys
 import tempfile
@@ -222,6 +224,32 @@ def bench(clone, repo, simulate):
     return got
 
 
+# A live run's last line: its pace and, with VGA, its frames a second.
+LIVE_RE = re.compile(r"\(([0-9.]+) x real time\)(?:, \d+ samples)?(?:, \d+ VGA frames \(([0-9.]+)/s\))?")
+LIVE_SECONDS = 15
+
+
+def live(clone, repo, simulate):
+    """`--live --speed max` for LIVE_SECONDS of wall time with no page attached, stopped as
+    Ctrl-C stops it: its pace against real time, and its VGA frames a second (None without
+    VGA)."""
+    args = base_args(clone, repo, simulate) + repo.get("args", []) + ["--live", "--speed", "max", "--port", "0"]
+    p = subprocess.Popen([BOTSIM, *args], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        out, err = p.communicate(timeout=LIVE_SECONDS)
+    except subprocess.TimeoutExpired:
+        p.send_signal(signal.SIGINT)
+        try:
+            out, err = p.communicate(timeout=60)
+        except subprocess.TimeoutExpired:
+            p.kill()
+            out, err = p.communicate()
+    m = LIVE_RE.search(out + err)
+    if not m:
+        return {"ok": False, "said": error_line(err)}
+    return {"ok": True, "real": float(m.group(1)), "frames": float(m.group(2)) if m.group(2) else None}
+
+
 def check(args):
     repos = load_corpus(args.corpus)
     if args.only:
@@ -254,6 +282,7 @@ def check(args):
         entry = {"name": repo["name"], "first": [first_verdict, first_words], "expect": [verdict, words], "seconds": round(secs, 1)}
         if verdict == "ok" and repo["expect"] != "refused" and not args.no_speed:
             entry["speed"] = {str(s): bench(clone, repo, s) for s in ([1, 0] if simulate is not None else [None])}
+            entry["live"] = live(clone, repo, simulate)
         record.append(entry)
         print(json.dumps(entry), flush=True)
     if args.merge:
@@ -278,6 +307,8 @@ def merged(path, record):
             continue
         if "speed" not in n and "speed" in e and n["expect"][0] == e["expect"][0] == "ok":
             n["speed"] = e["speed"]
+            if "live" in e:
+                n["live"] = e["live"]
         out.append(n)
     return out + list(new.values())
 
@@ -293,7 +324,7 @@ def fmt(v, unit=""):
 
 
 def write_table(path, record):
-    head = "| repository | first run | expect | x all-RTL (S=1 / S=0) | x real time | skipped | what kept it busy |\n|---|---|---|---|---|---|---|\n"
+    head = "| repository | first run | expect | x all-RTL (S=1 / S=0) | x real time | skipped | live `--speed max` | what kept it busy |\n|---|---|---|---|---|---|---|---|\n"
     body = ""
     for e in record:
         sp = e.get("speed", {})
@@ -304,7 +335,14 @@ def write_table(path, record):
         # Paths below the clone, as its team knows them.
         here = re.compile(r"[^\s(`']*/" + re.escape(e["name"]) + "/")
         cell = lambda p: here.sub("", f"{p[0]}: {p[1]}").replace("|", "\\|").replace("\n", " ")[:160]
-        body += f"| {e['name']} | {cell(e['first'])} | {cell(e['expect'])} | {cols[0]} | {cols[1]} | {cols[2]} | {here.sub('', busy).replace('|', '/')[:120]} |\n"
+        lv = e.get("live")
+        if not lv:
+            live_cell = "-"
+        elif not lv.get("ok"):
+            live_cell = "did not run: " + here.sub("", lv.get("said", "")).replace("|", "/")[:60]
+        else:
+            live_cell = f"{lv['real']:g} x" + (f", {lv['frames']:g} VGA frames/s" if lv.get("frames") is not None else "")
+        body += f"| {e['name']} | {cell(e['first'])} | {cell(e['expect'])} | {cols[0]} | {cols[1]} | {cols[2]} | {live_cell} | {here.sub('', busy).replace('|', '/')[:120]} |\n"
     table = head + body
     if not os.path.exists(path):
         with open(path, "w") as f:

@@ -63,6 +63,9 @@ pub struct Design {
     /// PS2_CLK/PS2_DATA (their modules from tests/board_designs/console).
     pub uart: bool,
     pub keyboard: bool,
+    /// A second bot (a game's monster) beside the team's: its instance name, or `None` when
+    /// the design instantiates it without one (botsim names it).
+    pub monster: Option<Option<&'static str>>,
 }
 
 impl Design {
@@ -356,6 +359,40 @@ pub fn generate(seed: u64) -> Design {
         leds[k] = "out_zero".into();
         parts_text.push(format!("LED {k} shows out_port == 0 at every clock (no strobe)"));
     }
+    // Sometimes a second bot in the same world (a game's monster), as teams write one:
+    // named or not, driven by the switches or by the team's motor register, its place
+    // sometimes on an LED.
+    let mut bots_stream = Rng::new(seed ^ 0x424F_5432);
+    let monster = bots_stream.chance(20).then(|| *bots_stream.pick(&[Some("MONSTER"), None, None]));
+    let mut monster_verilog = String::new();
+    if let Some(name) = monster {
+        let drive = *bots_stream.pick(&["db_sw[15:8]", "motctl"]);
+        // `bot(` as some teams write it, or `bot (`.
+        let instance = match name {
+            Some(n) => format!("bot {n} ("),
+            None => (if bots_stream.chance(50) { "bot(" } else { "bot (" }).to_string(),
+        };
+        monster_verilog = format!(
+            "
+    // A second bot in the same world.
+    wire [ 7:0] m_locx, m_locy, m_info, m_sensors, m_lmdist, m_rmdist;
+    wire        m_upd;
+    {instance}.MotCtl_in({drive}), .LocX_reg(m_locx), .LocY_reg(m_locy), .Sensors_reg(m_sensors),
+        .BotInfo_reg(m_info), .LMDist_reg(m_lmdist), .RMDist_reg(m_rmdist),
+        .vid_row(7'd0), .vid_col(7'd0), .vid_pixel_out(), .clk(clk), .reset({bot_reset}), .upd_sysregs(m_upd));
+"
+        );
+        let shown = bots_stream.chance(50).then(|| bots_stream.range(0, 14) as usize);
+        let shown = shown.filter(|&k| leds[k] != "out_zero");
+        if let Some(k) = shown {
+            leds[k] = "m_locx[0]".into();
+        }
+        parts_text.push(format!(
+            "a second bot ({}), driven by {drive}{}",
+            name.unwrap_or("no instance name"),
+            shown.map_or(String::new(), |k| format!(", its LocX bit 0 on LED {k}"))
+        ));
+    }
     leds.reverse();
     let mut digits = Vec::new();
     for k in 0..8 {
@@ -528,7 +565,7 @@ module nexys4fpga #(
     bot ROJOBOT (.MotCtl_in(motctl), .LocX_reg(locx), .LocY_reg(locy), .Sensors_reg(sensors),
         .BotInfo_reg(botinfo), .LMDist_reg(lmdist), .RMDist_reg(rmdist),
         .vid_row(7'd0), .vid_col(7'd0), .vid_pixel_out(), .clk(clk), .reset({bot_reset}), .upd_sysregs(upd_sysregs));
-{interrupt}
+{monster_verilog}{interrupt}
     // The parts.
 {verilog_parts}
     // The port interface (the course's demo port numbers).
@@ -642,7 +679,7 @@ endmodule
     } else {
         top
     };
-    Design { seed, top, program, simulate, stimulus, seconds, reach, parts: parts_text, uart, keyboard }
+    Design { seed, top, program, simulate, stimulus, seconds, reach, parts: parts_text, uart, keyboard, monster }
 }
 
 /// The team program's kind.

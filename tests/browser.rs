@@ -467,6 +467,43 @@ fn the_page_draws_every_bot_of_a_game() {
     std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-two-bots-page.png"), &shot).unwrap();
 }
 
+/// The board the page drew: its name, its controls' counts, its button labels, the digits'
+/// lit segments and the switches and digits of the state it last drew.
+fn drawn_board(tab: &Tab) -> Value {
+    let v = tab
+        .evaluate(
+            r##"JSON.stringify({
+                 status: document.getElementById("status").textContent,
+                 title: document.querySelector("#board .silk.big").textContent,
+                 digits: digits.length, leds: leds.length, knobs: knobs.length,
+                 labels: Array.from(document.querySelectorAll("#board text.silk")).map((t) => t.textContent)
+                   .filter((t) => t.startsWith("BTN") || t === "CPU RESET"),
+                 lit: digits.map((segs) => segs.reduce((a, s, k) => a | (s.classList.contains("on") ? 1 << k : 0), 0)),
+                 state: state ? { digits: state.digits, switches: state.switches } : null })"##,
+            false,
+        )
+        .unwrap()
+        .value
+        .unwrap();
+    serde_json::from_str(v.as_str().unwrap()).unwrap()
+}
+
+/// Wait until the page is live and shows some digit lit; what it drew then.
+fn board_with_digits(tab: &Tab) -> Value {
+    let start = Instant::now();
+    loop {
+        let d = drawn_board(tab);
+        if d["status"] == "live"
+            && d["state"].is_object()
+            && d["lit"].as_array().is_some_and(|l| l.iter().any(|x| x != 0))
+        {
+            return d;
+        }
+        assert!(start.elapsed() < BUDGET, "the page never showed the design's digits: {d}");
+        std::thread::sleep(Duration::from_millis(100));
+    }
+}
+
 #[test]
 fn the_page_draws_a_nexys3_for_a_nexys3_design() {
     // tests/board_designs/nexys3_dcm: four digits, eight LEDs and switches, its reset the
@@ -474,36 +511,7 @@ fn the_page_draws_a_nexys3_for_a_nexys3_design() {
     let Some(chromium) = chromium() else { return };
     let live = Live::start(&["tests/board_designs/nexys3_dcm", "--param", "SIMULATE=1", "--speed", "max"]);
     let (_browser, tab) = open(chromium, &live.url);
-    let drawn = |tab: &Tab| -> Value {
-        let v = tab
-            .evaluate(
-                r##"JSON.stringify({
-                     status: document.getElementById("status").textContent,
-                     title: document.querySelector("#board .silk.big").textContent,
-                     digits: digits.length, leds: leds.length, knobs: knobs.length,
-                     labels: Array.from(document.querySelectorAll("#board text.silk")).map((t) => t.textContent)
-                       .filter((t) => t.startsWith("BTN") || t === "CPU RESET"),
-                     lit: digits.map((segs) => segs.reduce((a, s, k) => a | (s.classList.contains("on") ? 1 << k : 0), 0)),
-                     state: state ? { digits: state.digits, switches: state.switches } : null })"##,
-                false,
-            )
-            .unwrap()
-            .value
-            .unwrap();
-        serde_json::from_str(v.as_str().unwrap()).unwrap()
-    };
-    let start = Instant::now();
-    let d = loop {
-        let d = drawn(&tab);
-        if d["status"] == "live"
-            && d["state"].is_object()
-            && d["lit"].as_array().is_some_and(|l| l.iter().any(|x| x != 0))
-        {
-            break d;
-        }
-        assert!(start.elapsed() < BUDGET, "the page never showed the design's digits: {d}");
-        std::thread::sleep(Duration::from_millis(100));
-    };
+    let d = board_with_digits(&tab);
     assert_eq!(d["title"], "NEXYS3", "{d}");
     assert_eq!((d["digits"].as_u64(), d["leds"].as_u64(), d["knobs"].as_u64()), (Some(4), Some(8), Some(8)), "{d}");
     let labels: Vec<&str> = d["labels"].as_array().unwrap().iter().filter_map(Value::as_str).collect();
@@ -513,4 +521,25 @@ fn the_page_draws_a_nexys3_for_a_nexys3_design() {
     until(&tab, "switch 3 on", |p| p["switches"] == 8);
     let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
     std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-nexys3-page.png"), &shot).unwrap();
+}
+
+#[test]
+fn the_page_draws_a_nexys4_ddr_for_a_nexys4_ddr_project() {
+    // tests/board_designs/repos/final_project: a Vivado project whose .xdc places its pins
+    // (`CPU_RESETN`, `BTNC`, `SW`, `LED`, ...) on a Nexys4 DDR, its console and tilt games'
+    // PicoBlazes, as a team commits it. The page draws that board with eight digits, sixteen
+    // LEDs and switches, and the design sees its switches.
+    let Some(chromium) = chromium() else { return };
+    let clone = common::repo::clone_of("final_project");
+    let live = Live::start_in(clone.path(), "board", &[".", "--speed", "max"]);
+    let (_browser, tab) = open(chromium, &live.url);
+    let d = board_with_digits(&tab);
+    assert_eq!(d["title"], "NEXYS4 DDR", "{d}");
+    assert_eq!((d["digits"].as_u64(), d["leds"].as_u64(), d["knobs"].as_u64()), (Some(8), Some(16), Some(16)), "{d}");
+    let labels: Vec<&str> = d["labels"].as_array().unwrap().iter().filter_map(Value::as_str).collect();
+    assert_eq!(labels, ["CPU RESET", "BTNU", "BTNL", "BTNC", "BTNR", "BTND"], "{d}");
+    tab.evaluate("document.getElementById('sw12').dispatchEvent(new MouseEvent('click'))", false).unwrap();
+    until(&tab, "switch 12 on", |p| p["switches"] == 1 << 12);
+    let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
+    std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-nexys4ddr-page.png"), &shot).unwrap();
 }

@@ -194,3 +194,35 @@ fn a_run_that_cannot_skip_names_what_kept_it_busy() {
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(out.contains(&format!("what kept it from skipping more: `lfsr` (module nexys4fpga, tests/board_designs/shapes/nexys4fpga.v:{line})")), "{out}");
 }
+
+#[test]
+fn a_run_whose_skips_a_counter_ends_names_that_counter() {
+    // FREE32=2 dims LED 15 from the free counter's low byte (a PWM, compared as state), and
+    // TOGGLES=2 blinks a point and LED 14 from two long dividers: the
+    // board repeats, and each skip ends where the display's refresh counter reaches the next
+    // value its digit select compares it with (every 2^15 clocks). The run names that counter
+    // where the design declares it, and says it ended the skips; so does --bench.
+    let text = std::fs::read_to_string(root().join("tests/board_designs/shapes/nexys4fpga.v")).unwrap();
+    let line = text.lines().position(|l| l.contains("reg [BITS-1:0] refresh")).unwrap() + 1;
+    for bench in [false, true] {
+        let mut args = vec!["--param", "FREE32=2", "--param", "TOGGLES=2", "--seconds", "0.02", "--json"];
+        if bench {
+            args.push("--bench");
+        }
+        let s = json(&shapes(&args));
+        let busy = if bench { &s["kept_busy_by"] } else { &s["fast_forward"]["kept_busy_by"] };
+        assert_eq!(
+            (busy["variable"].as_str(), busy["module"].as_str(), busy["line"].as_u64(), busy["why"].as_str()),
+            (Some("SSB.refresh"), Some("sevenseg"), Some(line as u64), Some("skips cut short")),
+            "{s}"
+        );
+    }
+    let o = shapes(&["--param", "FREE32=2", "--param", "TOGGLES=2", "--seconds", "0.02"]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.contains(&format!(
+            "what kept it from skipping more: `SSB.refresh` (module sevenseg, tests/board_designs/shapes/nexys4fpga.v:{line}), the next value the design compares it with ended"
+        )),
+        "{out}"
+    );
+}

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # RTL coverage of the testbench: builds the models with Verilator line and toggle coverage (in
 # the main target dir, so the dependencies built for the tests are reused: only botsim and its
-# models are rebuilt, and again by the next build without coverage), runs the RTL tests, merges the per-model files and prints line and
-# toggle coverage per RTL module. With --check, fails when a module is under its floor
+# models are rebuilt, and again by the next build without coverage; nothing is rebuilt when
+# BOTSIM_COVERAGE=1 was set for the build before, as .ci/run does), runs the RTL tests, merges
+# the per-model files and prints line and toggle coverage per RTL module. With --check, fails when a module is under its floor
 # (scripts/ci/coverage_floors.txt).
 # Usage: scripts/ci/coverage.sh [--check]
 set -euo pipefail

@@ -258,6 +258,9 @@ struct FastForward {
     // still differing, or by a counter leaving its interval before a skip.
     std::vector<BoardMember> members;
     std::vector<uint64_t> busy;
+    // For each variable, how many skips a counter's interval ended (the next value the
+    // design compares it with came before anything else did).
+    std::vector<uint64_t> cut;
 };
 
 // The variable whose byte `off` is, in the (sorted) members, or -1.
@@ -269,6 +272,19 @@ inline long member_at(const FastForward& f, size_t off) {
         else hi = mid;
     }
     return lo < f.members.size() && f.members[lo].off <= off ? (long)lo : -1;
+}
+
+// The variable counted most often in `times` (by member), and how often; 0 when none was.
+inline uint64_t most_often(const FastForward& f, const std::vector<uint64_t>& times, const char** name) {
+    uint64_t most = 0;
+    *name = "";
+    for (size_t i = 0; i < times.size(); i++) {
+        if (times[i] > most) {
+            most = times[i];
+            *name = f.members[i].name;
+        }
+    }
+    return most;
 }
 
 struct Board {
@@ -552,6 +568,7 @@ int board_fast_forward(Board* b, int mode) {
         b->model.members(b->model.root, ms);
         std::sort(ms.begin(), ms.end(), [](const BoardMember& x, const BoardMember& y) { return x.off < y.off; });
         f.busy.assign(ms.size(), 0);
+        f.cut.assign(ms.size(), 0);
         find_shims(b, ms);
         auto shim_at = [&](size_t off) {
             for (const IssShim& x : f.shims)
@@ -575,6 +592,7 @@ int board_fast_forward(Board* b, int mode) {
         f.spans.push_back({0, (uint32_t)b->model.root_size});
         f.members.clear();
         f.busy.clear();
+        f.cut.clear();
         f.shims.clear();
     }
     // Comparing the whole state (for a waveform that opens later) finds a period only on a
@@ -614,16 +632,13 @@ void board_fast_forwarded(Board* b, uint64_t* skips, uint64_t* ps) {
 // The variable that most often kept a mark from its period (Verilator's name), and how
 // often; 0 when none did.
 uint64_t board_fast_forward_busy(Board* b, const char** name) {
-    const FastForward& f = b->ff;
-    uint64_t most = 0;
-    *name = "";
-    for (size_t i = 0; i < f.busy.size(); i++) {
-        if (f.busy[i] > most) {
-            most = f.busy[i];
-            *name = f.members[i].name;
-        }
-    }
-    return most;
+    return most_often(b->ff, b->ff.busy, name);
+}
+
+// The counter whose interval most often ended a skip (Verilator's name), and how often; 0
+// when none did.
+uint64_t board_fast_forward_cut(Board* b, const char** name) {
+    return most_often(b->ff, b->ff.cut, name);
 }
 
 }  // extern "C"
@@ -1012,16 +1027,25 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
     size_t phase = 0;
     if (t < until_ps && cap - *n >= 2 * per + 2 + kMaxPerEval) {
         const uint64_t ahead = until_ps - t;
-        // Whole periods the counters allow (a phase of the next needs one more).
+        // Whole periods the counters allow (a phase of the next needs one more), and the
+        // counter that allows the fewest.
         uint64_t counted = ~0ull;
+        const Counting* cutter = nullptr;
         for (const Counting& c : f.counters) {
             if (!c.drift || c.width == ~0ull) continue;  // still, or free to wrap
             const uint64_t at = (counter_value(root, c) - c.lo) & c.mask;
             const uint64_t left = c.c.down ? at : c.width - 1 - at;
-            counted = std::min(counted, left / c.drift);
+            if (left / c.drift < counted) {
+                counted = left / c.drift;
+                cutter = &c;
+            }
         }
         const uint64_t most = std::min(ahead / period, counted);
         k = most ? h->ff_room(h->ctx, most) : 0;
+        if (cutter && counted <= ahead / period && k == counted) {
+            const long m = member_at(f, cutter->c.off);
+            if (m >= 0) f.cut[m]++;
+        }
         for (size_t j = f.nphases; j > 0 && k < counted; j--) {
             const Phase& p = f.phases[j - 1];
             if (k * period + p.at <= ahead && h->ff_fits(h->ctx, k, (uint32_t)j)) {

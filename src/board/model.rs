@@ -191,6 +191,7 @@ struct Api {
     rising_edges_only: unsafe extern "C" fn(*mut Opaque, c_int) -> c_int,
     fast_forwarded: unsafe extern "C" fn(*mut Opaque, *mut u64, *mut u64),
     fast_forward_busy: unsafe extern "C" fn(*mut Opaque, *mut *const c_char) -> u64,
+    fast_forward_cut: unsafe extern "C" fn(*mut Opaque, *mut *const c_char) -> u64,
     push: unsafe extern "C" fn(*mut Opaque, u32, *const u8, u32) -> c_int,
     set_uart_div: unsafe extern "C" fn(*mut Opaque, u32),
     set_tilt: unsafe extern "C" fn(*mut Opaque, i32, i32, i32),
@@ -360,6 +361,7 @@ impl BoardModel {
             rising_edges_only: sym!(b"board_rising_edges_only"),
             fast_forwarded: sym!(b"board_fast_forwarded"),
             fast_forward_busy: sym!(b"board_fast_forward_busy"),
+            fast_forward_cut: sym!(b"board_fast_forward_cut"),
             run: sym!(b"board_run"),
             time_ps: sym!(b"board_time_ps"),
             evals: sym!(b"board_evals"),
@@ -494,9 +496,19 @@ impl BoardModel {
     /// The variable of Verilator's root (its name there) that most often kept the
     /// fast-forward from finding a period, and how many times; `None` when none did.
     pub fn fast_forward_busy(&self) -> Option<(String, u64)> {
+        self.most_often(self.api.fast_forward_busy)
+    }
+
+    /// The counter of Verilator's root that most often ended a skip (the next value the
+    /// design compares it with came first), and how many times; `None` when none did.
+    pub fn fast_forward_cut(&self) -> Option<(String, u64)> {
+        self.most_often(self.api.fast_forward_cut)
+    }
+
+    fn most_often(&self, f: unsafe extern "C" fn(*mut Opaque, *mut *const c_char) -> u64) -> Option<(String, u64)> {
         let mut name: *const c_char = std::ptr::null();
         // SAFETY: ptr is live; the name is a string literal of the library, read at once.
-        let n = unsafe { (self.api.fast_forward_busy)(self.ptr, &mut name) };
+        let n = unsafe { f(self.ptr, &mut name) };
         if n == 0 || name.is_null() {
             return None;
         }

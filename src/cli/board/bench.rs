@@ -59,7 +59,7 @@ fn against_rtl(a: &Args, p: &Prepared) -> Result<(), String> {
     let o = last.expect("at least one round");
     let (f, s, x, ov) = (median(&mut fast), median(&mut slow), median(&mut ratios), median(&mut overhead));
     let skipped = if o.sim_ps == 0 { 0.0 } else { o.skipped_ps as f64 / o.sim_ps as f64 };
-    let busy = o.busy.as_ref().map(|(n, times)| Busy::of(p, n, *times));
+    let busy = super::report::busy_of(p, &o.busy, &o.cut);
     if a.json {
         println!(
             "{}",
@@ -68,9 +68,7 @@ fn against_rtl(a: &Args, p: &Prepared) -> Result<(), String> {
                 "rounds": RUN_ROUNDS, "simulated_seconds": o.sim_ps as f64 / 1e12,
                 "skips": o.skips, "skipped_fraction": skipped, "evaluations": o.evaluations,
                 "overhead_seconds": ov, "off_because": o.fast_forward_off,
-                "kept_busy_by": busy.as_ref().map(|b| serde_json::json!({
-                    "variable": b.path, "module": b.module, "file": b.file, "line": b.line, "times": b.times,
-                })),
+                "kept_busy_by": busy.as_ref().map(Busy::json),
             })
         );
         return Ok(());
@@ -90,11 +88,7 @@ fn against_rtl(a: &Args, p: &Prepared) -> Result<(), String> {
     if let Some(why) = &o.fast_forward_off {
         println!("  no fast-forward: {why}");
     } else if let Some(b) = busy {
-        println!(
-            "  what kept it from skipping more: {}, still different at {} looks for a period",
-            b.describe(),
-            b.times
-        );
+        println!("  what kept it from skipping more: {}, {}", b.describe(), b.why());
     }
     Ok(())
 }

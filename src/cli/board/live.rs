@@ -142,11 +142,8 @@ fn why_behind(a: &Args, p: &Prepared, model: &BoardModel, mode: FastForward) -> 
             None => "no fast-forward (it needs --cpu iss and the bot as a model, the defaults)".into(),
         };
     }
-    match model.fast_forward_busy() {
-        Some((name, times)) => {
-            let b = super::report::Busy::of(p, &name, times);
-            format!("{} keeps it from skipping (still different at {times} looks for a period)", b.describe())
-        }
+    match super::report::busy_of(p, &model.fast_forward_busy(), &model.fast_forward_cut()) {
+        Some(b) => format!("{} keeps it from skipping ({})", b.describe(), b.why()),
         None => "what it runs does not repeat within reach".into(),
     }
 }

@@ -17,7 +17,8 @@ use botsim_core::board::plan::BotSite;
 /// Below this fraction of its time skipped, a run says what kept it busy.
 const BUSY_SAID: f64 = 0.9;
 
-/// The variable that most often kept the fast-forward from finding a period.
+/// What kept the fast-forward from skipping more: the variable that most often kept it from
+/// finding a period, else the counter whose compared values most often ended its skips.
 pub struct Busy {
     /// Its path below the top, or Verilator's name for one of botsim's own.
     pub path: String,
@@ -25,6 +26,18 @@ pub struct Busy {
     pub file: Option<std::path::PathBuf>,
     pub line: Option<u32>,
     pub times: u64,
+    /// It ended skips (a counter), rather than keeping marks from a period.
+    pub cut: bool,
+}
+
+/// What kept a run's fast-forward from skipping more, if anything did, from what the model
+/// counted (`Model::fast_forward_busy`, `Model::fast_forward_cut`).
+pub fn busy_of(p: &Prepared, busy: &Option<(String, u64)>, cut: &Option<(String, u64)>) -> Option<Busy> {
+    match (busy, cut) {
+        (Some((name, times)), _) => Some(Busy::of(p, name, *times)),
+        (None, Some((name, times))) => Some(Busy { cut: true, ..Busy::of(p, name, *times) }),
+        (None, None) => None,
+    }
 }
 
 impl Busy {
@@ -35,7 +48,14 @@ impl Busy {
             // A pin of the user's top (the wire botsim's board connects to it, or the board's
             // output it drives): the port where the top declares it.
             if let Some(d) = declared(&p.design, &p.plan.top, port) {
-                return Busy { path: d.path, module: Some(d.module), file: Some(d.file), line: Some(d.line), times };
+                return Busy {
+                    path: d.path,
+                    module: Some(d.module),
+                    file: Some(d.file),
+                    line: Some(d.line),
+                    times,
+                    cut: false,
+                };
             }
         }
         if let (None, Some(part)) = (design_path(verilator_name), board_part(verilator_name)) {
@@ -47,10 +67,13 @@ impl Busy {
                 file: None,
                 line: None,
                 times,
+                cut: false,
             };
         }
         match design_path(verilator_name).and_then(|path| declared(&p.design, &p.plan.top, &path)) {
-            Some(d) => Busy { path: d.path, module: Some(d.module), file: Some(d.file), line: Some(d.line), times },
+            Some(d) => {
+                Busy { path: d.path, module: Some(d.module), file: Some(d.file), line: Some(d.line), times, cut: false }
+            }
             None => Busy {
                 path: design_path(verilator_name).unwrap_or_else(|| verilator_name.to_string()),
                 // A name of the user's design that no source declares as such, or one of
@@ -61,8 +84,27 @@ impl Busy {
                 file: None,
                 line: None,
                 times,
+                cut: false,
             },
         }
+    }
+
+    /// Why, after its description: `still different at 12 looks for a period`, or `the next
+    /// value the design compares it with ended 40 skips`.
+    pub fn why(&self) -> String {
+        if self.cut {
+            format!("the next value the design compares it with ended {} skips", self.times)
+        } else {
+            format!("still different at {} looks for a period", self.times)
+        }
+    }
+
+    /// The JSON of `kept_busy_by`.
+    pub fn json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "variable": self.path, "module": self.module, "file": self.file, "line": self.line, "times": self.times,
+            "why": if self.cut { "skips cut short" } else { "no period" },
+        })
     }
 
     /// `SSB.refresh` (module sevenseg, src/ssb.v:14), or `uart_in.left` (the board's
@@ -135,7 +177,7 @@ pub fn report(a: &Args, p: &Prepared, mut o: Outcome) -> Result<Stopped, String>
         write_atomic(f, &picture)?;
     }
     let skipped_fraction = if o.sim_ps == 0 { 0.0 } else { o.skipped_ps as f64 / o.sim_ps as f64 };
-    let busy = o.busy.as_ref().map(|(name, times)| Busy::of(p, name, *times));
+    let busy = busy_of(p, &o.busy, &o.cut);
     let last_display = o.rec.display.lines().last().map(|l| l.text.clone()).unwrap_or_default();
     let end = o.rec.snapshots.last().map(|s| (s.regs.loc_x, s.regs.loc_y));
     // Moves the world refused (the destination was an obstruction): the samples with the event.
@@ -187,9 +229,7 @@ pub fn report(a: &Args, p: &Prepared, mut o: Outcome) -> Result<Stopped, String>
                 "skipped_seconds": o.skipped_ps as f64 / 1e12,
                 "skipped_fraction": skipped_fraction,
                 "off_because": o.fast_forward_off,
-                "kept_busy_by": busy.as_ref().map(|b| serde_json::json!({
-                    "variable": b.path, "module": b.module, "file": b.file, "line": b.line, "times": b.times,
-                })),
+                "kept_busy_by": busy.as_ref().map(Busy::json),
             },
             "break": o.stopped.as_ref().map(|s| serde_json::json!({"time_ps": s.time_ps, "what": s.message})),
             "uart": has_uart.then(|| {
@@ -233,11 +273,7 @@ pub fn report(a: &Args, p: &Prepared, mut o: Outcome) -> Result<Stopped, String>
             );
         }
         if let (Some(b), true) = (&busy, o.fast_forward_off.is_none() && skipped_fraction < BUSY_SAID) {
-            println!(
-                "  what kept it from skipping more: {}, still different at {} looks for a period",
-                b.describe(),
-                b.times
-            );
+            println!("  what kept it from skipping more: {}, {}", b.describe(), b.why());
         }
         for (b, snapshots, _) in &others {
             let end = match snapshots.last() {

@@ -226,6 +226,9 @@ pub struct Outcome {
     /// The variable (Verilator's name) that most often kept the fast-forward from a period,
     /// and how often.
     pub busy: Option<(String, u64)>,
+    /// The counter (Verilator's name) whose next compared value most often ended a skip, and
+    /// how often.
+    pub cut: Option<(String, u64)>,
 }
 
 /// Run the prepared board as the arguments say: the session opens (models loaded, the
@@ -606,6 +609,7 @@ impl<'a> Session<'a> {
             traces,
             design_lines,
             busy: self.model.main().fast_forward_busy(),
+            cut: self.model.main().fast_forward_cut(),
         })
     }
 }

@@ -6,7 +6,8 @@
 //! for and without them (the display decoder then takes the skipped periods whole); and a
 //! design the generator knows to repeat within reach must skip at least 95 % of its run.
 //!
-//! `BOTSIM_RANDOM_DESIGNS` (default 2) designs from seed `BOTSIM_RANDOM_SEED` (default 1) on;
+//! `BOTSIM_RANDOM_DESIGNS` (default 2) designs from seed `BOTSIM_RANDOM_SEED` (default 1) on,
+//! and the seeds of `BOTSIM_RANDOM_ALSO` (default 28 and 316: a second bot, a nested delay);
 //! each design is kept in target/random-designs/<seed>/ (its parts listed in parts.txt).
 
 use std::path::{Path, PathBuf};
@@ -164,13 +165,21 @@ fn check_one(seed: u64) -> f64 {
     skipped
 }
 
+/// Seeds checked besides the range, so that every run meets the generator's newer classes:
+/// 28 (a second bot in the world) and 316 (a delay of three nested loops). `BOTSIM_RANDOM_ALSO`
+/// replaces them (empty: none).
+const ALSO: &str = "28,316";
+
 #[test]
 fn random_designs_record_what_every_edge_does_and_skip_what_repeats() {
     let first = env("BOTSIM_RANDOM_SEED", 1);
     let count = env("BOTSIM_RANDOM_DESIGNS", 2);
+    let also = std::env::var("BOTSIM_RANDOM_ALSO").unwrap_or_else(|_| ALSO.into());
+    let also: Vec<u64> = also.split(',').filter_map(|s| s.trim().parse().ok()).collect();
+    let seeds: Vec<u64> = (first..first + count).chain(also).collect();
     // Every design is tried; the failures are listed at the end.
-    let failed: Vec<String> = (first..first + count).filter_map(|seed| check(seed).err()).collect();
-    assert!(failed.is_empty(), "{} of {count} designs failed:\n\n{}", failed.len(), failed.join("\n\n"));
+    let failed: Vec<String> = seeds.iter().filter_map(|&seed| check(seed).err()).collect();
+    assert!(failed.is_empty(), "{} of {} designs failed:\n\n{}", failed.len(), seeds.len(), failed.join("\n\n"));
 }
 
 /// The parts of `BOTSIM_RANDOM_DESIGNS` designs from `BOTSIM_RANDOM_SEED` on, without running

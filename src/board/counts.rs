@@ -357,13 +357,13 @@ mod tests {
         assert_eq!(look(&mut w, &mark, 4, 1), Some((4, Same::Counting)));
         // Periods of 22 cycles (a middle turn and an inner turn) span s2's reload: refused,
         // and twice makes s2 state, on trial.
-        let mut found = None;
         for _ in 0..3 {
-            found = look(&mut w, &mark, 22, 3);
+            assert_eq!(look(&mut w, &mark, 22, 3), None);
         }
         assert!(w.nest.state.contains(&2), "{:?}", w.nest.state);
-        // With s2 as state, a board of 18 cycles finds the middle loop's period: s1 counts.
-        assert_eq!(found, None);
+        // With s2 as state, the inner loop's short period is no period any more (it was one
+        // above), and a board of 18 cycles finds the middle loop's: s1 counts.
+        assert_eq!(look(&mut w, &mark, 4, 1), None);
         assert_eq!(look(&mut w, &mark, 18, 3), Some((18, Same::Counting)));
         assert!(w.nest.trial.is_empty(), "the trial found its outer period");
         assert_eq!(w.room(), Some(1), "s1 is 2 now: one more middle turn before it ends");

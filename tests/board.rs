@@ -1262,3 +1262,54 @@ fn memory_cores_committed_as_a_coe_alone_are_memories_of_its_words() {
         warned[0]
     );
 }
+
+/// A 1024 x 768 timing generator written as many teams write theirs: it counts to its totals
+/// inclusively (`col == 1344`, `row >= 806`: 1345 pixels a line, 807 lines a frame) and ends
+/// its syncs with `<=` (137 pixels, 7 lines). A monitor shows it as 1024 x 768 at 60 Hz, and so
+/// does `--frames`: every pixel where the design draws it (the colour bands, the bot's box at
+/// a location of the run's trace).
+#[test]
+fn a_vga_generator_counting_its_totals_inclusively_still_gives_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let top = dir.path().join("top");
+    std::fs::create_dir(&top).unwrap();
+    let original = std::fs::read_to_string(root().join("tests/board_designs/vga1024/nexys4fpga.v")).unwrap();
+    let mut text = original.clone();
+    for (from, to) in [
+        ("col == 11'd1343", "col == 11'd1344"),
+        ("row == 10'd805", "row >= 10'd806"),
+        ("col < 11'd1184", "col <= 11'd1184"),
+        ("row < 10'd777", "row <= 10'd777"),
+    ] {
+        assert!(text.contains(from), "{from}");
+        text = text.replace(from, to);
+    }
+    std::fs::write(top.join("nexys4fpga.v"), text).unwrap();
+    let (frames, csv) = (dir.path().join("frames"), dir.path().join("t.csv"));
+    let o = example(
+        top.to_str().unwrap(),
+        &["--seconds", "0.06", "--frames", frames.to_str().unwrap(), "--trace-csv", csv.to_str().unwrap(), "--json"],
+    );
+    let summary = summary(&o);
+    assert!(summary["vga_frames"].as_u64().unwrap() >= 2, "{summary}");
+    assert_eq!(summary["vga_unknown_frames"], 0, "{summary}");
+    let places: Vec<(u64, u64)> = rows(&csv).iter().map(|r| (r[2], r[3])).collect();
+    let png = std::fs::read(frames.join("frame_00001.png")).unwrap();
+    let (w, h, rgb) = common::rgb(&png);
+    assert_eq!((w, h), (1024, 768));
+    let white: Vec<(u64, u64)> = rgb
+        .chunks(3)
+        .enumerate()
+        .filter(|(_, px)| px == &[255, 255, 255])
+        .map(|(k, _)| (k as u64 % 1024, k as u64 / 1024))
+        .collect();
+    let (x0, y0) = white[0];
+    assert!(places.contains(&(x0 / 8, y0 / 6)) && x0 % 8 == 0 && y0 % 6 == 0, "box at ({x0}, {y0}): {places:?}");
+    for (k, px) in rgb.chunks(3).enumerate() {
+        let (col, row) = (k as u64 % 1024, k as u64 / 1024);
+        let in_box = (x0..x0 + 8).contains(&col) && (y0..y0 + 6).contains(&row);
+        let c = if in_box { 0xFFF } else { (col >> 6 & 15) << 8 | (row >> 6 & 15) << 4 | 3 };
+        let want = [(c >> 8 & 15) as u8 * 17, (c >> 4 & 15) as u8 * 17, (c & 15) as u8 * 17];
+        assert_eq!(px, want, "pixel ({col}, {row})");
+    }
+}

@@ -121,41 +121,92 @@ impl Capture {
 
 /// Decode one frame from its pin changes (the first is the vertical sync's fall; `before`
 /// the pins just before it).
+///
+/// Like a monitor, it takes a mode whose line count is near the frame's (a timing generator
+/// that counts to its total inclusively sends a line and a pixel more than the standard, as
+/// many teams' do) and places the picture by the syncs it measures: row 0 is the mode's back
+/// porch after the vertical sync's end, column 0 the back porch after the horizontal sync's.
 fn decode(start: u64, changes: &[(u64, u16)], before: u16) -> Option<Frame> {
-    // Horizontal sync falls, in order (one may come with the vertical sync's own change).
+    // Horizontal sync falls, in order (one may come with the vertical sync's own change), and
+    // how many of them came while the vertical sync was low.
     let mut hs_falls = Vec::new();
+    let mut v_sync = None;
     let mut prev = before;
     for &(t, v) in changes {
         if prev >> 12 & 1 == 1 && v >> 12 & 1 == 0 {
             hs_falls.push(t);
         }
+        if v_sync.is_none() && v >> 13 & 1 == 1 {
+            v_sync = Some(hs_falls.len() as u32);
+        }
         prev = v;
     }
-    let mode = [MODE_640, MODE_1024].into_iter().find(|m| m.frame_lines() as usize == hs_falls.len())?;
+    let lines = hs_falls.len() as u32;
+    let mode =
+        [MODE_640, MODE_1024].into_iter().find(|m| lines.abs_diff(m.frame_lines()) <= m.frame_lines() / LINES_SLACK)?;
+    let v_sync = v_sync.filter(|&s| s > 0)?;
     // The lines of the picture, from the first visible row's sync to the sync after the last
     // one's (the front porch follows), must be evenly timed: a frame whose pixel clock was
     // parked for a while (a live board parks it between the frames it shows) is whole when
     // the pause fell in the vertical sync or back porch, and is no frame otherwise.
-    let first = (mode.v_sync + mode.v_back) as usize - 1;
-    let rows = &hs_falls[first..=first + mode.height as usize];
-    let mut lines: Vec<u64> = rows.windows(2).map(|w| w[1] - w[0]).collect();
-    lines.sort_unstable();
-    let typical = lines[lines.len() / 2];
-    if lines[0] < typical - typical / 100 || lines[lines.len() - 1] > typical + typical / 100 {
+    let first = (v_sync + mode.v_back) as usize - 1;
+    let rows = hs_falls.get(first..=first + mode.height as usize)?;
+    let mut spans: Vec<u64> = rows.windows(2).map(|w| w[1] - w[0]).collect();
+    spans.sort_unstable();
+    let typical = spans[spans.len() / 2];
+    if spans[0] < typical - typical / 100 || spans[spans.len() - 1] > typical + typical / 100 {
         return None;
     }
     let line_ps = (rows[rows.len() - 1] - rows[0]) as f64 / mode.height as f64;
-    let pixel_ps = line_ps / mode.line_pixels() as f64;
+    let (pixel_ps, h_sync) = pixel_timing(&mode, changes, rows, line_ps)?;
     let mut pixels = Vec::with_capacity((mode.width * mode.height) as usize);
-    for r in 0..mode.height {
-        // Row r's line follows the (v_sync + v_back + r)-th horizontal sync (counting from 1).
-        let hs = hs_falls[(mode.v_sync + mode.v_back + r) as usize - 1] as f64;
+    for &hs in &rows[..mode.height as usize] {
         for i in 0..mode.width {
-            let t = hs + ((mode.h_sync + mode.h_back + i) as f64 + 0.5) * pixel_ps;
+            let t = hs as f64 + ((h_sync + mode.h_back + i) as f64 + 0.5) * pixel_ps;
             pixels.push(value_at(changes, t as u64) & 0xFFF);
         }
     }
     Some(Frame { time_ps: start, width: mode.width, height: mode.height, pixels })
+}
+
+/// How far a frame's line count may be from its mode's: one part in this many.
+const LINES_SLACK: u32 = 50;
+
+/// The pixel period and the horizontal sync's width in pixels, measured. A line holds a whole
+/// number of pixels near the mode's, and the timing generator's sync edges fall on pixel
+/// edges: the count nearest the mode's whose pixels the horizontal sync's width and the
+/// vertical sync's end (after its line's sync fell) both fit gives the period (the mode's
+/// own when none does).
+fn pixel_timing(mode: &Mode, changes: &[(u64, u16)], rows: &[u64], line_ps: f64) -> Option<(f64, u32)> {
+    let from = changes.partition_point(|&(t, _)| t < rows[0]);
+    let h_rise = changes[from..].iter().find(|&&(_, v)| v >> 12 & 1 == 1).map(|&(t, _)| t)?;
+    let mut offsets = vec![(h_rise - rows[0]) as f64];
+    // The vertical sync's rise, after the horizontal sync fall before it (none: it rose with
+    // the frame's first line).
+    if let Some(&(v_rise, _)) = changes.iter().find(|&&(_, v)| v >> 13 & 1 == 1) {
+        let k = changes.partition_point(|&(t, _)| t < v_rise);
+        let mut prev_hs = None;
+        let mut prev = changes[0].1;
+        for &(t, v) in &changes[1..k.max(1)] {
+            if prev >> 12 & 1 == 1 && v >> 12 & 1 == 0 {
+                prev_hs = Some(t);
+            }
+            prev = v;
+        }
+        if let Some(h) = prev_hs {
+            offsets.push((v_rise - h) as f64);
+        }
+    }
+    let nominal = mode.line_pixels();
+    let slack = nominal / LINES_SLACK;
+    let fits = |count: u32| {
+        let pixel = line_ps / count as f64;
+        offsets.iter().all(|o| (o / pixel - (o / pixel).round()).abs() < 0.05)
+    };
+    let count = (0..=slack).flat_map(|d| [nominal - d, nominal + d]).find(|&n| fits(n)).unwrap_or(nominal);
+    let pixel_ps = line_ps / count as f64;
+    let h_sync = (offsets[0] / pixel_ps).round() as u32;
+    (h_sync > 0).then_some((pixel_ps, h_sync))
 }
 
 /// The pin value in effect at time `t`.
@@ -254,6 +305,30 @@ mod tests {
         let mut cap = paused(vs + (35 + 100) as u64 * line + 300 * pixel);
         assert!(cap.take().is_empty());
         assert_eq!(cap.unknown, 1);
+    }
+
+    /// A timing generator that counts to its totals inclusively (`== 1344` wraps after 1345
+    /// pixels, `>= 806` after 807 lines) and tests its syncs inclusively too (a pixel and a
+    /// line longer): a monitor shows it, and so does the capture, every pixel in its place.
+    #[test]
+    fn a_generator_counting_one_more_pixel_and_line_is_shown_as_its_mode() {
+        let pattern = |r: u32, c: u32| ((r * 7 + c * 3) % 4096) as u16;
+        for (mode, pixel) in [
+            (Mode { h_sync: 137, v_sync: 7, ..MODE_1024 }, 15_385),
+            (Mode { h_sync: 97, v_sync: 3, ..MODE_640 }, 40_000),
+            // One more line and pixel in the front porches.
+            (Mode { h_front: 17, v_front: 11, ..MODE_640 }, 40_000),
+        ] {
+            let mut cap = capture(&frames(&mode, pixel, pattern, 2));
+            let f = cap.take();
+            assert_eq!((f.len(), cap.unknown), (2, 0), "{mode:?}");
+            let (w, h) = (mode.width, mode.height);
+            assert_eq!((f[1].width, f[1].height), (w, h));
+            for (k, &p) in f[1].pixels.iter().enumerate() {
+                let (r, c) = (k as u32 / w, k as u32 % w);
+                assert_eq!(p, pattern(r, c), "{mode:?}: row {r} col {c}");
+            }
+        }
     }
 
     #[test]

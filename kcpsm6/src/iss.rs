@@ -26,6 +26,9 @@ use std::sync::Arc;
 
 use crate::isa::{Cond, Opcode, ROM_WORDS, WORD_MASK};
 
+mod routines;
+pub use routines::Routines;
+
 /// Usable call-stack depth (an interrupt uses one level). One more level leaves the wrapping
 /// depth counter at [`STACK_ERROR_DEPTH`], as does a pop at depth 0.
 pub const STACK_DEPTH: u8 = 30;
@@ -821,16 +824,49 @@ impl Cpu {
     /// event, to calling [`Cpu::tick`] with low pins (tested): away from the steady state
     /// (reset sequence, stack errors) it ticks cycle by cycle. The busy-wait idiom
     /// `SUB sX, 01` / `JUMP NZ, <the SUB>` is fast-forwarded to its end in one step.
-    pub fn run_fast<B: Bus>(&mut self, bus: &mut B, until: u64, mut stop: impl FnMut(&B) -> bool) {
+    pub fn run_fast<B: Bus>(&mut self, bus: &mut B, until: u64, stop: impl FnMut(&B) -> bool) {
+        self.run_inner(bus, until, stop, None);
+    }
+
+    /// As [`Cpu::run_fast`], and a call of a subroutine that only computes, made before with
+    /// the same inputs, is applied at once from its recording in `routines` (see
+    /// [`Routines`]). Equal, cycle for cycle and event for event, to [`Cpu::tick`] (tested).
+    pub fn run_with<B: Bus>(&mut self, bus: &mut B, until: u64, stop: impl FnMut(&B) -> bool, routines: &mut Routines) {
+        self.run_inner(bus, until, stop, Some(routines));
+        routines.interrupted();
+    }
+
+    fn run_inner<B: Bus>(
+        &mut self,
+        bus: &mut B,
+        until: u64,
+        mut stop: impl FnMut(&B) -> bool,
+        mut routines: Option<&mut Routines>,
+    ) {
         while self.cycle < until {
             if !self.steady() {
+                if let Some(r) = routines.as_deref_mut() {
+                    r.interrupted();
+                }
                 self.tick(Pins::default(), bus);
                 if stop(bus) {
                     return;
                 }
                 continue;
             }
+            if let Some(r) = routines.as_deref_mut() {
+                if r.at_instruction(self, until) {
+                    r.after_instruction(self);
+                    if stop(bus) {
+                        return;
+                    }
+                    continue;
+                }
+            }
             if self.fast_forward_countdown(until) {
+                if let Some(r) = routines.as_deref_mut() {
+                    r.after_instruction(self);
+                }
                 continue;
             }
             // D, then its second cycle as an F that fetches the next word: what two ticks do
@@ -842,6 +878,9 @@ impl Cpu {
             self.instr = self.rom[self.pc as usize];
             self.xb = self.bank;
             self.cycle = d + 2;
+            if let Some(r) = routines.as_deref_mut() {
+                r.after_instruction(self);
+            }
             if stop(bus) {
                 return;
             }

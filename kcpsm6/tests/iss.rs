@@ -2,7 +2,7 @@
 //! aliasing, the stack, and the cycle numbers of reset, interrupt and sleep (§2.4-§2.7).
 
 use kcpsm6::asm::assemble_str;
-use kcpsm6::iss::{Bus, Config, Cpu, Phase, Pins, PortEvent, PortKind, RetireKind, Retired, ScratchPad};
+use kcpsm6::iss::{Bus, Config, Cpu, Phase, Pins, PortEvent, PortKind, RetireKind, Retired, Routines, ScratchPad};
 
 /// A bus that records every event and answers INPUTs with `port ^ 0xA5`.
 #[derive(Default)]
@@ -632,6 +632,135 @@ mod fast_path {
             prop_assert_eq!(&fast_bus.events, &slow_bus.events);
             prop_assert_eq!(state(&fast), state(&slow));
         }
+    }
+
+    /// Firmware shaped like a team's: a main loop that does some work, writes a port and calls
+    /// a delay of nested levels (each `LOAD sK, n` / body / `CALL` the next / `SUB sK, 01` /
+    /// `JUMP NZ`), the bodies random ALU work, sometimes a level that reads a register it did
+    /// not load (an input: its calls repeat only with the same value), sometimes one that
+    /// writes a port or the scratch pad (not one that only computes).
+    fn nested_delays() -> impl Strategy<Value = Vec<u32>> {
+        let alu = (
+            prop::sample::select(vec![0x00u32, 0x02, 0x04, 0x06, 0x0C, 0x10, 0x12, 0x18, 0x1A, 0x1C]),
+            any::<bool>(),
+            0u32..16,
+            0u32..16,
+            any::<u8>(),
+        )
+            .prop_map(
+                |(op, k, x, y, kk)| if k { (op + 1) << 12 | x << 8 | kk as u32 } else { op << 12 | x << 8 | y << 4 },
+            );
+        let level = (1u32..12, 2u8..9, prop::collection::vec(alu.clone(), 0..4), 0u32..10);
+        (prop::collection::vec(level, 1..4), prop::collection::vec(alu, 0..5), 1u32..5).prop_map(
+            |(levels, work, nudge)| {
+                let mut p = vec![0u32; 256];
+                // main at 0: work, OUTPUT s5, 01, CALL level 0, ADD s5, nudge, JUMP 0.
+                let mut at = 0;
+                for w in &work {
+                    p[at] = *w;
+                    at += 1;
+                }
+                p[at] = 0x2C501;
+                p[at + 1] = 0x20040;
+                p[at + 2] = 0x11500 | nudge;
+                p[at + 3] = 0x22000;
+                // Level i at 0x40 + 0x20 i.
+                for (i, (k, n, body, special)) in levels.iter().enumerate() {
+                    let base = 0x40 + 0x20 * i as u32;
+                    let mut a = base as usize;
+                    let counter = 12 + *k % 4; // sC..sF count; the bodies touch any register
+                    p[a] = 0x01000 | counter << 8 | *n as u32;
+                    a += 1;
+                    let head = a as u32;
+                    for w in body {
+                        // Keep the counters of this level and the ones around it.
+                        p[a] = if (w >> 8 & 15) >= 12 { w & !0xC00 } else { *w };
+                        a += 1;
+                    }
+                    match special {
+                        0 => {
+                            p[a] = 0x00070; // LOAD s0, s7: s7 is read before this level writes it
+                            a += 1;
+                        }
+                        1 => {
+                            p[a] = 0x2C702; // OUTPUT s7, 02
+                            a += 1;
+                        }
+                        2 => {
+                            p[a] = 0x2F730; // STORE s7, 30
+                            a += 1;
+                        }
+                        _ => {}
+                    }
+                    if i + 1 < levels.len() {
+                        p[a] = 0x20000 | (base + 0x20);
+                        a += 1;
+                    }
+                    p[a] = 0x19001 | counter << 8;
+                    p[a + 1] = 0x36000 | head;
+                    p[a + 2] = 0x25000;
+                }
+                p
+            },
+        )
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 300, failure_persistence: None, ..ProptestConfig::default() })]
+
+        /// Calls replayed from their recordings leave the core, every flop of it (the stack
+        /// RAM too), and the ports exactly as simulating them cycle by cycle does, run in
+        /// pieces of any length.
+        #[test]
+        fn replayed_calls_equal_cycle_by_cycle(prog in nested_delays(), pieces in prop::collection::vec(1u64..40_000, 1..12)) {
+            let mut fast = Cpu::new(Config::default(), &prog);
+            let mut routines = Routines::default();
+            let mut fast_bus = Recorder::default();
+            let mut slow = Cpu::new(Config::default(), &prog);
+            let mut slow_bus = Recorder::default();
+            for piece in pieces {
+                let until = fast.cycle() + piece;
+                fast.run_with(&mut fast_bus, until, |_| false, &mut routines);
+                while slow.cycle() < fast.cycle() {
+                    slow.tick(Pins::default(), &mut slow_bus);
+                }
+                prop_assert_eq!(&fast_bus.events, &slow_bus.events);
+                prop_assert!(fast == slow, "at cycle {}: {:?} != {:?}", fast.cycle(), state(&fast), state(&slow));
+            }
+        }
+    }
+
+    #[test]
+    fn a_delay_of_nested_calls_is_replayed_whole() {
+        // BotSim's shape: four levels, 24 x 40 x 25 x 50 turns (about 5 M cycles).
+        let src = "main: OUTPUT s5, 01\nCALL wait4\nADD s5, 01\nJUMP main\n\
+                   wait1: LOAD s0, 18\nspin: SUB s0, 01\nJUMP NZ, spin\nRETURN\n\
+                   wait2: LOAD s1, 28\nturn2: CALL wait1\nSUB s1, 01\nJUMP NZ, turn2\nRETURN\n\
+                   wait3: LOAD s2, 19\nturn3: CALL wait2\nSUB s2, 01\nJUMP NZ, turn3\nRETURN\n\
+                   wait4: LOAD s3, 32\nturn4: CALL wait3\nSUB s3, 01\nJUMP NZ, turn4\nRETURN\n";
+        let mut fast = cpu_with(Config::default(), src);
+        let mut routines = Routines::default();
+        let mut bus = Recorder::default();
+        let mut steps = 0u64;
+        fast.run_with(
+            &mut bus,
+            30_000_000,
+            |_| {
+                steps += 1;
+                false
+            },
+            &mut routines,
+        );
+        let mut slow = cpu_with(Config::default(), src);
+        let mut slow_bus = Recorder::default();
+        slow.run_fast(&mut slow_bus, fast.cycle(), |_| false);
+        assert!(fast == slow);
+        assert_eq!(bus.events, slow_bus.events);
+        assert!(bus.events.len() >= 5, "{:?}", bus.events.len());
+        // The first main loop is simulated (the innermost countdown in one step): about
+        // 50 x 25 x 40 x 5 instructions; the later ones are a handful of steps each.
+        assert!(steps < 300_000, "{steps} steps");
+        assert!(routines.replayed() > 0);
     }
 
     #[test]

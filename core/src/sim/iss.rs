@@ -28,7 +28,7 @@
 //! assert_eq!(s[15].location(), (65, 64));
 //! ```
 
-use kcpsm6::iss::{Bus, Config, Cpu};
+use kcpsm6::iss::{Bus, Config, Cpu, Routines};
 use kcpsm6::Image;
 
 use super::{check_program_size, Backend, CpuAt, Error, PortEvent, PortKind, BOT_ROM_WORDS};
@@ -332,6 +332,8 @@ pub struct IssBot {
     bus: WorldIf,
     next_sample: u64,
     budget: u64,
+    /// The firmware's delay subroutines, replayed after their first call.
+    routines: Routines,
 }
 
 impl IssBot {
@@ -358,6 +360,7 @@ impl IssBot {
             },
             next_sample: 0,
             budget: Timing::Hw.update_budget(),
+            routines: Routines::default(),
         })
     }
 
@@ -386,7 +389,7 @@ impl IssBot {
     pub fn run(&mut self, cycles: u64) {
         let end = self.cpu.cycle() + cycles;
         // Whole instructions to just before the end, then single cycles.
-        self.cpu.run_fast(&mut self.bus, end.saturating_sub(2), |_| false);
+        self.cpu.run_with(&mut self.bus, end.saturating_sub(2), |_| false, &mut self.routines);
         while self.cpu.cycle() < end {
             self.cpu.tick(kcpsm6::iss::Pins::default(), &mut self.bus);
         }
@@ -400,7 +403,7 @@ impl IssBot {
         let end = self.cpu.cycle() + budget;
         // Whole instructions at a time (and busy-wait loops at once), stopping right after the
         // write strobe that raises upd_sysregs: that is the start of the pulse's first cycle.
-        self.cpu.run_fast(&mut self.bus, end, |bus| bus.pulse.is_some());
+        self.cpu.run_with(&mut self.bus, end, |bus| bus.pulse.is_some(), &mut self.routines);
         if let Some(p) = self.bus.pulse.take() {
             debug_assert_eq!(self.cpu.cycle(), p);
             self.bus.catch_up();
@@ -478,7 +481,7 @@ impl IssBot {
     /// The first cycle before `limit` in which the firmware writes a port in a way that
     /// changes world_if's outputs (the only way they change with the inputs held), or `limit`:
     /// run on a copy. `reset`: the reset input held (nothing is written in reset).
-    fn next_write(&self, limit: u64, reset: bool) -> u64 {
+    fn next_write(&mut self, limit: u64, reset: bool) -> u64 {
         if reset {
             return limit;
         }
@@ -488,9 +491,9 @@ impl IssBot {
         if settled.visible != self.bus.visible {
             return self.cpu.cycle();
         }
-        let mut probe = IssBot { cpu: self.cpu.clone(), bus: self.bus.probe(), next_sample: 0, budget: 0 };
-        probe.cpu.run_fast(&mut probe.bus, limit, |bus| bus.written.is_some());
-        probe.bus.written.unwrap_or(limit).min(limit)
+        let (mut cpu, mut bus) = (self.cpu.clone(), self.bus.probe());
+        cpu.run_with(&mut bus, limit, |bus| bus.written.is_some(), &mut self.routines);
+        bus.written.unwrap_or(limit).min(limit)
     }
 
     /// Run `cycles` cycles with the inputs held, none of which writes a port
@@ -505,7 +508,7 @@ impl IssBot {
             self.bus.reset();
             return;
         }
-        self.cpu.run_fast(&mut self.bus, end.saturating_sub(2), |_| false);
+        self.cpu.run_with(&mut self.bus, end.saturating_sub(2), |_| false, &mut self.routines);
         while self.cpu.cycle() < end {
             self.cpu.tick(kcpsm6::iss::Pins::default(), &mut self.bus);
         }

@@ -11,8 +11,10 @@
 //! what the design draws, or while the picture changes by itself (an animation: the last
 //! frame differed from the one before), at most [`FRAME_EVERY`] of wall time apart while the
 //! board keeps its pace (a frame costs about one frame period of all-RTL simulation, 0.1 s on
-//! the VGA example); a still picture, or a board that cannot keep its pace, gets one every
-//! [`REFRESH_EVERY`]. The pixel path is parked between frames in its vertical back porch, so
+//! the VGA example, 0.5 s on a Project 2 design with its 100 MHz system); a still picture, or
+//! a board that cannot keep its pace, gets one every [`REFRESH_EVERY`]. A frame also waits
+//! at least as long as the last one took, so frames take at most half the wall time and a
+//! board that runs ahead of real time between frames (at `--speed max` too) stays ahead. The pixel path is parked between frames in its vertical back porch, so
 //! each frame goes on from there.
 
 use std::time::{Duration, Instant};
@@ -178,6 +180,7 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
     let alone = p.plan.bot_path.is_none();
     let mut last_state = Instant::now() - STATE_EVERY;
     let mut last_frame: Option<Instant> = None;
+    let mut frame_cost = Duration::ZERO;
     let mut frames: Vec<Instant> = Vec::new();
     let mut frames_shown = 0u64;
     let mut rate = Rate::new(0);
@@ -236,15 +239,20 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
             // A frame for the page when what it shows may have changed. Frames wait while
             // the board catches up with its pace (the pace first), but a board that cannot
             // keep it still shows one every REFRESH_EVERY.
+            // (A frame waits at least as long as the last one took: frames take at most half
+            // the wall time, so a board that outruns real time between frames keeps doing so
+            // with frames.)
             let due = last_frame.map_or(true, |f| {
                 let changed = b.dirty || b.animated;
-                (on_pace && f.elapsed() >= FRAME_EVERY && changed) || f.elapsed() >= REFRESH_EVERY
+                let since = f.elapsed();
+                (on_pace && since >= FRAME_EVERY.max(frame_cost) && changed) || since >= REFRESH_EVERY.max(frame_cost)
             });
             if has_vga && due {
                 let (t0, s0) = (b.model.time_ps(), b.bot.as_ref().map(|v| v.sample));
                 let began = Instant::now();
                 let made = b.frame(skip_mode)?;
-                lag.frames.push((began, began.elapsed()));
+                frame_cost = began.elapsed();
+                lag.frames.push((began, frame_cost));
                 if let Some(frame) = made {
                     // The bot's last sample when the frame began and when it ended: equal,
                     // the frame shows the bot as that sample left it.

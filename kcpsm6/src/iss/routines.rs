@@ -54,7 +54,7 @@ pub struct Routines {
     rom: Option<Arc<[u32; ROM_WORDS]>>,
     /// Per address: the subroutine starting there, once analysed (`None`: it is not one that
     /// only computes).
-    analysed: HashMap<u16, Option<Routine>>,
+    analysed: Vec<Option<Option<Routine>>>,
     calls: HashMap<Key, Effect>,
     /// The calls being recorded, innermost last.
     recording: Vec<Recording>,
@@ -77,8 +77,8 @@ struct Key {
     c: bool,
     z: bool,
     bank: bool,
-    /// The inputs' values, in register order.
-    inputs: Vec<u8>,
+    /// The inputs' values (0 for a register that is not one).
+    inputs: [u8; 16],
 }
 
 /// What a recorded call did.
@@ -111,7 +111,7 @@ impl Routines {
     /// Make sure this follows `cpu`'s program.
     fn follow(&mut self, cpu: &Cpu) {
         if !self.rom.as_ref().is_some_and(|r| Arc::ptr_eq(r, &cpu.rom)) {
-            *self = Routines { rom: Some(cpu.rom.clone()), ..Routines::default() };
+            *self = Routines { rom: Some(cpu.rom.clone()), analysed: vec![None; ROM_WORDS], ..Routines::default() };
         }
     }
 
@@ -130,8 +130,12 @@ impl Routines {
             self.note_step(cpu);
             return false;
         };
-        let inputs =
-            (0..16).filter(|r| routine.inputs >> r & 1 == 1).map(|r| cpu.regs[reg_index(cpu.bank, r)]).collect();
+        let mut inputs = [0u8; 16];
+        for (r, v) in inputs.iter_mut().enumerate() {
+            if routine.inputs >> r & 1 == 1 {
+                *v = cpu.regs[reg_index(cpu.bank, r as u32)];
+            }
+        }
         let key = Key { call_pc: cpu.pc, depth: cpu.depth, c: cpu.c, z: cpu.z, bank: cpu.bank, inputs };
         if let Some(e) = self.calls.get(&key) {
             if cpu.cycle + e.cycles <= until {
@@ -205,13 +209,13 @@ impl Routines {
 
     /// The subroutine at `target`, if it only computes.
     fn routine(&mut self, rom: &[u32; ROM_WORDS], target: u16) -> Option<Routine> {
-        if let Some(r) = self.analysed.get(&target) {
-            return *r;
+        if let Some(r) = self.analysed[target as usize] {
+            return r;
         }
         // A recursive call while analysing: not one (a guard entry until the answer is known).
-        self.analysed.insert(target, None);
+        self.analysed[target as usize] = Some(None);
         let r = self.analyse(rom, target);
-        self.analysed.insert(target, r);
+        self.analysed[target as usize] = Some(r);
         r
     }
 

@@ -12,10 +12,11 @@
 //! frame differed from the one before), at most [`FRAME_EVERY`] of wall time apart while the
 //! board keeps its pace (a frame costs about one frame period of all-RTL simulation, 0.1 s on
 //! the VGA example, 0.5 s on a Project 2 design with its 100 MHz system); a still picture, or
-//! a board that cannot keep its pace, gets one every [`REFRESH_EVERY`]. A frame also waits
-//! at least as long as the last one took, so frames take at most half the wall time and a
-//! board that runs ahead of real time between frames (at `--speed max` too) stays ahead. The pixel path is parked between frames in its vertical back porch, so
-//! each frame goes on from there.
+//! a board that cannot keep its pace, gets one every [`REFRESH_EVERY`]. At `--speed max`,
+//! where a board is always on its pace, a frame also waits at least as long as the last one
+//! took, so frames take at most half the wall time and a board that runs ahead of real time
+//! between frames stays ahead. The pixel path is parked between frames in its vertical back
+//! porch, so each frame goes on from there.
 
 use std::time::{Duration, Instant};
 
@@ -239,13 +240,14 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
             // A frame for the page when what it shows may have changed. Frames wait while
             // the board catches up with its pace (the pace first), but a board that cannot
             // keep it still shows one every REFRESH_EVERY.
-            // (A frame waits at least as long as the last one took: frames take at most half
-            // the wall time, so a board that outruns real time between frames keeps doing so
-            // with frames.)
+            // At `--speed max` (no pace to keep: always on it) a frame also waits at least as
+            // long as the last one took, so frames take at most half the wall time and a board
+            // that outruns real time between frames keeps doing so with frames.
+            let gap = if pace.speed().is_none() { frame_cost } else { Duration::ZERO };
             let due = last_frame.map_or(true, |f| {
                 let changed = b.dirty || b.animated;
                 let since = f.elapsed();
-                (on_pace && since >= FRAME_EVERY.max(frame_cost) && changed) || since >= REFRESH_EVERY.max(frame_cost)
+                (on_pace && since >= FRAME_EVERY.max(gap) && changed) || since >= REFRESH_EVERY.max(gap)
             });
             if has_vga && due {
                 let (t0, s0) = (b.model.time_ps(), b.bot.as_ref().map(|v| v.sample));

@@ -9,7 +9,8 @@
 //! counters, clock dividers, toggles, rotating shift registers, PWM compares, LFSRs, some
 //! enabled by others' ticks, on the oscillator or on clocks from an MMCM or a DCM_SP with
 //! rational ratios; their bits feed the LEDs, the display's digits and points, the CPU's input
-//! ports and sometimes a VGA output (the course's `dtg` on a 25 MHz clock).
+//! ports and sometimes a VGA output (the course's `dtg` on a 25 MHz clock, or a team's own that
+//! counts its totals inclusively).
 //!
 //! The generator also says whether it knows the design to be periodic within reach: every
 //! part either repeats with a short period (the CPU's loop, a short wrap counter, a ring, a
@@ -326,8 +327,17 @@ pub fn generate(seed: u64) -> Design {
     // (then what a run observes includes the pixel clock's part: a frame is 1.68 M clocks).
     let vga = vga_clock.filter(|_| r.chance(50));
     let vga_on_led = vga.is_some() && r.chance(30);
+    // The team's own timing generator instead of the course's, sometimes, counting its totals
+    // inclusively as rstasney_p2's does (from a stream of its own: a seed's other parts are as
+    // they were).
+    let team_dtg = vga.is_some() && Rng::new(seed ^ 0x4454_4749).chance(40);
     if let Some(c) = vga {
-        parts_text.push(format!("VGA on {}{}", clocks[c].net, if vga_on_led { ", its vsync on LED 15" } else { "" }));
+        parts_text.push(format!(
+            "VGA on {}{}{}",
+            clocks[c].net,
+            if team_dtg { ", the team's timing generator counting to 800 and 525 inclusively" } else { "" },
+            if vga_on_led { ", its vsync on LED 15" } else { "" }
+        ));
     }
 
     // What each LED, digit and point shows.
@@ -477,6 +487,9 @@ pub fn generate(seed: u64) -> Design {
         verilog_parts.push_str(&p.verilog);
         modules.push_str(&p.module);
     }
+    if team_dtg {
+        modules.push_str(TEAM_DTG);
+    }
     for (i, c) in clocks.iter().enumerate() {
         verilog_parts = verilog_parts.replace(&format!("@CLK{i}@"), &c.net);
     }
@@ -487,7 +500,7 @@ pub fn generate(seed: u64) -> Design {
                 "    // VGA from the course's display timing generator on {net}.
     wire vga_hs, vga_vs, video_on;
     wire [10:0] pixel_row, pixel_column;
-    dtg DTG (.clock({net}), .rst(sysreset), .horiz_sync(vga_hs), .vert_sync(vga_vs), .video_on(video_on),
+    {dtg} DTG (.clock({net}), .rst(sysreset), .horiz_sync(vga_hs), .vert_sync(vga_vs), .video_on(video_on),
         .pixel_row(pixel_row), .pixel_column(pixel_column));
     reg [11:0] rgb = 12'd0;
     always @(posedge {net}) rgb <= video_on ? {{pixel_row[5:2], pixel_column[5:2], {color}, 3'b101}} : 12'd0;
@@ -497,7 +510,8 @@ pub fn generate(seed: u64) -> Design {
     assign Hsync = vga_hs;
     assign Vsync = vga_vs;
 ",
-                net = clocks[c].net
+                net = clocks[c].net,
+                dtg = if team_dtg { "team_dtg" } else { "dtg" }
             )
         }
         None => "    wire vga_vs = 1'b0;\n".into(),
@@ -1496,3 +1510,33 @@ fn reach(parts: &[Part], clocks: &[Clock], simulate: bool, kind: Program, vga_ob
     }
     Ok(clocks_in_period)
 }
+
+/// A team's own display timing generator for 640 x 480, written as many teams write theirs:
+/// it counts its totals inclusively (`== 800` wraps after 801 pixels, `>= 525` after 526
+/// lines) and ends its syncs with `<=` (97 pixels, 3 lines); a monitor shows it all the same.
+const TEAM_DTG: &str = "
+module team_dtg (
+    input  wire        clock,
+    input  wire        rst,
+    output reg         horiz_sync = 1'b1,
+    output reg         vert_sync = 1'b1,
+    output reg         video_on = 1'b0,
+    output reg  [10:0] pixel_row = 11'd0,
+    output reg  [10:0] pixel_column = 11'd0
+);
+    always @(posedge clock) begin
+        if (rst) begin
+            pixel_column <= 11'd0;
+            pixel_row <= 11'd0;
+        end else begin
+            if (pixel_column == 11'd800) pixel_column <= 11'd0;
+            else pixel_column <= pixel_column + 11'd1;
+            if (pixel_row >= 11'd525 && pixel_column >= 11'd800) pixel_row <= 11'd0;
+            else if (pixel_column == 11'd800) pixel_row <= pixel_row + 11'd1;
+        end
+        horiz_sync <= ~(pixel_column >= 11'd656 && pixel_column <= 11'd752);
+        vert_sync <= ~(pixel_row >= 11'd490 && pixel_row <= 11'd492);
+        video_on <= pixel_column < 11'd640 && pixel_row < 11'd480;
+    end
+endmodule
+";

@@ -136,6 +136,14 @@ fn a_32_bit_counter_and_toggles_the_display_and_leds_show() {
     skips_and_equals_every_edge(&["FREE32=1", "TOGGLES=2"]);
 }
 
+/// A tone on an LED whose half period a `case` on the switches chooses (Verilator inlines the
+/// choice of constants into the counter's comparison: `c + 1 >= (sw == 0 ? 190840 : ...)`):
+/// the counter is moved on up to the nearest of those constants, switches changing or not.
+#[test]
+fn a_tone_whose_note_a_case_on_the_switches_chooses() {
+    skips_and_equals_every_edge(&["TOGGLES=3"]);
+}
+
 #[test]
 fn a_dcm_with_the_display_on_its_divided_clock() {
     skips_and_equals_every_edge(&["CLOCKING=1", "TOGGLES=1"]);

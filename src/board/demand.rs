@@ -40,7 +40,15 @@ pub enum Demand {
     /// root variable read at token `bound_at`: only that variable's value (and the sum's wrap)
     /// tells it apart, while the variable holds.
     CompareVar { bound_at: usize, offset: u64, wrap: u64 },
+    /// Whether it plus `offset` (taken modulo `wrap` + 1) equals, or is above or below, one of
+    /// the first `n` of `consts`: a tone generator's `count + 1 >= half` with `half` a choice
+    /// of constants (`case` on the switches, which Verilator inlines as `?:`). Only those
+    /// constants (and the sum's wrap) tell it apart.
+    CompareConsts { consts: [u64; MAX_CHOICES], n: u8, offset: u64, wrap: u64 },
 }
+
+/// The most constants a compared choice may have ([`Demand::CompareConsts`]).
+pub const MAX_CHOICES: usize = 8;
 
 /// Every read of a variable in `toks` (a function body) whose statement the parser knows, by
 /// the index of its first token (`vlSelf` of `vlSelf->x`, or a local's name): the bits it
@@ -342,10 +350,11 @@ impl<'a, 't> Parser<'a, 't> {
                 "==" | "!=" | "<" | ">" | "<=" | ">=" => match (constant(a), constant(b)) {
                     (Some(c), None) => self.compare(b, c),
                     (None, Some(c)) => self.compare(a, c),
-                    // Each side a counter the other may bound (or all of it).
+                    // Each side a counter the other may bound (a variable, or a choice of
+                    // constants), or all of it.
                     _ => {
                         for (x, bound) in [(a, b), (b, a)] {
-                            if !self.compare_var(x, bound) {
+                            if !self.compare_consts(x, bound) && !self.compare_var(x, bound) {
                                 self.demand(x, u64::MAX);
                             }
                         }
@@ -359,13 +368,32 @@ impl<'a, 't> Parser<'a, 't> {
         }
     }
 
-    /// `e` compared with the constant `c`: a variable (under casts) keeps the constant.
+    /// `e` compared with the constant `c`: a variable (under casts) keeps the constant; a
+    /// variable plus a constant, masked, keeps it with the sum's offset and wrap.
     fn compare(&mut self, e: &Expr, c: u64) {
         match e {
             Expr::Var(at, _) => self.record(*at, Demand::Compare(c)),
             Expr::Cast(bits, x) if matches!(**x, Expr::Var(..)) && c <= mask(*bits) => self.compare(x, c),
-            _ => self.demand(e, u64::MAX),
+            _ if !self.compare_consts(e, &Expr::Num(c)) => self.demand(e, u64::MAX),
+            _ => {}
         }
+    }
+
+    /// `e` (a variable plus a constant, masked or cast, not the variable alone) compared with
+    /// `other`, a constant or a choice of constants: recorded as such when it is one (the
+    /// choice's conditions are the other side's business).
+    fn compare_consts(&mut self, e: &Expr, other: &Expr) -> bool {
+        if matches!(e, Expr::Var(..)) && matches!(other, Expr::Num(_)) {
+            return false;
+        }
+        let mut consts = [0; MAX_CHOICES];
+        let mut n = 0;
+        if !choices(other, &mut consts, &mut n) {
+            return false;
+        }
+        let Some((at, offset, wrap)) = offset_of(e) else { return false };
+        self.record(at, Demand::CompareConsts { consts, n: n as u8, offset, wrap });
+        true
     }
 
     /// `e` (a variable, plus a constant, masked or cast) compared with `bound` (a root
@@ -555,6 +583,23 @@ fn offset_of(e: &Expr) -> Option<(usize, u64, u64)> {
     }
 }
 
+/// The constants `e` may take when it is a constant or a choice (`?:`) of them, into
+/// `out[*n..]`; false when it is not, or has more than [`MAX_CHOICES`].
+fn choices(e: &Expr, out: &mut [u64; MAX_CHOICES], n: &mut usize) -> bool {
+    match e {
+        Expr::Choice(_, a, b) => choices(a, out, n) && choices(b, out, n),
+        Expr::Cast(_, x) => choices(x, out, n),
+        _ => match constant(e) {
+            Some(c) if *n < MAX_CHOICES => {
+                out[*n] = c;
+                *n += 1;
+                true
+            }
+            _ => false,
+        },
+    }
+}
+
 fn constant(e: &Expr) -> Option<u64> {
     match e {
         Expr::Num(n) => Some(*n),
@@ -586,6 +631,27 @@ mod tests {
             d.into_iter().filter(|(i, _)| toks.get(i + 2) == Some(&Tok::Id("x")) || toks[*i] == Tok::Id("x")).collect();
         v.sort_by_key(|(i, _)| *i);
         v.into_iter().map(|(_, d)| d).collect()
+    }
+
+    /// A tone generator's `count + 1 >= half` with `half` a `case` on the switches, which
+    /// Verilator writes as a choice of constants: the count is told apart only at those (less
+    /// one), as with a constant alone; the switches are read whole.
+    #[test]
+    fn a_counter_compared_with_a_choice_of_constants() {
+        let w = [("x", 18), ("sw", 16)];
+        let code = "if (((0x3ffffU & ((IData)(1U) + vlSelf->x)) >= ((0U == (7U & (IData)(vlSelf->sw))) \
+                    ? 0x2e978U : ((5U == (7U & (IData)(vlSelf->sw))) ? 0x1bbe4U : 0x1f23fU)))) { vlSelf->y = 0U; }";
+        let mut consts = [0; MAX_CHOICES];
+        consts[..3].copy_from_slice(&[0x2e978, 0x1bbe4, 0x1f23f]);
+        assert_eq!(of_x(code, &w), [Demand::CompareConsts { consts, n: 3, offset: 1, wrap: 0x3ffff }]);
+        // With one constant, plus one and masked.
+        let code = "vlSelf->y = ((0x3ffffU & ((IData)(1U) + vlSelf->x)) == 0x1f23fU);";
+        let mut one = [0; MAX_CHOICES];
+        one[0] = 0x1f23f;
+        assert_eq!(of_x(code, &w), [Demand::CompareConsts { consts: one, n: 1, offset: 1, wrap: 0x3ffff }]);
+        // A choice with a variable in it is no choice of constants: all of it.
+        let code = "vlSelf->y = (vlSelf->x >= ((1U & vlSelf->sw) ? 5U : vlSelf->sw));";
+        assert_eq!(of_x(code, &w), [Demand::Bits(0x3ffff)]);
     }
 
     #[test]

@@ -287,6 +287,13 @@ inline uint64_t most_often(const FastForward& f, const std::vector<uint64_t>& ti
     return most;
 }
 
+// The design's name of the variable at `off` (for BOTSIM_FF_TRACE), or "?".
+inline const char* member_name(const FastForward& f, size_t off) {
+    for (const BoardMember& m : f.members)
+        if (m.off == off) return m.name;
+    return "?";
+}
+
 struct Board {
     VerilatedContext ctx;
     DesignModel model{};  // the design's (board_model.cpp)
@@ -828,7 +835,7 @@ __attribute__((noinline)) uint64_t ff_counter_moved(Board* b, uint64_t t) {
         for (Counting& k : f.counters) again |= !counter_inside(k, root) && ++k.early >= 2;
         if (again) {
             for (Counting& k : f.counters) {
-                if (!counter_inside(k, root)) FF_TRACE("ff %.6f ms: counter at %zu is state\n", t / 1e9, k.c.off);
+                if (!counter_inside(k, root)) FF_TRACE("ff %.6f ms: counter at %zu (%s) is state\n", t / 1e9, k.c.off, member_name(f, k.c.off));
                 while (!counter_inside(k, root)) {
                     set_level(k, k.level == 0 && k.c.split < k.c.bits ? 1 : 2);
                     counter_interval(k, counter_value(f.mark.data(), k), f.mark.data());
@@ -853,7 +860,8 @@ __attribute__((noinline)) uint64_t ff_counter_moved(Board* b, uint64_t t) {
             const uint64_t turns = f.last_period ? f.last_period / std::gcd(every, f.last_period) : ~0ull;
             if (k.level == 0 && !k.trial && k.turns >= (kTurnsBeforeTrial << k.tried) && every <= kMaxTurnEveryPs &&
                 every >= kTurnPeriods * f.last_period && turns <= kMaxTrialTurns) {
-                FF_TRACE("ff %.6f ms: counter at %zu turns every %llu clocks: tried as state\n", t / 1e9, k.c.off,
+                FF_TRACE("ff %.6f ms: counter at %zu (%s) turns every %llu clocks: tried as state\n", t / 1e9, k.c.off,
+                         member_name(f, k.c.off),
                          (unsigned long long)(every / 10000));
                 set_level(k, 2);
                 k.trial = true;

@@ -293,9 +293,11 @@ fn tokenize(src: &str) -> (Vec<Token>, Vec<FileRef>) {
             continue;
         }
         // An attribute, `(* X_INTERFACE_INFO = "..." *)` (Vivado's IP wrappers put them before
-        // their port declarations): as a comment. `@(*)` is no attribute.
+        // their port declarations): as a comment. `@(*)` (or `@(* )`) is no attribute: its `*`
+        // is followed by the `)` (the `*)` of a later one must not take it for one's start).
         let attribute = c == b'('
             && b.get(i + 1) == Some(&b'*')
+            && !src[i + 2..].trim_start().starts_with(')')
             && src[i + 2..].find("*)").is_some_and(|end| !src[i + 2..i + 2 + end].trim().is_empty());
         if attribute {
             i += 2;
@@ -1418,6 +1420,27 @@ mod tests {
         assert_eq!(c[0], ("instruction".to_string(), "instruction".to_string()));
         assert_eq!(c[1], ("address".to_string(), "a[11:0] + 1".to_string()));
         assert_eq!(c[2], ("s".to_string(), "\"//\"".to_string()));
+    }
+
+    /// `@(*)` in one module and `@(*)` (or an attribute) in a later one: the text between is
+    /// no attribute (it was, from the first `(*` to the later `*)`: the modules between were
+    /// lost, "2 modules of the design are missing").
+    #[test]
+    fn a_star_event_control_is_no_attribute_whatever_follows() {
+        for (first, later) in [
+            ("always @(*) half = 18'd5;", "always @(*) x = 1;"),
+            ("always @(* ) begin half = 5; end", "(* keep = \"true\" *) wire w;"),
+            ("always @( * ) half = 5;", "always @(*)\n case (a) 1: x = 1; endcase"),
+        ] {
+            let src = format!(
+                "module t(input clk);\n  reg [17:0] half;\n  {first}\n  d D1 (.clk(clk));\nendmodule\n\
+                 module d(input clk);\n  {later}\nendmodule\nmodule e; endmodule\n"
+            );
+            let m = scan(&src);
+            let names: Vec<_> = m.iter().map(|m| m.name.as_str()).collect();
+            assert_eq!(names, ["t", "d", "e"], "{first} / {later}");
+            assert_eq!(m[0].instances.len(), 1, "{first}");
+        }
     }
 
     #[test]

@@ -357,16 +357,15 @@ fn scan(
             // Compared, plus a constant, with constants (a choice of them): told apart only
             // at each (less the constant) and where the sum wraps, which must be no sooner
             // than the counter does.
-            Some(&Demand::CompareConsts { consts, n, offset, wrap }) => {
-                if wrap >= mask(bits) {
-                    let m = mask(bits);
-                    s.consts.extend(consts[..n as usize].iter().map(|c| c.wrapping_sub(offset) & m));
-                    if offset & m != 0 {
-                        s.consts.push(0u64.wrapping_sub(offset) & m);
-                    }
-                } else {
-                    spoiled.insert(name.to_string());
+            Some(&Demand::CompareConsts { consts, n, offset, wrap }) if wrap >= mask(bits) => {
+                let m = mask(bits);
+                s.consts.extend(consts[..n as usize].iter().map(|c| c.wrapping_sub(offset) & m));
+                if offset & m != 0 {
+                    s.consts.push(0u64.wrapping_sub(offset) & m);
                 }
+            }
+            Some(Demand::CompareConsts { .. }) => {
+                spoiled.insert(name.to_string());
             }
             Some(Demand::Bits(m)) => {
                 let m = m & if bits >= 64 { u64::MAX } else { (1u64 << bits) - 1 };

@@ -374,8 +374,11 @@ impl<'a, 't> Parser<'a, 't> {
         match e {
             Expr::Var(at, _) => self.record(*at, Demand::Compare(c)),
             Expr::Cast(bits, x) if matches!(**x, Expr::Var(..)) && c <= mask(*bits) => self.compare(x, c),
-            _ if !self.compare_consts(e, &Expr::Num(c)) => self.demand(e, u64::MAX),
-            _ => {}
+            _ => {
+                if !self.compare_consts(e, &Expr::Num(c)) {
+                    self.demand(e, u64::MAX);
+                }
+            }
         }
     }
 

@@ -12,6 +12,8 @@
 //! each design is kept in target/random-designs/<seed>/ (its parts listed in parts.txt).
 
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
 
 mod common;
 
@@ -179,8 +181,26 @@ fn random_designs_record_what_every_edge_does_and_skip_what_repeats() {
     let also = std::env::var("BOTSIM_RANDOM_ALSO").unwrap_or_else(|_| ALSO.into());
     let also: Vec<u64> = also.split(',').filter_map(|s| s.trim().parse().ok()).collect();
     let seeds: Vec<u64> = (first..first + count).chain(also).collect();
-    // Every design is tried; the failures are listed at the end.
-    let failed: Vec<String> = seeds.iter().filter_map(|&seed| check(seed).err()).collect();
+    // Every design is tried, as many at once as the machine has cores (each run is one
+    // thread: a design's build and its runs leave the other cores idle); the failures are
+    // listed at the end, by seed.
+    let workers = std::thread::available_parallelism().map_or(1, |n| n.get()).clamp(1, seeds.len().max(1));
+    let next = AtomicUsize::new(0);
+    let failed = Mutex::new(Vec::new());
+    std::thread::scope(|s| {
+        for _ in 0..workers {
+            s.spawn(|| {
+                while let Some(&seed) = seeds.get(next.fetch_add(1, Ordering::Relaxed)) {
+                    if let Err(e) = check(seed) {
+                        failed.lock().unwrap().push((seed, e));
+                    }
+                }
+            });
+        }
+    });
+    let mut failed = failed.into_inner().unwrap();
+    failed.sort();
+    let failed: Vec<String> = failed.into_iter().map(|(_, e)| e).collect();
     assert!(failed.is_empty(), "{} of {} designs failed:\n\n{}", failed.len(), seeds.len(), failed.join("\n\n"));
 }
 

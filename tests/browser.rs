@@ -5,7 +5,7 @@
 //! shows what the design does: the digits and LEDs as the registers say, the motors the
 //! switch asked for, the bot moving on the world and back at its start after the reset, and a
 //! VGA frame equal pixel for pixel to botsim's own frame of the bot at that frame's sample (the
-//! frame `--frames` writes for that state: tests/board.rs proves the two equal). A screenshot
+//! frame `--frames` writes for that state: tests/boards/board.rs proves the two equal). A screenshot
 //! of the page is kept in target/live-page.png.
 
 mod common;

@@ -19,9 +19,8 @@ echo "verilator-latest: $("$VERILATOR" --getenv VERILATOR_ROOT) ($(grep -m1 'def
 # build.rs builds the models again with this Verilator (it watches VERILATOR); the crates
 # botsim depends on are reused. Boards are cached by Verilator version too.
 cargo test --release -q --test cpu_timing --test cpu_lockstep --test bot_spec --test scoreboard --test lockstep_ports
-cargo test --release -q --test board -- --exact \
-  the_example_design_shows_the_bots_registers_on_its_display \
-  a_vga_frame_from_the_designs_pins_equals_botsim_frame_for_the_same_state
-cargo test --release -q --test shapes -- --exact \
-  a_polling_cpu_beside_a_2_18_refresh_counter \
-  a_dcm_with_the_display_on_its_divided_clock
+cargo test --release -q --test boards -- --exact \
+  board::the_example_design_shows_the_bots_registers_on_its_display \
+  board::a_vga_frame_from_the_designs_pins_equals_botsim_frame_for_the_same_state \
+  shapes::a_polling_cpu_beside_a_2_18_refresh_counter \
+  shapes::a_dcm_with_the_display_on_its_divided_clock

@@ -1,4 +1,4 @@
-//! Random board designs for the fast-forward's property tests (tests/random_designs.rs):
+//! Random board designs for the fast-forward's property tests (tests/boards/random_designs.rs):
 //! clean-room Verilog and a team program, generated from a seed.
 //!
 //! A design is a Nexys4 top around the course's system, as teams build it: the course's

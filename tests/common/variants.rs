@@ -1,4 +1,4 @@
-//! Syntax variants of Verilog sources, for the metamorphic test (tests/syntax_variants.rs):
+//! Syntax variants of Verilog sources, for the metamorphic test (tests/boards/syntax_variants.rs):
 //! the same design re-emitted token by token with the white space, comments, line breaks and
 //! attributes Verilog allows between tokens changed, so every run of a variant must equal the
 //! original's. Students write `bot(` and `bot (`, `#(` and `# (`, statements over several

@@ -5,7 +5,7 @@
 //! the run, the display, and the box in every VGA frame; the fast-forward against every edge;
 //! the CPU trace; and one clear line for each option that needs a bot.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 
@@ -253,7 +253,7 @@ fn a_block_of_xilinx_primitives_runs_as_their_library_guides_say() {
 /// limit alternating every clock between 60,000 and 30,001): the fast-forward skips what
 /// repeats and records what every edge does, LED 0 toggling every 30,002 clocks (a
 /// fast-forward that took the register for a constant would skip past 30,001). The tone
-/// player (tests/peripherals.rs) has a register that holds.
+/// player (tests/boards/peripherals.rs) has a register that holds.
 #[test]
 fn a_counter_compared_with_a_register_that_changes_keeps_every_edge() {
     let dir = tempfile::tempdir().unwrap();

@@ -11,7 +11,7 @@
 //! repository's for one: `BOTSIM_MUTANT_DESIGN=FOLDER:FILE` (FILE below FOLDER; the run is
 //! `botsim board FOLDER --seconds 0.001`, with `BOTSIM_MUTANT_ARGS` more, space-separated).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

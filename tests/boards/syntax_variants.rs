@@ -7,11 +7,11 @@
 //! Designs: a team's repository with an unnamed bot, the example VGA design, and
 //! `BOTSIM_VARIANT_DESIGNS` (default 1) random designs from seed `BOTSIM_VARIANT_SEED`
 //! (default 11). On the restored corpus (scripts/dev/corpus.py restore), locally:
-//! `BOTSIM_CORPUS=../corpus cargo test --release --test syntax_variants -- --ignored`.
+//! `BOTSIM_CORPUS=../corpus cargo test --release --test boards syntax_variants:: -- --ignored`.
 
 use std::path::{Path, PathBuf};
 
-mod common;
+use crate::common;
 
 use common::variants::{tokens, variant, Style};
 use common::{board_in, root, stderr};

@@ -15,7 +15,7 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Mutex;
 
-mod common;
+use crate::common;
 
 use common::random_design::{generate, Design};
 use common::root;
@@ -205,7 +205,7 @@ fn random_designs_record_what_every_edge_does_and_skip_what_repeats() {
 }
 
 /// The parts of `BOTSIM_RANDOM_DESIGNS` designs from `BOTSIM_RANDOM_SEED` on, without running
-/// them: `cargo test --release --test random_designs parts -- --ignored --nocapture`.
+/// them: `cargo test --release --test boards random_designs::parts -- --ignored --nocapture`.
 #[test]
 #[ignore = "a listing for developers"]
 fn parts() {

@@ -4,7 +4,7 @@
 //! decoded by tests/common/lines.rs from the spec's timing) and by what the design did with
 //! what it got (its LEDs, display, UART echo).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

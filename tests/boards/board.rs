@@ -8,7 +8,7 @@
 use std::path::Path;
 use std::process::{Command, Output};
 
-mod common;
+use crate::common;
 
 use common::root;
 
@@ -150,7 +150,7 @@ fn every_missing_module_is_one_error_listing_each_instance() {
 
 #[test]
 fn a_clock_with_the_wrong_direction_is_one_error_at_the_top() {
-    // Other pins declared the wrong way run as the board would (tests/peripherals.rs); a
+    // Other pins declared the wrong way run as the board would (tests/boards/peripherals.rs); a
     // board without its clock has nothing to run.
     let dir = tempfile::tempdir().unwrap();
     let top = write(dir.path(), "top.v", "module top(output clk, input [6:0] seg);\n  bot b (.clk(clk));\nendmodule\n");

@@ -434,7 +434,9 @@ fn a_game_without_a_bot_plays_live_its_frames_following_the_animation() {
     // More than the one frame a second of a still picture.
     let s = a.state("a state with a frame rate", |s| s["frame_rate"].as_f64() > Some(0.0));
     assert!(s["bot"].is_null() && s["samples"] == 0, "{s}");
-    a.state("frames faster than a still picture's", |s| s["frame_rate"].as_f64() > Some(1.5));
+    // (More than one a second, not a margin above it: at `--speed max` a frame takes at most
+    // half the wall time, so the rate follows the machine's load.)
+    a.state("frames faster than a still picture's", |s| s["frame_rate"].as_f64() > Some(1.0));
     // Step on a board without a bot: 50 ms of board time and the frame that shows it (a
     // frame simulated from where its pixel path was parked: at most two frame periods),
     // then paused.

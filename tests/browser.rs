@@ -14,9 +14,8 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use base64::Engine;
+use common::cdp::Page as Tab;
 use common::live::{Live, BUDGET};
-use headless_chrome::protocol::cdp::{Input, Page};
-use headless_chrome::{Browser, LaunchOptions, Tab};
 use serde_json::Value;
 
 fn chromium() -> Option<PathBuf> {
@@ -30,19 +29,8 @@ fn chromium() -> Option<PathBuf> {
 }
 
 /// Headless Chromium with the page at `url` loaded (the browser ends when dropped).
-fn open(chromium: PathBuf, url: &str) -> (Browser, std::sync::Arc<Tab>) {
-    let options = LaunchOptions::default_builder()
-        .path(Some(chromium))
-        .headless(true)
-        .sandbox(false)
-        .window_size(Some((1480, 1040)))
-        .idle_browser_timeout(BUDGET)
-        .build()
-        .unwrap();
-    let browser = Browser::new(options).unwrap();
-    let tab = browser.new_tab().unwrap();
-    tab.navigate_to(url).unwrap().wait_until_navigated().unwrap();
-    (browser, tab)
+fn open(chromium: PathBuf, url: &str) -> Tab {
+    Tab::open(&chromium, url)
 }
 
 /// What the page shows, read in one go.
@@ -63,7 +51,7 @@ const PAGE: &str = r#"(() => {
 })()"#;
 
 fn page(tab: &Tab) -> Value {
-    let v = tab.evaluate(PAGE, false).unwrap().value.unwrap();
+    let v = tab.eval(PAGE, false);
     serde_json::from_str(v.as_str().unwrap()).unwrap()
 }
 
@@ -80,42 +68,16 @@ fn until(tab: &Tab, what: &str, mut want: impl FnMut(&Value) -> bool) -> Value {
     }
 }
 
-fn mouse(tab: &Tab, kind: Input::DispatchMouseEventTypeOption, x: f64, y: f64) {
-    tab.call_method(Input::DispatchMouseEvent {
-        Type: kind,
-        x,
-        y,
-        modifiers: None,
-        timestamp: None,
-        button: Some(Input::MouseButton::Left),
-        buttons: None,
-        click_count: Some(1),
-        force: None,
-        tangential_pressure: None,
-        tilt_x: None,
-        tilt_y: None,
-        twist: None,
-        delta_x: None,
-        delta_y: None,
-        pointer_Type: None,
-    })
-    .unwrap();
-}
-
 /// The PNG the page's VGA monitor shows, as the page has it.
 fn monitor_png(tab: &Tab) -> Vec<u8> {
-    let png = tab
-        .evaluate(
-            r#"fetch(document.getElementById("vga").src).then((r) => r.arrayBuffer()).then((b) => {
+    let png = tab.eval(
+        r#"fetch(document.getElementById("vga").src).then((r) => r.arrayBuffer()).then((b) => {
                  const u = new Uint8Array(b); let s = "";
                  for (let i = 0; i < u.length; i++) s += String.fromCharCode(u[i]);
                  return btoa(s);
                })"#,
-            true,
-        )
-        .unwrap()
-        .value
-        .unwrap();
+        true,
+    );
     base64::engine::general_purpose::STANDARD.decode(png.as_str().unwrap()).unwrap()
 }
 
@@ -128,7 +90,7 @@ fn hex_glyphs(v: u64) -> String {
 fn the_page_in_headless_chromium_plays_the_vga_example() {
     let Some(chromium) = chromium() else { return };
     let live = Live::start(&["examples/common", "examples/nexys4_vga", "--param", "SIMULATE=1", "--speed", "max"]);
-    let (_browser, tab) = open(chromium, &live.url);
+    let tab = open(chromium, &live.url);
     let p = until(&tab, "the connection", |p| p["status"] == "live" && p["samples"].as_u64() > Some(2));
     assert_eq!(p["speed"], "max", "the speed list shows the run's --speed");
 
@@ -149,15 +111,15 @@ fn the_page_in_headless_chromium_plays_the_vga_example() {
 
     // A click on switch 1: the motor byte 02 (the right wheel in reverse: a slow right turn,
     // botsim.md §4) and the bot turning.
-    tab.find_element("#sw1").unwrap().click().unwrap();
+    tab.click("#sw1");
     until(&tab, "switch 1 on, its motors", |p| p["switches"] == 2 && p["motctl"] == "02");
     until(&tab, "the bot turning", |p| p["heading"] != moved["heading"]);
 
     // The CPU reset button held down with the mouse, then let go: the bot back at its start.
-    let reset = tab.find_element("#btn-btnCpuReset").unwrap().get_midpoint().unwrap();
-    mouse(&tab, Input::DispatchMouseEventTypeOption::MousePressed, reset.x, reset.y);
+    let reset = tab.midpoint("#btn-btnCpuReset");
+    tab.mouse(true, reset.0, reset.1);
     until(&tab, "the reset held", |p| p["buttons"].as_array().is_some_and(|b| b.contains(&Value::from("btnCpuReset"))));
-    mouse(&tab, Input::DispatchMouseEventTypeOption::MouseReleased, reset.x, reset.y);
+    tab.mouse(false, reset.0, reset.1);
     until(&tab, "the reset let go and the bot at its start", |p| {
         p["buttons"] == serde_json::json!([]) && p["x"] == "64" && p["y"] == "64"
     });
@@ -166,7 +128,7 @@ fn the_page_in_headless_chromium_plays_the_vga_example() {
     until(&tab, "a frame of one sample", |p| {
         p["frame"]["sample"].is_string() && p["frame"]["sample"] == p["frame"]["from"]
     });
-    tab.find_element("#run").unwrap().click().unwrap();
+    tab.click("#run");
     let p = until(&tab, "the run paused", |p| p["running"] == false && p["frame"]["sample"] == p["frame"]["from"]);
     assert_eq!(p["placeholder"], false, "a frame hides the placeholder");
     let sample: u64 = p["frame"]["sample"].as_str().unwrap().parse().unwrap();
@@ -193,10 +155,10 @@ fn the_page_in_headless_chromium_plays_the_vga_example() {
     assert!(got == want, "the page's frame of sample {sample} is not botsim's frame of that sample ({entry})");
 
     // A look at it (kept as an artefact of the test run).
-    tab.find_element("#run").unwrap().click().unwrap();
+    tab.click("#run");
     until(&tab, "the run again", |p| p["running"] == true);
     std::thread::sleep(Duration::from_millis(800));
-    let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
+    let shot = tab.screenshot();
     let out = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-page.png");
     std::fs::write(&out, &shot).unwrap();
     assert!(common::rgb(&shot).0 >= 1400);
@@ -208,7 +170,7 @@ fn the_page_in_headless_chromium_plays_the_vga_example() {
 fn the_page_drives_the_bot_alone() {
     let Some(chromium) = chromium() else { return };
     let live = Live::start_command("run", &["--timing", "fast", "--speed", "0.02"]);
-    let (_browser, tab) = open(chromium, &live.url);
+    let tab = open(chromium, &live.url);
     let shown = r#"JSON.stringify({
         board: getComputedStyle(document.getElementById("board")).display !== "none",
         drive: !document.getElementById("drive").hidden,
@@ -216,9 +178,7 @@ fn the_page_drives_the_bot_alone() {
         y: document.getElementById("r-y").textContent, moved: path.filter(([x, y]) => x !== 64 || y !== 64).length,
         on: Array.from(document.querySelectorAll(".wheel button.on")).map((b) => b.id),
     })"#;
-    let look = |tab: &Tab| -> Value {
-        serde_json::from_str(tab.evaluate(shown, false).unwrap().value.unwrap().as_str().unwrap()).unwrap()
-    };
+    let look = |tab: &Tab| -> Value { serde_json::from_str(tab.eval(shown, false).as_str().unwrap()).unwrap() };
     let wait = |what: &str, want: &dyn Fn(&Value) -> bool| {
         let start = Instant::now();
         loop {
@@ -233,37 +193,14 @@ fn the_page_drives_the_bot_alone() {
     let v = wait("the motor panel", &|v| v["drive"] == true && v["motors"] == 0 && v["x"] == "64");
     assert_eq!(v["board"], false, "no board for the bot alone");
     assert_eq!(v["on"], serde_json::json!(["lm-off", "rm-off"]));
-    tab.find_element("#lm-fwd").unwrap().click().unwrap();
+    tab.click("#lm-fwd");
     wait("the left wheel forward", &|v| v["motors"] == 0x30);
-    tab.find_element("#rm-fwd").unwrap().click().unwrap();
+    tab.click("#rm-fwd");
     wait("both wheels forward", &|v| v["motors"] == 0x33 && v["on"] == serde_json::json!(["lm-fwd", "rm-fwd"]));
     // (The left wheel alone turned it for a while: it drives off wherever it then heads.)
     wait("the bot driving", &|v| v["moved"].as_u64() > Some(30) && (v["x"] != "64" || v["y"] != "64"));
-    let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
+    let shot = tab.screenshot();
     std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-bot-page.png"), &shot).unwrap();
-}
-
-/// A key held down in the page (the browser's own key events), or let go.
-fn key(tab: &Tab, name: &str, code: u32, down: bool) {
-    use Input::DispatchKeyEventTypeOption::{KeyUp, RawKeyDown};
-    tab.call_method(Input::DispatchKeyEvent {
-        Type: if down { RawKeyDown } else { KeyUp },
-        key: Some(name.into()),
-        text: None,
-        code: Some(name.into()),
-        windows_virtual_key_code: Some(code),
-        native_virtual_key_code: Some(code),
-        modifiers: None,
-        timestamp: None,
-        unmodified_text: None,
-        key_identifier: None,
-        auto_repeat: None,
-        is_keypad: None,
-        is_system_key: None,
-        location: None,
-        commands: None,
-    })
-    .unwrap();
 }
 
 /// A final project without a bot in the page: no world and no bot registers, the game's
@@ -275,21 +212,17 @@ fn the_page_plays_a_game_without_a_bot() {
     use common::game::{box_place, GAME};
     let Some(chromium) = chromium() else { return };
     let live = Live::start(&[GAME, "--param", "SIMULATE=1", "--speed", "max"]);
-    let (_browser, tab) = open(chromium, &live.url);
+    let tab = open(chromium, &live.url);
     let shown = |tab: &Tab| -> Value {
-        let v = tab
-            .evaluate(
-                r#"JSON.stringify({
+        let v = tab.eval(
+            r#"JSON.stringify({
                      world: !document.getElementById("worldbox").hidden,
                      regs: !document.getElementById("regs").hidden,
                      samples: document.getElementById("samples").textContent,
                      fps: document.getElementById("fps").textContent,
                      frame_ps: document.getElementById("vga").dataset.timePs || null })"#,
-                false,
-            )
-            .unwrap()
-            .value
-            .unwrap();
+            false,
+        );
         serde_json::from_str(v.as_str().unwrap()).unwrap()
     };
     until(&tab, "the connection and a frame", |p| p["status"] == "live" && p["frame"].is_object());
@@ -303,7 +236,7 @@ fn the_page_plays_a_game_without_a_bot() {
     };
     // The left arrow held: the box goes to the left edge and stays there, bouncing between x
     // 0 and 1 (by itself it passes the edge in three frames and goes on).
-    key(&tab, "ArrowLeft", 37, true);
+    tab.key("ArrowLeft", 37, true);
     until(&tab, "the left button held", |p| p["buttons"].as_array().is_some_and(|b| b.contains(&Value::from("btnL"))));
     let start = Instant::now();
     let mut at_edge: Vec<u64> = Vec::new();
@@ -317,29 +250,25 @@ fn the_page_plays_a_game_without_a_bot() {
         }
         std::thread::sleep(Duration::from_millis(100));
     }
-    key(&tab, "ArrowLeft", 37, false);
+    tab.key("ArrowLeft", 37, false);
     until(&tab, "the left button let go", |p| p["buttons"] == serde_json::json!([]));
     until(&tab, "a frame rate", |_| shown(&tab)["fps"].as_str().is_some_and(|f| f.ends_with("frames/s")));
-    let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
+    let shot = tab.screenshot();
     std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-game-page.png"), &shot).unwrap();
 }
 
 /// The peripherals' panels of the page as it shows them.
 fn devices(tab: &Tab) -> Value {
-    let v = tab
-        .evaluate(
-            r#"JSON.stringify({
+    let v = tab.eval(
+        r#"JSON.stringify({
                  panels: ["kbd", "uart", "tilt", "sound"].filter((id) => !document.getElementById(id).hidden),
                  console: document.getElementById("console-out").textContent,
                  baud: document.getElementById("baud").textContent,
                  tilt: document.getElementById("tilt-now").textContent,
                  sound: { samples: window.botsimSound.samples, peak: window.botsimSound.peak },
                  focused: document.activeElement === document.getElementById("board") })"#,
-            false,
-        )
-        .unwrap()
-        .value
-        .unwrap();
+        false,
+    );
     serde_json::from_str(v.as_str().unwrap()).unwrap()
 }
 
@@ -363,27 +292,27 @@ fn devices_until(tab: &Tab, what: &str, mut want: impl FnMut(&Value) -> bool) ->
 fn the_page_types_on_the_console_and_the_keyboard() {
     let Some(chromium) = chromium() else { return };
     let live = Live::start(&["tests/board_designs/console", "--speed", "max"]);
-    let (_browser, tab) = open(chromium, &live.url);
+    let tab = open(chromium, &live.url);
     until(&tab, "the connection", |p| p["status"] == "live");
     let d = devices_until(&tab, "the greeting", |d| d["console"] == "botsim console\n");
     assert_eq!(d["panels"], serde_json::json!(["kbd", "uart"]));
     assert_eq!(d["baud"], "USB-UART, 115200 baud");
-    tab.find_element("#console-in").unwrap().click().unwrap();
-    tab.type_str("echo me").unwrap().press_key("Enter").unwrap();
+    tab.click("#console-in");
+    tab.type_line("echo me");
     devices_until(&tab, "the echo", |d| d["console"] == "botsim console\necho me\n");
     // The board focused (a click on it), then keys: A, then the up arrow (E0 75).
-    tab.find_element("#board").unwrap().click().unwrap();
+    tab.click("#board");
     devices_until(&tab, "the board focused", |d| d["focused"] == true);
-    key(&tab, "KeyA", 65, true);
+    tab.key("KeyA", 65, true);
     until(&tab, "A's make code", |p| p["leds"] == 0x1C);
-    key(&tab, "KeyA", 65, false);
+    tab.key("KeyA", 65, false);
     until(&tab, "A's break code", |p| p["leds"] == 0xF01C);
-    key(&tab, "ArrowUp", 38, true);
+    tab.key("ArrowUp", 38, true);
     until(&tab, "the up arrow's make code", |p| p["leds"] == 0xE075);
-    key(&tab, "ArrowUp", 38, false);
+    tab.key("ArrowUp", 38, false);
     until(&tab, "two keys counted", |p| p["leds"] == 0xF075 && p["lit"][0] == 0x5B);
-    tab.evaluate("window.scrollTo(0, 0)", false).unwrap();
-    let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
+    tab.eval("window.scrollTo(0, 0)", false);
+    let shot = tab.screenshot();
     std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-console-page.png"), &shot).unwrap();
 }
 
@@ -393,31 +322,26 @@ fn the_page_types_on_the_console_and_the_keyboard() {
 fn the_page_tilts_the_board_and_plays_its_sound() {
     let Some(chromium) = chromium() else { return };
     let live = Live::start(&["tests/board_designs/tilt", "--speed", "1"]);
-    let (_browser, tab) = open(chromium.clone(), &live.url);
+    let tab = open(chromium.clone(), &live.url);
     until(&tab, "flat: x and y 0", |p| p["status"] == "live");
     assert_eq!(devices(&tab)["panels"], serde_json::json!(["tilt"]));
     // Drag to the pad's right edge, half way up: x 1 g (LEDs 15-8 3E), y 0.
-    let pad = tab.find_element("#tilt-pad").unwrap().get_box_model().unwrap();
-    let (cx, cy) = (
-        (pad.content.top_left.x + pad.content.top_right.x) / 2.0,
-        (pad.content.top_left.y + pad.content.bottom_left.y) / 2.0,
-    );
-    let r = (pad.content.top_right.x - pad.content.top_left.x) / 2.0 - 10.0;
-    mouse(&tab, Input::DispatchMouseEventTypeOption::MousePressed, cx + r, cy);
-    mouse(&tab, Input::DispatchMouseEventTypeOption::MouseReleased, cx + r, cy);
+    let (x, y, w, h) = tab.rect("#tilt-pad");
+    let (cx, cy, r) = (x + w / 2.0, y + h / 2.0, w / 2.0 - 10.0);
+    tab.mouse(true, cx + r, cy);
+    tab.mouse(false, cx + r, cy);
     devices_until(&tab, "x 1 g", |d| d["tilt"] == "x 1.00 g, y 0.00 g, z 0.00 g");
     until(&tab, "x 1 g on the LEDs", |p| p["leds"] == 0x3E00);
-    let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
+    let shot = tab.screenshot();
     std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-tilt-page.png"), &shot).unwrap();
     drop(tab);
-    drop(_browser);
     drop(live);
 
     let live = Live::start(&["tests/board_designs/tones", "--speed", "1", "--switches", "8005"]);
-    let (_browser, tab) = open(chromium, &live.url);
+    let tab = open(chromium, &live.url);
     until(&tab, "the connection", |p| p["status"] == "live");
     assert_eq!(devices(&tab)["panels"], serde_json::json!(["sound"]));
-    tab.find_element("#mute").unwrap().click().unwrap();
+    tab.click("#mute");
     let d = devices_until(&tab, "a second of sound", |d| d["sound"]["samples"].as_u64() > Some(48_000));
     assert!(d["sound"]["peak"].as_f64() > Some(0.2), "{d}");
 }
@@ -430,10 +354,10 @@ fn the_page_draws_every_bot_of_a_game() {
     let Some(chromium) = chromium() else { return };
     let game = common::repo::clone_of("two_bots");
     let live = Live::start_in(game.path(), "board", &[".", "--param", "SIMULATE=1", "--speed", "max"]);
-    let (_browser, tab) = open(chromium, &live.url);
+    let tab = open(chromium, &live.url);
     let shown = |tab: &Tab| -> Value {
         let v = tab
-            .evaluate(
+            .eval(
                 r##"(() => {
                      const c = document.getElementById("world").getContext("2d");
                      const px = c.getImageData(0, 0, 512, 512).data;
@@ -445,9 +369,7 @@ fn the_page_draws_every_bot_of_a_game() {
                    })()"##,
                 false,
             )
-            .unwrap()
-            .value
-            .unwrap();
+            ;
         serde_json::from_str(v.as_str().unwrap()).unwrap()
     };
     until(&tab, "a few samples", |p| p["status"] == "live" && p["samples"].as_u64().is_some_and(|n| n >= 3));
@@ -463,16 +385,15 @@ fn the_page_draws_every_bot_of_a_game() {
         assert!(start.elapsed() < BUDGET, "the page never drew the second bot where the first is: {s}");
         std::thread::sleep(Duration::from_millis(100));
     }
-    let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
+    let shot = tab.screenshot();
     std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-two-bots-page.png"), &shot).unwrap();
 }
 
 /// The board the page drew: its name, its controls' counts, its button labels, the digits'
 /// lit segments and the switches and digits of the state it last drew.
 fn drawn_board(tab: &Tab) -> Value {
-    let v = tab
-        .evaluate(
-            r##"JSON.stringify({
+    let v = tab.eval(
+        r##"JSON.stringify({
                  status: document.getElementById("status").textContent,
                  title: document.querySelector("#board .silk.big").textContent,
                  digits: digits.length, leds: leds.length, knobs: knobs.length,
@@ -480,11 +401,8 @@ fn drawn_board(tab: &Tab) -> Value {
                    .filter((t) => t.startsWith("BTN") || t === "CPU RESET"),
                  lit: digits.map((segs) => segs.reduce((a, s, k) => a | (s.classList.contains("on") ? 1 << k : 0), 0)),
                  state: state ? { digits: state.digits, switches: state.switches } : null })"##,
-            false,
-        )
-        .unwrap()
-        .value
-        .unwrap();
+        false,
+    );
     serde_json::from_str(v.as_str().unwrap()).unwrap()
 }
 
@@ -510,16 +428,16 @@ fn the_page_draws_a_nexys3_for_a_nexys3_design() {
     // centre button BTNS. The page draws that board, and its switches and digits work.
     let Some(chromium) = chromium() else { return };
     let live = Live::start(&["tests/board_designs/nexys3_dcm", "--param", "SIMULATE=1", "--speed", "max"]);
-    let (_browser, tab) = open(chromium, &live.url);
+    let tab = open(chromium, &live.url);
     let d = board_with_digits(&tab);
     assert_eq!(d["title"], "NEXYS3", "{d}");
     assert_eq!((d["digits"].as_u64(), d["leds"].as_u64(), d["knobs"].as_u64()), (Some(4), Some(8), Some(8)), "{d}");
     let labels: Vec<&str> = d["labels"].as_array().unwrap().iter().filter_map(Value::as_str).collect();
     assert_eq!(labels, ["BTNS", "BTNU", "BTNL", "BTNR", "BTND"], "{d}");
     // The switch the page shows as SW3 is the design's sw[3].
-    tab.evaluate("document.getElementById('sw3').dispatchEvent(new MouseEvent('click'))", false).unwrap();
+    tab.eval("document.getElementById('sw3').dispatchEvent(new MouseEvent('click'))", false);
     until(&tab, "switch 3 on", |p| p["switches"] == 8);
-    let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
+    let shot = tab.screenshot();
     std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-nexys3-page.png"), &shot).unwrap();
 }
 
@@ -532,14 +450,14 @@ fn the_page_draws_a_nexys4_ddr_for_a_nexys4_ddr_project() {
     let Some(chromium) = chromium() else { return };
     let clone = common::repo::clone_of("final_project");
     let live = Live::start_in(clone.path(), "board", &[".", "--speed", "max"]);
-    let (_browser, tab) = open(chromium, &live.url);
+    let tab = open(chromium, &live.url);
     let d = board_with_digits(&tab);
     assert_eq!(d["title"], "NEXYS4 DDR", "{d}");
     assert_eq!((d["digits"].as_u64(), d["leds"].as_u64(), d["knobs"].as_u64()), (Some(8), Some(16), Some(16)), "{d}");
     let labels: Vec<&str> = d["labels"].as_array().unwrap().iter().filter_map(Value::as_str).collect();
     assert_eq!(labels, ["CPU RESET", "BTNU", "BTNL", "BTNC", "BTNR", "BTND"], "{d}");
-    tab.evaluate("document.getElementById('sw12').dispatchEvent(new MouseEvent('click'))", false).unwrap();
+    tab.eval("document.getElementById('sw12').dispatchEvent(new MouseEvent('click'))", false);
     until(&tab, "switch 12 on", |p| p["switches"] == 1 << 12);
-    let shot = tab.capture_screenshot(Page::CaptureScreenshotFormatOption::Png, None, None, true).unwrap();
+    let shot = tab.screenshot();
     std::fs::write(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target/live-nexys4ddr-page.png"), &shot).unwrap();
 }

@@ -1,6 +1,7 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
+pub mod cdp;
 pub mod cpu_coverage;
 pub mod debug;
 pub mod game;

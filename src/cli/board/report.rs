@@ -168,7 +168,7 @@ pub fn report(a: &Args, p: &Prepared, mut o: Outcome) -> Result<Stopped, String>
         write_atomic(f, o.rec.lines_csv.as_deref().unwrap_or_default().as_bytes())?;
     }
     if let Some(f) = &a.display {
-        write_atomic(f, o.rec.display_log.as_bytes())?;
+        write_atomic(f, o.rec.display_log.as_deref().unwrap_or_default().as_bytes())?;
     }
     if let Some(f) = &a.png {
         let trails: Vec<&[Snapshot]> =

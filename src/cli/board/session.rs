@@ -38,9 +38,50 @@ const CHUNK_PS: u64 = 50_000_000_000;
 /// sample: 1 s of board time, about 19 samples at hw timing.
 const NO_SAMPLE_PS: u64 = 1_000_000_000_000;
 
-/// A row of --pins: the time and the display's and the LEDs' pins after a change.
+/// A row of --pins: the time and the display's and the LEDs' pins after a change, as
+/// `"{time_ps},{an:02X},{seg:02X},{dp},{led:04X}"` writes it. Written digit by digit: a design
+/// whose LEDs change at every clock writes millions of rows, and the formatter was most of
+/// such a run's time.
 fn pins_row(csv: &mut String, time_ps: u64, (an, seg, dp, led): (u8, u8, u8, u16)) {
-    let _ = writeln!(csv, "{time_ps},{an:02X},{seg:02X},{dp},{led:04X}");
+    csv.push_str(itoa::Buffer::new().format(time_ps));
+    csv.push(',');
+    push_hex(csv, an.into(), 2);
+    csv.push(',');
+    push_hex(csv, seg.into(), 2);
+    csv.push(',');
+    csv.push_str(itoa::Buffer::new().format(dp));
+    csv.push(',');
+    push_hex(csv, led.into(), 4);
+    csv.push('\n');
+}
+
+/// The low `digits` hex digits of `v`, upper case.
+fn push_hex(s: &mut String, v: u64, digits: u32) {
+    for k in (0..digits).rev() {
+        s.push(char::from(b"0123456789ABCDEF"[(v >> (4 * k)) as usize & 15]));
+    }
+}
+
+/// A time in ms to the microsecond, right-aligned in 12 characters: what `{:>12.3}` writes
+/// for `time_ps as f64 / 1e9` (the nearest microsecond; a time exactly half way between two
+/// goes through that formatting itself).
+fn push_ms(s: &mut String, time_ps: u64) {
+    if time_ps % 1_000_000 == 500_000 {
+        let _ = write!(s, "{:>12.3}", time_ps as f64 / 1e9);
+        return;
+    }
+    let us = (time_ps + 500_000) / 1_000_000;
+    let mut b = itoa::Buffer::new();
+    let ms = b.format(us / 1000);
+    for _ in ms.len() + 4..12 {
+        s.push(' ');
+    }
+    s.push_str(ms);
+    s.push('.');
+    let frac = us % 1000;
+    for d in [frac / 100, frac / 10 % 10, frac % 10] {
+        s.push(char::from(b'0' + d as u8));
+    }
 }
 
 /// Models created by this process (their temporary files' names).
@@ -50,8 +91,9 @@ static LOADS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0
 pub struct Records {
     /// The seven-segment display as a person sees it.
     pub display: Display,
-    /// `--display`: the display's and the LEDs' changes, a line each.
-    pub display_log: String,
+    /// `--display`: the display's and the LEDs' changes, a line each (kept only when asked
+    /// for).
+    pub display_log: Option<String>,
     /// `--pins`: every change of the display's and the LEDs' pins (kept only when asked for).
     pub pins_csv: Option<String>,
     pins_now: (u8, u8, u8, u16),
@@ -83,10 +125,10 @@ pub struct BotTrace {
 }
 
 impl Records {
-    pub fn new(frames: Option<PathBuf>, frame_every: u64, pins: bool, heard: Heard) -> Records {
+    pub fn new(frames: Option<PathBuf>, frame_every: u64, pins: bool, display_log: bool, heard: Heard) -> Records {
         Records {
             display: Display::default(),
-            display_log: String::new(),
+            display_log: display_log.then(String::new),
             pins_csv: pins.then(|| String::from("time_ps,an,seg,dp,led\n")),
             pins_now: (0xFF, 0x7F, 1, 0),
             last_led: 0,
@@ -122,7 +164,14 @@ impl Records {
                     pins_row(csv, time_ps, self.pins_now);
                 }
                 self.last_led = leds;
-                let _ = writeln!(self.display_log, "{:>12.3} ms  leds    {leds:016b}", time_ps as f64 / 1e9);
+                if let Some(log) = &mut self.display_log {
+                    push_ms(log, time_ps);
+                    log.push_str(" ms  leds    ");
+                    for k in (0..16).rev() {
+                        log.push(if leds >> k & 1 == 1 { '1' } else { '0' });
+                    }
+                    log.push('\n');
+                }
             }
             Event::Sample { time_ps, snapshot, motctl } => {
                 self.last_sample_ps = time_ps;
@@ -186,8 +235,12 @@ impl Records {
 
     /// The display's lines from `before` on into `--display`'s log.
     fn log_display_lines(&mut self, before: usize) {
+        let Some(log) = &mut self.display_log else { return };
         for l in &self.display.lines()[before..] {
-            let _ = writeln!(self.display_log, "{:>12.3} ms  display {}", l.time_ps as f64 / 1e9, l.text);
+            push_ms(log, l.time_ps);
+            log.push_str(" ms  display ");
+            log.push_str(&l.text);
+            log.push('\n');
         }
     }
 
@@ -346,7 +399,7 @@ impl<'a> Session<'a> {
             model,
             rec: Records {
                 lines_csv: a.lines.as_ref().map(|_| format!("time_ps,{}\n", Lines::NAMES.join(","))),
-                ..Records::new(a.frames.clone(), a.frame_every, a.pins.is_some(), heard)
+                ..Records::new(a.frames.clone(), a.frame_every, a.pins.is_some(), a.display.is_some(), heard)
             },
             vcd,
             fast_forward_off,
@@ -801,4 +854,25 @@ pub fn at_line_end(s: &Snapshot) -> bool {
         && s.sensors().prox_left()
         && s.sensors().prox_right()
         && s.movement() == botsim::Movement::Stopped
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #[test]
+        fn rows_written_by_hand_are_what_the_formatter_writes(
+            time_ps in prop_oneof![0u64..10_000_000_000, any::<u64>().prop_map(|t| t >> 8), (0u64..100_000).prop_map(|k| k * 1_000_000 + 500_000)],
+            an: u8, seg: u8, dp in 0u8..2, led: u16,
+        ) {
+            let mut row = String::new();
+            pins_row(&mut row, time_ps, (an, seg, dp, led));
+            prop_assert_eq!(row, format!("{time_ps},{an:02X},{seg:02X},{dp},{led:04X}\n"));
+            let mut ms = String::new();
+            push_ms(&mut ms, time_ps);
+            prop_assert_eq!(ms, format!("{:>12.3}", time_ps as f64 / 1e9));
+        }
+    }
 }

@@ -9,7 +9,9 @@
 //! `BOTSIM_RANDOM_DESIGNS` (default 2) designs from seed `BOTSIM_RANDOM_SEED` (default 1) on,
 //! and the seeds of `BOTSIM_RANDOM_ALSO` (default 28, 316 and 87: a second bot, a nested delay,
 //! a team's VGA timing generator);
-//! each design is kept in target/random-designs/<seed>/ (its parts listed in parts.txt).
+//! each design is kept in target/random-designs/<seed>/ (its parts listed in parts.txt), and
+//! its runs' outputs beside it when they differ (a design whose LEDs show an LFSR writes
+//! gigabytes of pin changes: kept only when there is something to look at).
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -165,6 +167,12 @@ fn check_one(seed: u64) -> f64 {
         },
         every_pins.lines().count() - 1
     );
+    for e in std::fs::read_dir(&dir).unwrap().flatten() {
+        let name = e.file_name().to_string_lossy().into_owned();
+        if ["every.", "fast.", "fast_pins."].iter().any(|run| name.starts_with(run)) {
+            let _ = std::fs::remove_file(e.path());
+        }
+    }
     skipped
 }
 

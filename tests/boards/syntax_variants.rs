@@ -119,6 +119,9 @@ fn variants_run_as_the_original(name: &str, dir: &Path, inputs: &[&str], args: &
         assert_eq!(original.summary, got.summary, "{name}, {style:?} ({}): the summaries differ", copy.display());
         eprintln!("{name}: {style:?} ({files} files re-emitted) runs as the original");
     }
+    // Kept for a failure only.
+    let _ = std::fs::remove_dir_all(&designs);
+    let _ = std::fs::remove_dir_all(&work);
 }
 
 #[test]

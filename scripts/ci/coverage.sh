@@ -12,7 +12,9 @@ out=target/coverage-dat
 rm -rf "$out"
 mkdir -p "$out"
 export BOTSIM_COVERAGE=1 BOTSIM_COVERAGE_DIR=$PWD/$out
-cargo test --workspace --release -q --test cpu_lockstep --test cpu_timing --test bot_spec --test scoreboard --test line_follow \
-  > "$out/tests.log" 2>&1 || { tail -30 "$out/tests.log"; exit 1; }
+. scripts/lib/tests.sh
+load_test_binaries cpu_lockstep cpu_timing bot_spec scoreboard line_follow
+# Two lanes: cpu_lockstep's longest test is one thread.
+run_lanes "$out/tests" "cpu_lockstep" "line_follow bot_spec scoreboard cpu_timing"
 verilator_coverage --write "$out/merged.dat" "$out"/cov-*.dat
 python3 scripts/ci/coverage_report.py "$out/merged.dat" scripts/ci/coverage_floors.txt "$@"

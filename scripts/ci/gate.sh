@@ -19,6 +19,9 @@ trap 'rm -rf "$work"' EXIT
 botsim=target/release/botsim
 
 . scripts/lib/rtl.sh
+. scripts/lib/tests.sh
+# The lock-step and system tests, run again with random power-up values.
+XINIT_TESTS="cpu_lockstep cpu_timing bot_spec scoreboard many_models"
 # The design's files, from its list (rtl/bot.f): all of them for Verilator, the Verilog alone
 # for Yosys.
 BOT=$(rtl_files rtl/bot.f | tr '\n' ' ')
@@ -109,12 +112,13 @@ generated() {
 }
 
 xinit() {
-  local seed
+  local seed item lanes=("" "")
+  load_test_binaries $XINIT_TESTS || return 1
+  # Seeds 1 and 3 in one lane, 2 and 4 in the other: each binary's longest test is one thread.
   for seed in 1 2 3 4; do
-    BOTSIM_X_SEED=$seed cargo test --workspace --release -q --test cpu_lockstep --test cpu_timing --test bot_spec \
-      --test scoreboard --test many_models >"$work/xinit.log" 2>&1 \
-      || { tail -30 "$work/xinit.log"; echo "gate: fails with BOTSIM_X_SEED=$seed" >&2; return 1; }
+    for item in $XINIT_TESTS; do lanes[$(((seed - 1) % 2))]+=" $seed:$item"; done
   done
+  run_lanes "$work/xinit" "${lanes[@]}" || { echo "gate: fails with the BOTSIM_X_SEED above" >&2; return 1; }
 }
 
 coverage() {

@@ -1,0 +1,70 @@
+# tests.sh: run the workspace's test binaries in parallel lanes. Sourced, not run.
+#   test_binaries NAME...        the executables of `cargo test --test NAME...` (built if need
+#                                be), one per line, in the order named
+#   run_lanes LOG LANE...        run each LANE (a quoted list of "SEED:NAME" or "NAME" items) in
+#                                its own background shell, its items one after another; every
+#                                item's output goes to LOG-<lane>.log. Fails, after all lanes
+#                                end, with the first failing item's last lines.
+# A test binary is run from the repository's root, as cargo runs the root package's tests. The
+# lanes exist because the RTL tests' longest test is one thread (cpu_lockstep's 2,000 random
+# programs): run one binary at a time and a core idles.
+
+test_binaries() {
+  local args=() t
+  for t in "$@"; do args+=(--test "$t"); done
+  cargo test --workspace --release -q --no-run --message-format=json "${args[@]}" | python3 -c '
+import json, sys
+names = sys.argv[1:]
+found = {}
+for line in sys.stdin:
+    m = json.loads(line)
+    if m.get("reason") == "compiler-artifact" and m.get("executable") and m["target"]["kind"] == ["test"]:
+        found[m["target"]["name"]] = m["executable"]
+missing = [n for n in names if n not in found]
+if missing:
+    sys.exit("no test binary for: " + " ".join(missing))
+for n in names:
+    print(found[n])
+' "$@"
+}
+
+# Items are "NAME" (the binary of that test, from $TEST_BINS: "NAME=PATH" lines) or
+# "SEED:NAME" (the same with BOTSIM_X_SEED=SEED).
+run_lanes() {
+  local log=$1 lane i=0 pids=() failed=0
+  shift
+  for lane in "$@"; do
+    i=$((i + 1))
+    (
+      for item in $lane; do
+        local seed= name=$item
+        if [[ $item == *:* ]]; then seed=${item%%:*}; name=${item#*:}; fi
+        local bin
+        bin=$(printf '%s\n' "$TEST_BINS" | sed -n "s|^$name=||p")
+        echo "== $item" >>"$log-$i.log"
+        if ! env ${seed:+BOTSIM_X_SEED=$seed} "$bin" -q >>"$log-$i.log" 2>&1; then
+          echo "$item" >"$log-$i.failed"
+          exit 1
+        fi
+      done
+    ) &
+    pids+=($!)
+  done
+  for p in "${pids[@]}"; do wait "$p" || failed=1; done
+  if [ "$failed" = 1 ]; then
+    for ((j = 1; j <= i; j++)); do
+      if [ -e "$log-$j.failed" ]; then
+        tail -30 "$log-$j.log" >&2
+        echo "failed: $(cat "$log-$j.failed")" >&2
+      fi
+    done
+    return 1
+  fi
+}
+
+# TEST_BINS for the named tests: "NAME=PATH" lines.
+load_test_binaries() {
+  local paths
+  paths=$(test_binaries "$@") || return 1
+  TEST_BINS=$(paste -d= <(printf '%s\n' "$@") <(printf '%s\n' "$paths"))
+}

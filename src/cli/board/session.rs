@@ -84,9 +84,6 @@ fn push_ms(s: &mut String, time_ps: u64) {
     }
 }
 
-/// Models created by this process (their temporary files' names).
-static LOADS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
-
 /// What a run recorded of the board, event by event.
 pub struct Records {
     /// The seven-segment display as a person sees it.
@@ -821,8 +818,10 @@ fn design_stopped(f: &str, built: &botsim::board::build::Built, at: &str) -> Str
     format!("{f} (stopped at {at})")
 }
 
-/// Create the model of a built design on `world` with the programs of `roms` (the files are
-/// read when the model is created, then removed).
+/// Create the model of a built design on `world` with the programs of `roms`. The model reads
+/// them from files as it starts: each is kept beside the build's library under a name its
+/// contents give (`mem/<hash>.mem`), written once and read by every later run, so that a run
+/// stopped while its model starts (a live page closed at once) leaves no file behind.
 pub fn load(
     library: &Path,
     world: &World,
@@ -830,22 +829,23 @@ pub fn load(
     host: Option<Box<Host>>,
     printing: &Printing,
 ) -> Result<BoardModel, String> {
-    let dir = std::env::temp_dir();
-    let stem = format!("botsim-{}-{}", std::process::id(), LOADS.fetch_add(1, std::sync::atomic::Ordering::Relaxed));
-    let mut files = vec![(dir.join(format!("{stem}-world.mem")), world.to_mem(), "botsim_world".to_string())];
+    let dir = library.parent().unwrap_or(Path::new(".")).join("mem");
+    std::fs::create_dir_all(&dir).map_err(|e| format!("{}: error: cannot create folder: {e}", dir.display()))?;
+    let mut files = vec![(world.to_mem(), "botsim_world".to_string())];
     for r in roms {
-        files.push((dir.join(format!("{stem}-{}.mem", r.module)), r.image.to_mem(), wrapper::rom_plusarg(&r.module)));
+        files.push((r.image.to_mem(), wrapper::rom_plusarg(&r.module)));
     }
     let mut args = Vec::new();
-    for (path, text, arg) in &files {
-        std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))?;
+    for (text, arg) in &files {
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        std::hash::Hash::hash(text, &mut h);
+        let path = dir.join(format!("{:016x}.mem", std::hash::Hasher::finish(&h)));
+        if std::fs::read(&path).ok().as_deref() != Some(text.as_bytes()) {
+            write_atomic(&path, text.as_bytes())?;
+        }
         args.push(format!("+{arg}={}", path.display()));
     }
-    let model = BoardModel::load(library, &args, host, printing);
-    for (path, _, _) in &files {
-        let _ = std::fs::remove_file(path);
-    }
-    model.map_err(|e| e.to_string())
+    BoardModel::load(library, &args, host, printing).map_err(|e| e.to_string())
 }
 
 /// Stopped on the line with a wall straight ahead: the end of a course.

@@ -20,8 +20,6 @@ botsim=target/release/botsim
 
 . scripts/lib/rtl.sh
 . scripts/lib/tests.sh
-# The lock-step and system tests, run again with random power-up values.
-XINIT_TESTS="cpu_lockstep cpu_timing bot_spec scoreboard many_models"
 # The design's files, from its list (rtl/bot.f): all of them for Verilator, the Verilog alone
 # for Yosys.
 BOT=$(rtl_files rtl/bot.f | tr '\n' ' ')
@@ -79,8 +77,15 @@ icarus() {
 }
 
 yosys_synth() {
-  local log="$work/yosys.log" script
+  local log="$work/yosys.log" script xilinx=0
   # The world ROM gets the built-in world so that it is a real ROM, not an empty memory.
+  # Both syntheses at once (Yosys is one thread).
+  yosys -q -p "read_verilog -defer $RTL rtl/bot_pgm.v
+chparam -set WORLD_FILE \"rtl/default_world.mem\" bot
+synth_xilinx -top bot -family xc7
+check -assert
+tee -o $work/xstat.txt stat" > "$work/xilinx.log" 2>&1 &
+  local xpid=$!
   script="read_verilog -defer $RTL rtl/bot_pgm.v
 chparam -set WORLD_FILE \"rtl/default_world.mem\" bot
 hierarchy -top bot
@@ -89,16 +94,14 @@ check -assert
 select -assert-none t:\$dlatch t:\$adlatch t:\$_DLATCH_* t:\$_DLATCHSR_*
 tee -o $work/stat.txt stat"
   if ! yosys -q -p "$script" > "$log" 2>&1; then
+    wait $xpid
     cat "$log" >&2
     echo "gate: yosys found a problem (latch, multiple drivers, logic loop or a synthesis error)" >&2
     return 1
   fi
   grep -E "Number of cells|Number of wires" "$work/stat.txt" | tail -2 | sed 's/^ */gate: synth: /'
-  if yosys -q -p "read_verilog -defer $RTL rtl/bot_pgm.v
-chparam -set WORLD_FILE \"rtl/default_world.mem\" bot
-synth_xilinx -top bot -family xc7
-check -assert
-tee -o $work/xstat.txt stat" > "$work/xilinx.log" 2>&1; then
+  wait $xpid || xilinx=$?
+  if [ "$xilinx" = 0 ]; then
     grep -E "RAMB|LUT6 |FDRE|Number of cells" "$work/xstat.txt" | tail -6 | sed 's/^ */gate: synth_xilinx: /'
   else
     cat "$work/xilinx.log" >&2
@@ -112,13 +115,7 @@ generated() {
 }
 
 xinit() {
-  local seed item lanes=("" "")
-  load_test_binaries $XINIT_TESTS || return 1
-  # Seeds 1 and 3 in one lane, 2 and 4 in the other: each binary's longest test is one thread.
-  for seed in 1 2 3 4; do
-    for item in $XINIT_TESTS; do lanes[$(((seed - 1) % 2))]+=" $seed:$item"; done
-  done
-  run_lanes "$work/xinit" "${lanes[@]}" || { echo "gate: fails with the BOTSIM_X_SEED above" >&2; return 1; }
+  xinit_check "$work"
 }
 
 coverage() {

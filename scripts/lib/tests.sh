@@ -1,33 +1,32 @@
 # tests.sh: run the workspace's test binaries in parallel lanes. Sourced, not run.
-#   test_binaries NAME...        the executables of `cargo test --test NAME...` (built if need
-#                                be), one per line, in the order named
+#   load_test_binaries NAME...   TEST_BINS: "NAME=PATH" lines, the executables of `cargo test
+#                                --test NAME...` (built if need be)
 #   xinit_check DIR              the lock-step and system tests again with random power-up
 #                                values (BOTSIM_X_SEED=1..4, two lanes), logs in DIR
 #   run_lanes LOG LANE...        run each LANE (a quoted list of "SEED:NAME" or "NAME" items) in
 #                                its own background shell, its items one after another; every
 #                                item's output goes to LOG-<lane>.log. Fails, after all lanes
-#                                end, with the first failing item's last lines.
+#                                end, with each failing lane's item and last lines.
 # A test binary is run from the repository's root, as cargo runs the root package's tests. The
 # lanes exist because the RTL tests' longest test is one thread (cpu_lockstep's 2,000 random
 # programs): run one binary at a time and a core idles.
 
-test_binaries() {
+load_test_binaries() {
   local args=() t
   for t in "$@"; do args+=(--test "$t"); done
-  cargo test --workspace --release -q --no-run --message-format=json "${args[@]}" | python3 -c '
+  TEST_BINS=$(cargo test --workspace --release -q --no-run --message-format=json "${args[@]}" | python3 -c '
 import json, sys
-names = sys.argv[1:]
 found = {}
 for line in sys.stdin:
     m = json.loads(line)
     if m.get("reason") == "compiler-artifact" and m.get("executable") and m["target"]["kind"] == ["test"]:
         found[m["target"]["name"]] = m["executable"]
-missing = [n for n in names if n not in found]
+missing = [n for n in sys.argv[1:] if n not in found]
 if missing:
     sys.exit("no test binary for: " + " ".join(missing))
-for n in names:
-    print(found[n])
-' "$@"
+for n in sys.argv[1:]:
+    print(n + "=" + found[n])
+' "$@")
 }
 
 # Items are "NAME" (the binary of that test, from $TEST_BINS: "NAME=PATH" lines) or
@@ -38,10 +37,10 @@ run_lanes() {
   for lane in "$@"; do
     i=$((i + 1))
     (
+      local item seed name bin
       for item in $lane; do
-        local seed= name=$item
+        seed= name=$item
         if [[ $item == *:* ]]; then seed=${item%%:*}; name=${item#*:}; fi
-        local bin
         bin=$(printf '%s\n' "$TEST_BINS" | sed -n "s|^$name=||p")
         echo "== $item" >>"$log-$i.log"
         if ! env ${seed:+BOTSIM_X_SEED=$seed} "$bin" -q >>"$log-$i.log" 2>&1; then
@@ -62,13 +61,6 @@ run_lanes() {
     done
     return 1
   fi
-}
-
-# TEST_BINS for the named tests: "NAME=PATH" lines.
-load_test_binaries() {
-  local paths
-  paths=$(test_binaries "$@") || return 1
-  TEST_BINS=$(paste -d= <(printf '%s\n' "$@") <(printf '%s\n' "$paths"))
 }
 
 # The lock-step and system tests, run again with random power-up values (--x-initial unique,

@@ -55,6 +55,16 @@ fn pins_row(csv: &mut String, time_ps: u64, (an, seg, dp, led): (u8, u8, u8, u16
     csv.push('\n');
 }
 
+/// A row of --display for the LEDs, as `"{:>12.3} ms  leds    {leds:016b}"` writes it.
+fn leds_row(log: &mut String, time_ps: u64, leds: u16) {
+    push_ms(log, time_ps);
+    log.push_str(" ms  leds    ");
+    for k in (0..16).rev() {
+        log.push(if leds >> k & 1 == 1 { '1' } else { '0' });
+    }
+    log.push('\n');
+}
+
 /// The low `digits` hex digits of `v`, upper case.
 fn push_hex(s: &mut String, v: u64, digits: u32) {
     for k in (0..digits).rev() {
@@ -162,12 +172,7 @@ impl Records {
                 }
                 self.last_led = leds;
                 if let Some(log) = &mut self.display_log {
-                    push_ms(log, time_ps);
-                    log.push_str(" ms  leds    ");
-                    for k in (0..16).rev() {
-                        log.push(if leds >> k & 1 == 1 { '1' } else { '0' });
-                    }
-                    log.push('\n');
+                    leds_row(log, time_ps, leds);
                 }
             }
             Event::Sample { time_ps, snapshot, motctl } => {
@@ -870,9 +875,9 @@ mod tests {
             let mut row = String::new();
             pins_row(&mut row, time_ps, (an, seg, dp, led));
             prop_assert_eq!(row, format!("{time_ps},{an:02X},{seg:02X},{dp},{led:04X}\n"));
-            let mut ms = String::new();
-            push_ms(&mut ms, time_ps);
-            prop_assert_eq!(ms, format!("{:>12.3}", time_ps as f64 / 1e9));
+            let mut log = String::new();
+            leds_row(&mut log, time_ps, led);
+            prop_assert_eq!(log, format!("{:>12.3} ms  leds    {led:016b}\n", time_ps as f64 / 1e9));
         }
     }
 }

@@ -25,11 +25,24 @@ struct BoardBound {
     size_t off, len;
     uint64_t offset;
 };
+// A comparison (demand.rs's Cmp): the counter on its left.
+enum class BoardCmp : uint8_t { Lt, Le, Gt, Ge, Eq, Ne };
+// A comparison of a counter: with the constant `value`, or with its bound number `value`.
+struct BoardGuard {
+    BoardCmp op;
+    bool bound;
+    uint64_t value;
+};
+// A read of a counter's bits from `lo` up that happens only where all its guards hold.
+struct BoardGuarded {
+    uint32_t lo;
+    std::vector<BoardGuard> guards;
+};
 // A counter the fast-forward moves on by arithmetic (src/board/counters.rs): its bytes, its
 // width in bits, whether it counts down, its largest step, the lowest bit a shifted read sees
 // (64: none), the constants it is compared with, the bit below which only masks read it
 // (64: none; the low part then repeats while the rest counts), the lowest bit a read
-// above that split sees (64: none) and the variables it is compared with.
+// above that split sees (64: none), the variables it is compared with and its guarded reads.
 struct BoardCounter {
     size_t off, len;
     uint32_t bits;
@@ -39,6 +52,7 @@ struct BoardCounter {
     std::vector<uint64_t> consts;
     uint32_t split, split_shift;
     std::vector<BoardBound> bounds;
+    std::vector<BoardGuarded> guarded;
 };
 
 // The wrapper's ports: where the model keeps each (in its root object).

@@ -38,7 +38,7 @@
 use std::collections::{BTreeMap, HashSet};
 
 use super::cpp::{closing, functions, strip_comments, tokens, Tok};
-use super::demand::{demands, Demand};
+use super::demand::{demands, Cmp, Demand, GuardValue};
 
 /// A counter of the root, as the harness moves it on.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -66,6 +66,25 @@ pub struct Counter {
     /// first (`(x + 1) >= half`: `("half", 1)`): while one holds, its value tells the
     /// counter apart only there (and where the sum wraps).
     pub bounds: Vec<(String, u64)>,
+    /// Reads that happen only where a comparison of the counter holds (a sprite's row
+    /// within its window, [`Demand::Guarded`]), by the lowest bit each sees: they count
+    /// (as [`Counter::shift`]'s reads do) only in an interval where the guard holds.
+    pub guarded: Vec<GuardedRead>,
+}
+
+/// A read of a counter's bits from `lo` up that happens only where each of `guards` holds:
+/// the counter compared so with a constant or one of its [`Counter::bounds`] (its index).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct GuardedRead {
+    pub lo: u32,
+    pub guards: Vec<(Cmp, GuardedBy)>,
+}
+
+/// What a [`GuardedRead`]'s guard compares the counter with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GuardedBy {
+    Const(u64),
+    Bound(usize),
 }
 
 /// The smallest bit `e` (0 < e < bits) at which every shifted or masked read's bits
@@ -119,8 +138,38 @@ pub fn find(
     let found: Vec<Counter> = seen
         .into_iter()
         .filter(|(name, s)| !spoiled.contains(name) && s.step > 0)
-        .map(|(name, s)| {
+        .map(|(name, mut s)| {
             let bits = widths[&name];
+            let consts: Vec<u64> =
+                s.consts.into_iter().collect::<std::collections::BTreeSet<_>>().into_iter().collect();
+            let bounds: Vec<(String, u64)> =
+                s.bounds.into_iter().collect::<std::collections::BTreeSet<_>>().into_iter().collect();
+            // A guarded read counts as such only where the counter's interval stops at the
+            // guard's value (the guard's own comparison is among its reads); else always.
+            let mut guarded = Vec::new();
+            // (A read needs all its guards to hold: one that does not stop the interval is
+            // left out, and the read counts where the others hold.)
+            for (lo, hi, guards) in s.guarded {
+                let guards: Vec<(Cmp, GuardedBy)> = guards
+                    .into_iter()
+                    .filter_map(|(op, with)| {
+                        let with = match with {
+                            Guarding::Const(k) => consts.binary_search(&k).ok().map(|_| GuardedBy::Const(k)),
+                            Guarding::Var(v) => {
+                                bounds.iter().position(|(b, off)| *b == v && *off == 0).map(GuardedBy::Bound)
+                            }
+                        };
+                        with.map(|w| (op, w))
+                    })
+                    .collect();
+                let read = GuardedRead { lo, guards };
+                if read.guards.is_empty() {
+                    s.shift = Some(s.shift.map_or(lo, |x| x.min(lo)));
+                } else if !guarded.contains(&read) {
+                    guarded.push(read);
+                }
+                s.reads.push((lo, hi));
+            }
             let cut = split(bits, &s.reads);
             Counter {
                 bits,
@@ -128,10 +177,11 @@ pub fn find(
                 down: s.down,
                 step: s.step,
                 shift: s.shift,
-                consts: s.consts.into_iter().collect::<std::collections::BTreeSet<_>>().into_iter().collect(),
+                consts,
                 split: cut.map(|(e, _)| e),
                 split_shift: cut.and_then(|(_, lo)| lo),
-                bounds: s.bounds.into_iter().collect::<std::collections::BTreeSet<_>>().into_iter().collect(),
+                bounds,
+                guarded,
             }
         })
         .collect();
@@ -166,6 +216,17 @@ struct Seen {
     reads: Vec<(u32, u32)>,
     /// The root variables it is compared with, and the constant added to it first.
     bounds: Vec<(String, u64)>,
+    /// The bits each guarded read sees (`lo..=hi`), and its guard.
+    guarded: Vec<SeenGuarded>,
+}
+
+/// A guarded read as the scan finds it: the bits it sees (`lo`, `hi`) and its guards.
+type SeenGuarded = (u32, u32, Vec<(Cmp, Guarding)>);
+
+/// What a guard compares a candidate with, as the scan finds it.
+enum Guarding {
+    Const(u64),
+    Var(String),
 }
 
 /// The root's scalar integer variables (`CData`..`QData`, not ports) and their widths, from
@@ -378,6 +439,30 @@ fn scan(
                 } else {
                     s.shift = Some(s.shift.map_or(lo, |x| x.min(lo)));
                     s.reads.push((lo, hi));
+                }
+            }
+            Some(&Demand::Guarded { bits: m, guards }) => {
+                let m = m & mask(bits);
+                let guards: Vec<(Cmp, Guarding)> = guards
+                    .iter()
+                    .filter_map(|g| match g.with {
+                        GuardValue::Const(k) => Some((g.op, Guarding::Const(k))),
+                        GuardValue::Var(at) => match use_at(at) {
+                            Some((bound, 3)) if bound != name => Some((g.op, Guarding::Var(bound.to_string()))),
+                            _ => None,
+                        },
+                    })
+                    .collect();
+                if m != 0 {
+                    let (lo, hi) = (m.trailing_zeros(), 63 - m.leading_zeros().min(63));
+                    if !guards.is_empty() {
+                        s.guarded.push((lo, hi, guards));
+                    } else if lo == 0 && hi + 1 >= bits {
+                        spoiled.insert(name.to_string());
+                    } else {
+                        s.shift = Some(s.shift.map_or(lo, |x| x.min(lo)));
+                        s.reads.push((lo, hi));
+                    }
                 }
             }
             // In a statement the parser does not know.
@@ -677,6 +762,33 @@ mod tests {
         );
         assert!(read("(0xffU & ((IData)(1U) + vlSelf->top__DOT__refresh)) >= vlSelf->top__DOT__copy").is_none());
         assert!(read("vlSelf->top__DOT__refresh == vlSelf->top__DOT__refresh").is_none());
+    }
+
+    #[test]
+    fn a_read_inside_a_window_of_the_counter_counts_only_there() {
+        // A sprite's row within its window (pdxrayw_p2video's icon): `refresh - copy` is read
+        // only where `copy <= refresh <= 0x200`; both comparisons bound the counter, and the
+        // read is kept with them (the lowest bit it sees, its guards) instead of spoiling it.
+        let read = |code: &str| {
+            let nba = NBA.replacen("    vlSelf->seg", &format!("    {code}\n    vlSelf->seg"), 1);
+            found(&nba).into_iter().find(|c| c.name.ends_with("refresh"))
+        };
+        let window =
+            "if (((vlSelf->top__DOT__refresh >= vlSelf->top__DOT__copy) & (0x200U >= vlSelf->top__DOT__refresh))) {";
+        let r =
+            read(&format!("{window} vlSelf->an = (0xfU & (vlSelf->top__DOT__refresh - vlSelf->top__DOT__copy)); }}"))
+                .unwrap();
+        assert_eq!(r.bounds, [("top__DOT__copy".to_string(), 0)]);
+        assert!(r.consts.contains(&0x200), "{r:?}");
+        assert_eq!(
+            r.guarded,
+            [GuardedRead { lo: 0, guards: vec![(Cmp::Le, GuardedBy::Const(0x200)), (Cmp::Ge, GuardedBy::Bound(0))] }]
+        );
+        // Read whole under the window: still a counter, told apart everywhere in it.
+        let r = read(&format!("{window} vlSelf->top__DOT__copy = vlSelf->top__DOT__refresh; }}")).unwrap();
+        assert_eq!(r.guarded[0].lo, 0);
+        // Read whole outside any comparison of it: plain state.
+        assert!(read("vlSelf->top__DOT__copy = vlSelf->top__DOT__refresh;").is_none());
     }
 
     #[test]

@@ -45,6 +45,102 @@ pub enum Demand {
     /// of constants (`case` on the switches, which Verilator inlines as `?:`). Only those
     /// constants (and the sum's wrap) tell it apart.
     CompareConsts { consts: [u64; MAX_CHOICES], n: u8, offset: u64, wrap: u64 },
+    /// These bits of its value, read only where `guard` holds of it: a read inside
+    /// `if (x >= start && x <= end) { ... x - start ... }` (a sprite's row within its
+    /// window), or in the arm of a `?:` so chosen. The guard's comparison is a read of its
+    /// own, so a counter's interval never straddles where the guard turns.
+    Guarded { bits: u64, guards: Guards },
+}
+
+/// The most comparisons of one variable a guarded read keeps (the innermost).
+pub const MAX_GUARDS: usize = 4;
+
+/// The comparisons that all hold where a guarded read happens ([`Demand::Guarded`]): the
+/// first `n` of `all`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Guards {
+    pub all: [Guard; MAX_GUARDS],
+    pub n: u8,
+}
+
+impl Guards {
+    pub fn iter(&self) -> impl Iterator<Item = &Guard> {
+        self.all[..self.n as usize].iter()
+    }
+}
+
+/// A comparison of a variable that must hold where a read happens ([`Demand::Guarded`]):
+/// the variable `op` the constant or root variable `with`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Guard {
+    pub op: Cmp,
+    pub with: GuardValue,
+}
+
+/// What a guard compares its variable with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GuardValue {
+    Const(u64),
+    /// A root variable, by the index of its read's first token (as
+    /// [`Demand::CompareVar`]'s `bound_at`).
+    Var(usize),
+}
+
+/// A comparison, the guarded variable on its left.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Cmp {
+    Lt,
+    Le,
+    Gt,
+    Ge,
+    Eq,
+    Ne,
+}
+
+impl Cmp {
+    fn of(op: &str) -> Option<Cmp> {
+        Some(match op {
+            "<" => Cmp::Lt,
+            "<=" => Cmp::Le,
+            ">" => Cmp::Gt,
+            ">=" => Cmp::Ge,
+            "==" => Cmp::Eq,
+            "!=" => Cmp::Ne,
+            _ => return None,
+        })
+    }
+    /// The same comparison with its sides swapped (`c < x` is `x > c`).
+    fn swapped(self) -> Cmp {
+        match self {
+            Cmp::Lt => Cmp::Gt,
+            Cmp::Le => Cmp::Ge,
+            Cmp::Gt => Cmp::Lt,
+            Cmp::Ge => Cmp::Le,
+            c => c,
+        }
+    }
+    /// What holds where it does not.
+    fn negated(self) -> Cmp {
+        match self {
+            Cmp::Lt => Cmp::Ge,
+            Cmp::Le => Cmp::Gt,
+            Cmp::Gt => Cmp::Le,
+            Cmp::Ge => Cmp::Lt,
+            Cmp::Eq => Cmp::Ne,
+            Cmp::Ne => Cmp::Eq,
+        }
+    }
+    /// Whether `a op b`.
+    pub fn holds(self, a: u64, b: u64) -> bool {
+        match self {
+            Cmp::Lt => a < b,
+            Cmp::Le => a <= b,
+            Cmp::Gt => a > b,
+            Cmp::Ge => a >= b,
+            Cmp::Eq => a == b,
+            Cmp::Ne => a != b,
+        }
+    }
 }
 
 /// The most constants a compared choice may have ([`Demand::CompareConsts`]).
@@ -55,10 +151,17 @@ pub const MAX_CHOICES: usize = 8;
 /// needs. `width`: a root variable's width in bits, when it is a scalar. Reads in statements
 /// the parser does not know are not in the map (a caller takes them as needing all).
 pub fn demands(toks: &[Tok], width: &dyn Fn(&str) -> Option<u32>) -> HashMap<usize, Demand> {
-    let mut p = Parser { t: toks, i: 0, locals: HashMap::new(), width, out: HashMap::new() };
+    let mut p = Parser { t: toks, i: 0, locals: HashMap::new(), width, out: HashMap::new(), guards: Vec::new() };
     while p.i < toks.len() {
         let start = p.i;
-        let mut stmt = Parser { t: toks, i: start, locals: std::mem::take(&mut p.locals), width, out: HashMap::new() };
+        let mut stmt = Parser {
+            t: toks,
+            i: start,
+            locals: std::mem::take(&mut p.locals),
+            width,
+            out: HashMap::new(),
+            guards: Vec::new(),
+        };
         let ok = stmt.statement().is_some();
         p.locals = std::mem::take(&mut stmt.locals);
         if ok && stmt.i > start {
@@ -148,6 +251,9 @@ const TYPES: &[(&str, u32)] = &[
     ("bool", 1),
 ];
 
+/// Comparisons that hold somewhere, by the variable each compares.
+type Held = Vec<(String, Guard)>;
+
 struct Parser<'a, 't> {
     t: &'t [Tok<'a>],
     i: usize,
@@ -155,6 +261,9 @@ struct Parser<'a, 't> {
     locals: HashMap<&'a str, u32>,
     width: &'t dyn Fn(&str) -> Option<u32>,
     out: HashMap<usize, Demand>,
+    /// The comparisons that hold where the parser is (the conditions of the `if`s and `?:`s
+    /// around it), by the variable they compare.
+    guards: Held,
 }
 
 impl<'a, 't> Parser<'a, 't> {
@@ -184,6 +293,7 @@ impl<'a, 't> Parser<'a, 't> {
             }
             Tok::Id("if") | Tok::Id("while") | Tok::Id("switch") => {
                 let switch = self.peek(0) == Tok::Id("switch");
+                let is_if = self.peek(0) == Tok::Id("if");
                 self.i += 1;
                 self.eat("(")?;
                 let c = self.expr()?;
@@ -192,10 +302,12 @@ impl<'a, 't> Parser<'a, 't> {
                 if switch {
                     return self.switch_body();
                 }
-                self.statement()?;
+                // (A `while`'s body runs where its condition holds too, but it may change it.)
+                let (then, otherwise) = if is_if { self.guards_of(&c) } else { (Vec::new(), Vec::new()) };
+                self.guarded(then, |p| p.statement())?;
                 if self.peek(0) == Tok::Id("else") {
                     self.i += 1;
-                    self.statement()?;
+                    self.guarded(otherwise, |p| p.statement())?;
                 }
                 Some(())
             }
@@ -293,12 +405,82 @@ impl<'a, 't> Parser<'a, 't> {
         self.locals.get(name).copied().or_else(|| (self.width)(name))
     }
 
+    /// Run `f` with `guards` holding (pushed, then popped).
+    fn guarded<T>(&mut self, guards: Held, f: impl FnOnce(&mut Self) -> T) -> T {
+        let n = self.guards.len();
+        self.guards.extend(guards);
+        let out = f(self);
+        self.guards.truncate(n);
+        out
+    }
+
+    /// What holds where condition `c` does (each comparison of a variable with a constant
+    /// or a root variable that `&`s or `&&`s together: a 0 there makes it 0), and where it
+    /// does not (when `c` is one such comparison).
+    fn guards_of(&self, c: &Expr) -> (Held, Held) {
+        let mut then = Vec::new();
+        self.conjuncts(c, &mut then);
+        let otherwise = match (c, then.as_slice()) {
+            (Expr::Bin(..), [(name, g)]) if self.comparison(c).is_some() => {
+                vec![(name.clone(), Guard { op: g.op.negated(), with: g.with })]
+            }
+            _ => Vec::new(),
+        };
+        (then, otherwise)
+    }
+
+    fn conjuncts(&self, c: &Expr, out: &mut Vec<(String, Guard)>) {
+        match c {
+            Expr::Bin("&" | "&&", a, b) => {
+                self.conjuncts(a, out);
+                self.conjuncts(b, out);
+            }
+            Expr::Cast(_, x) => self.conjuncts(x, out),
+            _ => out.extend(self.comparison(c)),
+        }
+    }
+
+    /// `c` as a root variable (under casts) compared with a constant or another root
+    /// variable, the variable on the left.
+    fn comparison(&self, c: &Expr) -> Option<(String, Guard)> {
+        let Expr::Bin(op, a, b) = c else { return None };
+        let op = Cmp::of(op)?;
+        let root_var = |e: &Expr| -> Option<(usize, String)> {
+            let mut e = e;
+            while let Expr::Cast(_, x) = e {
+                e = x;
+            }
+            match e {
+                Expr::Var(at, name) if !self.locals.contains_key(name.as_str()) && (self.width)(name).is_some() => {
+                    Some((*at, name.clone()))
+                }
+                _ => None,
+            }
+        };
+        match (root_var(a), root_var(b), constant(a), constant(b)) {
+            (Some((_, x)), _, _, Some(k)) => Some((x, Guard { op, with: GuardValue::Const(k) })),
+            (_, Some((_, x)), Some(k), _) => Some((x, Guard { op: op.swapped(), with: GuardValue::Const(k) })),
+            (Some((_, x)), Some((at, y)), _, _) if x != y => Some((x, Guard { op, with: GuardValue::Var(at) })),
+            _ => None,
+        }
+    }
+
     /// Record what `e`'s reads need when `d` of its value's bits are needed.
     fn demand(&mut self, e: &Expr, d: u64) {
         match e {
             Expr::Var(at, name) => {
                 let d = self.var_width(name).map_or(d, |w| d & mask(w));
-                self.record(*at, Demand::Bits(d));
+                // The guards of the variable that hold here, the innermost first.
+                let none = Guard { op: Cmp::Eq, with: GuardValue::Const(0) };
+                let mut guards = Guards { all: [none; MAX_GUARDS], n: 0 };
+                for (_, g) in self.guards.iter().rev().filter(|(v, _)| v == name).take(MAX_GUARDS) {
+                    guards.all[guards.n as usize] = *g;
+                    guards.n += 1;
+                }
+                match guards.n {
+                    0 => self.record(*at, Demand::Bits(d)),
+                    _ => self.record(*at, Demand::Guarded { bits: d, guards }),
+                }
             }
             Expr::Num(_) => {}
             Expr::Cast(bits, x) => self.demand(x, d & mask(*bits)),
@@ -306,8 +488,9 @@ impl<'a, 't> Parser<'a, 't> {
             Expr::Bitwise(x) => self.demand(x, low(d)),
             Expr::Choice(c, a, b) => {
                 self.demand(c, u64::MAX);
-                self.demand(a, d);
-                self.demand(b, d);
+                let (then, otherwise) = self.guards_of(c);
+                self.guarded(then, |p| p.demand(a, d));
+                self.guarded(otherwise, |p| p.demand(b, d));
             }
             Expr::Opaque(parts) => {
                 for p in parts {
@@ -420,6 +603,9 @@ impl<'a, 't> Parser<'a, 't> {
         // A read met twice (never, in a tree) keeps what needs more.
         let d = match (self.out.get(&at), d) {
             (Some(Demand::Bits(a)), Demand::Bits(b)) => Demand::Bits(a | b),
+            (Some(Demand::Guarded { bits: a, guards: g }), Demand::Guarded { bits: b, guards: h }) if *g == h => {
+                Demand::Guarded { bits: a | b, guards: h }
+            }
             (Some(_), _) => Demand::Bits(u64::MAX),
             (None, d) => d,
         };
@@ -655,6 +841,65 @@ mod tests {
         // A choice with a variable in it is no choice of constants: all of it.
         let code = "vlSelf->y = (vlSelf->x >= ((1U & vlSelf->sw) ? 5U : vlSelf->sw));";
         assert_eq!(of_x(code, &w), [Demand::Bits(0x3ffff)]);
+    }
+
+    fn guards(g: &[Guard]) -> Guards {
+        let mut all = [Guard { op: Cmp::Eq, with: GuardValue::Const(0) }; MAX_GUARDS];
+        all[..g.len()].copy_from_slice(g);
+        Guards { all, n: g.len() as u8 }
+    }
+
+    /// A sprite's row inside its window (Verilator's `&` of the comparisons, as it writes an
+    /// `if` of `&&`s): the row's low bits are read only where both of its comparisons hold;
+    /// each comparison is a read of its own. A choice's arms are guarded alike, the other arm
+    /// by the comparison's negation; a condition that is no comparison of it guards nothing.
+    #[test]
+    fn a_read_inside_a_comparison_of_its_variable_is_guarded_by_it() {
+        let w = [("x", 10), ("start", 10), ("end", 10), ("col", 10), ("a", 4)];
+        let code = "if ((((IData)(vlSelf->x) >= (IData)(vlSelf->start)) & ((IData)(vlSelf->x) <= 0x1f0U)) \
+                    & (vlSelf->col >= vlSelf->start)) { vlSelf->a = (0xfU & ((IData)(vlSelf->x) - (IData)(vlSelf->start))); } \
+                    else { vlSelf->a = (0xfU & vlSelf->x); }";
+        let toks = tokens(code).unwrap();
+        let at = |n: usize| toks.iter().enumerate().filter(|(_, t)| **t == Tok::Id("start")).nth(n).unwrap().0 - 2;
+        let d = of_x(code, &w);
+        assert_eq!(d[0], Demand::CompareVar { bound_at: at(0), offset: 0, wrap: 0xffff_ffff });
+        assert_eq!(d[1], Demand::Compare(0x1f0));
+        // Both comparisons of x, the innermost (its last) first.
+        let le = Guard { op: Cmp::Le, with: GuardValue::Const(0x1f0) };
+        let ge = Guard { op: Cmp::Ge, with: GuardValue::Var(at(0)) };
+        assert_eq!(d[2], Demand::Guarded { bits: 0xf, guards: guards(&[le, ge]) });
+        // Not one comparison: the else arm is not guarded.
+        assert_eq!(d[3], Demand::Bits(0xf));
+        assert_eq!(d.len(), 4);
+        // One comparison, the constant on the left: the else arm holds its negation.
+        let code = "if ((0x20U < vlSelf->x)) { vlSelf->a = vlSelf->x; } else { vlSelf->a = (vlSelf->x >> 2U); }";
+        let gt = Guard { op: Cmp::Gt, with: GuardValue::Const(0x20) };
+        let le = Guard { op: Cmp::Le, with: GuardValue::Const(0x20) };
+        assert_eq!(
+            of_x(code, &w),
+            [
+                Demand::Compare(0x20),
+                Demand::Guarded { bits: 0xf, guards: guards(&[gt]) },
+                Demand::Guarded { bits: 0x3c, guards: guards(&[le]) }
+            ]
+        );
+        // A choice: each arm under its side of the comparison.
+        let code = "vlSelf->a = ((0x1fU == vlSelf->x) ? vlSelf->x : (vlSelf->x >> 4U));";
+        let eq = Guard { op: Cmp::Eq, with: GuardValue::Const(0x1f) };
+        let ne = Guard { op: Cmp::Ne, with: GuardValue::Const(0x1f) };
+        assert_eq!(
+            of_x(code, &w),
+            [
+                Demand::Compare(0x1f),
+                Demand::Guarded { bits: 0xf, guards: guards(&[eq]) },
+                Demand::Guarded { bits: 0xf0, guards: guards(&[ne]) }
+            ]
+        );
+        // An `|` of comparisons, or a comparison of another variable only: nothing guarded.
+        let code = "if (((vlSelf->x < 3U) | (vlSelf->col > 5U))) { vlSelf->a = vlSelf->x; }";
+        assert_eq!(of_x(code, &w), [Demand::Compare(3), Demand::Bits(0xf)]);
+        let code = "if ((vlSelf->col > 5U)) { vlSelf->a = vlSelf->x; }";
+        assert_eq!(of_x(code, &w), [Demand::Bits(0xf)]);
     }
 
     #[test]

@@ -16,6 +16,7 @@
 #include "botsim_disasm.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdarg>
 #include <cstdint>
 #include <cstdio>
@@ -106,7 +107,8 @@ struct Clock {
 // models must have been quiet (no interrupt, nothing from or to the bot) before it marks,
 // while the firmware answers (2^14 clocks, 164 us); how long a first mark waits for its
 // period when none is known yet (each later one waits twice as long, up to the longest); how
-// many phase snapshots a period gets at most (each at least the settling time apart).
+// many phase snapshots a period gets at most (each at least the settling time apart, or a
+// sixteenth of the period found last when that is shorter).
 constexpr uint64_t kMaxPeriodPs = (1ull << 22) * 10000;
 constexpr uint64_t kSettlePs = (1ull << 14) * 10000;
 constexpr uint64_t kFirstPatiencePs = (1ull << 16) * 10000;
@@ -116,6 +118,7 @@ constexpr uint64_t kFirstPatiencePs = (1ull << 16) * 10000;
 constexpr uint64_t kCounterSettlePs = (1ull << 8) * 10000;
 constexpr uint64_t kShortPatiencePs = (1ull << 10) * 10000;
 constexpr size_t kMaxPhases = 64;
+constexpr uint64_t kPhasesPerPeriod = 16;
 // A counter that turns at every skip is tried as state when its turns are this many in a row,
 // at most this far apart, at least this many of the period found apart, and the longer
 // period is at most this many turns (see Counting); a trial pays when it skips at least this
@@ -123,8 +126,11 @@ constexpr size_t kMaxPhases = 64;
 constexpr int kTurnsBeforeTrial = 3;
 constexpr uint64_t kMaxTurnEveryPs = (1ull << 16) * 10000;
 constexpr uint64_t kTurnPeriods = 2;
-constexpr uint64_t kMaxTrialTurns = 4;
+constexpr uint64_t kMaxTrialTurns = 16;
 constexpr uint64_t kTrialPays = 4;
+// The values a counter's turns are remembered at (Counting::turns), the least recently turned
+// at forgotten first.
+constexpr size_t kTurnValues = 8;
 // The most records a period may show (the display's pins multiplexed every few clocks, an LED
 // dimmed): more, and the mark is taken again. A skip writes one period's and a phase's; the
 // caller's buffer (model.rs's RECORDS) has room for both.
@@ -166,9 +172,10 @@ struct Span {
 // still counts), or all of them (level 2). A level holds from mark to mark, until a mark
 // finds no period.
 //
-// A counter that turns at every skip, the same time apart and at the same value (a VGA line's
-// pixel counter: each line is a mark, a short period proved, a skip to the line's end; the
-// counter wraps once a line) may be the inner one of a longer period with another counter
+// A counter that turns at every skip, at each of its values the same time apart (a VGA line's
+// pixel counter: each line is a few marks, a short period proved and a skip to the next value
+// a read tells apart, where the sync pulse or the visible part begins or ends; the counter
+// turns at each of those values once a line) may be the inner one of a longer period with another counter
 // (a few lines, with the line counter): when that period (a few of its turns: the least
 // common multiple of the turns and the period found) is short, the counter is tried as state
 // (level 2), so that the longer period is found and skipped whole. A trial that finds no
@@ -181,9 +188,15 @@ struct Counting {
     int level = 0;
     uint64_t exact = 0;  // the bits compared as state (level 1: those below the split)
     int early = 0;       // marks in a row it left its interval before a period was found
-    uint64_t last_turn = 0, turn_every = 0;  // when it last left its interval after a skip, and
-    uint64_t turn_value = 0;                 // how long before, at which value; how many times
-    int turns = 0;                           // in a row so
+    // Its last turns after a skip, one per value it turned at (a VGA line's pixel counter
+    // turns at a few values a line: where the sync pulse and the visible part begin and end):
+    // when, how long after its turn at the same value before, how many times in a row so.
+    struct Turn {
+        uint64_t value = 0, at = 0, every = 0;
+        int repeats = 0;
+    };
+    std::array<Turn, kTurnValues> turns{};
+    size_t nturns = 0;
     bool trial = false;                      // tried as state for a longer period
     int tried = 0;                           // trials that did not pay
     std::vector<uint64_t> bound_values;      // the compared variables' values at the mark
@@ -695,6 +708,25 @@ inline uint64_t bound_value(const uint8_t* at, const BoardBound& v) {
     return x;
 }
 
+// Whether a guarded read's comparisons all hold with the counter at `x` (the compared
+// variables' values as at the mark).
+bool guard_holds(const BoardGuarded& r, uint64_t x, const std::vector<uint64_t>& bound_values) {
+    for (const BoardGuard& g : r.guards) {
+        const uint64_t v = g.bound ? bound_values[g.value] : g.value;
+        bool holds = true;
+        switch (g.op) {
+            case BoardCmp::Lt: holds = x < v; break;
+            case BoardCmp::Le: holds = x <= v; break;
+            case BoardCmp::Gt: holds = x > v; break;
+            case BoardCmp::Ge: holds = x >= v; break;
+            case BoardCmp::Eq: holds = x == v; break;
+            case BoardCmp::Ne: holds = x != v; break;
+        }
+        if (!holds) return false;
+    }
+    return true;
+}
+
 // The values around `x` that no read of the design tells apart from it: the same bits at and
 // above the lowest shifted read, the same side of every compared constant (and not it), and of
 // every compared variable's value in the root image `at` (and not it, nor where the sum with
@@ -710,7 +742,13 @@ void counter_interval(Counting& k, uint64_t x, const uint8_t* at) {
         return;
     }
     for (const BoardBound& v : c.bounds) k.bound_values.push_back(bound_value(at, v));
-    const uint32_t shift = k.level == 1 ? c.split_shift : c.shift;
+    uint32_t shift = k.level == 1 ? c.split_shift : c.shift;
+    if (k.level == 0) {
+        // A read under a guard counts where the guard holds: the interval ends where it
+        // turns (its comparison is among the counter's), so it holds in all of it or none.
+        for (const BoardGuarded& g : c.guarded)
+            if (shift > g.lo && guard_holds(g, x, k.bound_values)) shift = g.lo;
+    }
     if (shift >= c.bits && c.consts.empty() && c.bounds.empty()) {
         // Nothing reads it (above the split): it may even wrap.
         k.lo = 0;
@@ -791,7 +829,12 @@ void ff_mark(Board* b, uint64_t t, bool drifting = false) {
     f.shown.clear();
     f.overflow = false;
     f.nphases = 0;
-    f.phase_every = std::max(kSettlePs, f.patience / kMaxPhases);
+    // Phase snapshots the settling time apart, or a sixteenth of the period last found when
+    // that is shorter (a skip across a 2 ms display refresh turn ends within a sixteenth of a
+    // VGA line's period of where it may, not a whole period short), enough to span the wait.
+    uint64_t every = kSettlePs;
+    if (f.last_period) every = std::min(every, std::max(f.last_period / kPhasesPerPeriod, kCounterSettlePs));
+    f.phase_every = std::max(every, f.patience / kMaxPhases);
     b->host->ff_mark(b->host->ctx);
 }
 
@@ -822,6 +865,27 @@ void ff_snap_take(Board* b, uint64_t t) {
 uint64_t ff_compare(Board* b, uint64_t t, uint64_t until_ps, BoardEvent* buf, uint32_t cap, uint32_t* n, Shown& s);
 uint64_t ff_restart(Board* b, uint64_t t);
 
+// Remember that counter `k` turned at `value` at `t`: how long after its last turn there, and
+// how many times in a row it was that long (0: the first, or another time apart).
+Counting::Turn note_turn(Counting& k, uint64_t value, uint64_t t) {
+    size_t i = 0;
+    while (i < k.nturns && k.turns[i].value != value) i++;
+    Counting::Turn turn{value, t, 0, 0};
+    if (i < k.nturns) {
+        const Counting::Turn& was = k.turns[i];
+        turn.every = t - was.at;
+        turn.repeats = was.every == turn.every ? was.repeats + 1 : 0;
+    } else if (k.nturns < k.turns.size()) {
+        i = k.nturns++;
+    } else {
+        i = 0;
+        for (size_t j = 1; j < k.nturns; j++)
+            if (k.turns[j].at < k.turns[i].at) i = j;
+    }
+    k.turns[i] = turn;
+    return turn;
+}
+
 // A counter took a value the design can tell apart. Before its mark's period is found the
 // second time in a row, it is a short counter: from now on it is state (its low part, or all
 // of it), compared with the mark's value, which stays. Otherwise the mark is no more (after
@@ -835,7 +899,10 @@ __attribute__((noinline)) uint64_t ff_counter_moved(Board* b, uint64_t t) {
         for (Counting& k : f.counters) again |= !counter_inside(k, root) && ++k.early >= 2;
         if (again) {
             for (Counting& k : f.counters) {
-                if (!counter_inside(k, root)) FF_TRACE("ff %.6f ms: counter at %zu (%s) is state\n", t / 1e9, k.c.off, member_name(f, k.c.off));
+                if (!counter_inside(k, root))
+                    FF_TRACE("ff %.6f ms: counter at %zu (%s, %llu; its interval %llu + %llu) is state\n", t / 1e9,
+                             k.c.off, member_name(f, k.c.off), (unsigned long long)counter_value(root, k),
+                             (unsigned long long)k.lo, (unsigned long long)k.width);
                 while (!counter_inside(k, root)) {
                     set_level(k, k.level == 0 && k.c.split < k.c.bits ? 1 : 2);
                     counter_interval(k, counter_value(f.mark.data(), k), f.mark.data());
@@ -852,20 +919,17 @@ __attribute__((noinline)) uint64_t ff_counter_moved(Board* b, uint64_t t) {
     if (f.proven) {
         for (Counting& k : f.counters) {
             if (counter_inside(k, root)) continue;
-            const uint64_t every = t - k.last_turn, value = counter_value(root, k);
-            k.turns = k.last_turn && every == k.turn_every && value == k.turn_value ? k.turns + 1 : 0;
-            k.turn_every = every;
-            k.turn_value = value;
-            k.last_turn = t;
+            const Counting::Turn turn = note_turn(k, counter_value(root, k), t);
+            const uint64_t every = turn.every;
             const uint64_t turns = f.last_period ? f.last_period / std::gcd(every, f.last_period) : ~0ull;
-            if (k.level == 0 && !k.trial && k.turns >= (kTurnsBeforeTrial << k.tried) && every <= kMaxTurnEveryPs &&
+            if (k.level < 2 && !k.trial && turn.repeats >= (kTurnsBeforeTrial << k.tried) && every <= kMaxTurnEveryPs &&
                 every >= kTurnPeriods * f.last_period && turns <= kMaxTrialTurns) {
                 FF_TRACE("ff %.6f ms: counter at %zu (%s) turns every %llu clocks: tried as state\n", t / 1e9, k.c.off,
                          member_name(f, k.c.off),
                          (unsigned long long)(every / 10000));
                 set_level(k, 2);
                 k.trial = true;
-                k.turns = 0;
+                k.nturns = 0;
                 trial_patience = std::max(trial_patience, 2 * turns * every);
             }
         }
@@ -1054,9 +1118,23 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
             const long m = member_at(f, cutter->c.off);
             if (m >= 0) f.cut[m]++;
         }
-        for (size_t j = f.nphases; j > 0 && k < counted; j--) {
+        // A phase whose counters are still in their intervals there: each moved on by the
+        // k periods and by as far as it had moved at the phase in the period proved (it
+        // counts one way, so it was in its interval all the way there).
+        auto counters_fit = [&](const Phase& p) {
+            for (const Counting& c : f.counters) {
+                if (!c.drift || c.width == ~0ull) continue;
+                const uint64_t at = (counter_value(root, c) - c.lo) & c.mask;
+                const uint64_t left = c.c.down ? at : c.width - 1 - at;
+                const uint64_t was = counter_value(m, c), there = counter_value(p.root.data(), c);
+                const uint64_t part = (c.c.down ? was - there : there - was) & c.mask;
+                if (part > left - k * c.drift) return false;  // (k * drift <= left: k <= counted)
+            }
+            return true;
+        };
+        for (size_t j = f.nphases; j > 0; j--) {
             const Phase& p = f.phases[j - 1];
-            if (k * period + p.at <= ahead && h->ff_fits(h->ctx, k, (uint32_t)j)) {
+            if (k * period + p.at <= ahead && counters_fit(p) && h->ff_fits(h->ctx, k, (uint32_t)j)) {
                 phase = j;
                 break;
             }

@@ -31,7 +31,7 @@
 
 use std::collections::{HashMap, HashSet};
 
-use super::counters::Counter;
+use super::counters::{Counter, GuardedBy};
 use super::cpp::{functions, squeeze, strip_comments, tokens, Tok};
 
 /// The top's outputs the harness reads on every evaluation of a run (harness.cpp's records and
@@ -392,9 +392,29 @@ pub fn header(
     // The counters (super::counters): each one's bytes, width, direction, largest step, the
     // lowest bit a shifted read sees (64: none), the constants it is compared with, the bit
     // where no read straddles (64: none), the lowest bit a read above it sees (64: none) and
-    // the variables it is compared with (their bytes and the constant added to it first).
+    // the variables it is compared with (their bytes and the constant added to it first), and
+    // its guarded reads (the lowest bit each sees, the guard's comparison, and whether it
+    // compares with a variable (by its index among those) or a constant).
     h.push_str("static void botsim_counters(const Vboard___024root* r, std::vector<BoardCounter>& out) {\n");
     for c in counters {
+        let guarded: Vec<String> = c
+            .guarded
+            .iter()
+            .map(|g| {
+                let guards: Vec<String> = g
+                    .guards
+                    .iter()
+                    .map(|(op, with)| {
+                        let (bound, value) = match with {
+                            GuardedBy::Const(k) => (false, *k),
+                            GuardedBy::Bound(i) => (true, *i as u64),
+                        };
+                        format!("{{BoardCmp::{op:?}, {bound}, {value}ull}}")
+                    })
+                    .collect();
+                format!("{{{}, {{{}}}}}", g.lo, guards.join(", "))
+            })
+            .collect();
         let consts: Vec<String> = c.consts.iter().map(|k| format!("{k}ull")).collect();
         let bounds: Vec<String> = c
             .bounds
@@ -402,7 +422,7 @@ pub fn header(
             .map(|(v, k)| format!("{{(size_t)((const char*)&r->{v} - (const char*)r), sizeof(r->{v}), {k}ull}}"))
             .collect();
         h.push_str(&format!(
-            "    out.push_back({{(size_t)((const char*)&r->{n} - (const char*)r), sizeof(r->{n}), {bits}, {down}, {step}ull, {shift}, {{{consts}}}, {split}, {split_shift}, {{{bounds}}}}});\n",
+            "    out.push_back({{(size_t)((const char*)&r->{n} - (const char*)r), sizeof(r->{n}), {bits}, {down}, {step}ull, {shift}, {{{consts}}}, {split}, {split_shift}, {{{bounds}}}, {{{guarded}}}}});\n",
             n = c.name,
             bits = c.bits,
             down = c.down,
@@ -411,7 +431,8 @@ pub fn header(
             consts = consts.join(", "),
             split = c.split.unwrap_or(64),
             split_shift = c.split_shift.unwrap_or(64),
-            bounds = bounds.join(", ")
+            bounds = bounds.join(", "),
+            guarded = guarded.join(", ")
         ));
     }
     h.push_str("}\n");

@@ -163,7 +163,7 @@ fn read_ok(t: &[Tok], i: usize, q: &str, reads: &std::collections::HashMap<usize
         return true;
     }
     let bits = match reads.get(&i) {
-        Some(Demand::Bits(b)) => *b,
+        Some(Demand::Bits(b) | Demand::Guarded { bits: b, .. }) => *b,
         _ => u64::MAX,
     };
     bits & OUT_PORT == 0 || blocks.iter().any(|&b| b)

@@ -331,6 +331,13 @@ pub fn generate(seed: u64) -> Design {
     // inclusively as rstasney_p2's does (from a stream of its own: a seed's other parts are as
     // they were).
     let team_dtg = vga.is_some() && Rng::new(seed ^ 0x4454_4749).chance(40);
+    // A sprite on the raster whose pixel an LED shows, as pdxrayw_p2video's icon (its own
+    // stream too): the pixel row and column compared with a window's edges, the sprite's row
+    // and column (`pixel_row - top`) read only inside it.
+    let sprite = vga.filter(|_| !vga_on_led).and_then(|_| {
+        let mut r = Rng::new(seed ^ 0x5350_5254);
+        r.chance(40).then(|| Sprite::draw(&mut r))
+    });
     if let Some(c) = vga {
         parts_text.push(format!(
             "VGA on {}{}{}",
@@ -338,6 +345,9 @@ pub fn generate(seed: u64) -> Design {
             if team_dtg { ", the team's timing generator counting to 800 and 525 inclusively" } else { "" },
             if vga_on_led { ", its vsync on LED 15" } else { "" }
         ));
+    }
+    if let Some(sp) = &sprite {
+        parts_text.push(format!("a sprite on the raster, its pixel on LED 14: {sp:?}"));
     }
 
     // What each LED, digit and point shows.
@@ -350,6 +360,8 @@ pub fn generate(seed: u64) -> Design {
     for k in 0..16 {
         let s = if k == 15 && vga_on_led {
             "vga_vs".to_string()
+        } else if k == 14 && sprite.is_some() {
+            "sprite_px".to_string()
         } else {
             match r.range(0, 3) {
                 0 => format!("cpu_leds[{k}]"),
@@ -464,7 +476,7 @@ pub fn generate(seed: u64) -> Design {
 
     // Whether the generator knows the design to repeat within reach (the peripherals' traffic
     // at random times aside).
-    let reach = reach(&parts, &clocks, simulate, kind, vga.is_some() && vga_on_led);
+    let reach = reach(&parts, &clocks, simulate, kind, vga.is_some() && (vga_on_led || sprite.is_some()));
     let reach = match (out_watch, kind, reach) {
         (true, Program::Delay(_), Ok(_)) => Err("an LED shows out_port, where the delay's count is".into()),
         (_, _, r) => r,
@@ -509,9 +521,10 @@ pub fn generate(seed: u64) -> Design {
     assign vgaBlue = rgb[3:0];
     assign Hsync = vga_hs;
     assign Vsync = vga_vs;
-",
+{sprite}",
                 net = clocks[c].net,
-                dtg = if team_dtg { "team_dtg" } else { "dtg" }
+                dtg = if team_dtg { "team_dtg" } else { "dtg" },
+                sprite = sprite.as_ref().map_or(String::new(), |sp| sp.verilog(&clocks[c].net))
             )
         }
         None => "    wire vga_vs = 1'b0;\n".into(),
@@ -1455,6 +1468,100 @@ fn widen(name: &str, width: u32) -> String {
         name.to_string()
     } else {
         format!("{{{}'d0, {name}}}", 8 - width)
+    }
+}
+
+/// A sprite on the VGA raster (pdxrayw_p2video's icon): a 16 x 16 window whose top left is the
+/// bot's place (its LocY and LocX, times 4, less 7, as that team's) or a constant, its pixel a
+/// function of its row and column within the window, shown on an LED. Teams keep the window's
+/// edges in registers or compare with the sums directly, test the four comparisons in one
+/// `if` or nested ones, and take the row within the window as a difference in the `if` or as
+/// a `?:`.
+#[derive(Debug)]
+struct Sprite {
+    /// The window's edges follow the bot (registers set from its LocX/LocY), or are constants.
+    follows_bot: bool,
+    /// The four comparisons in nested `if`s (rows, then columns), not one `&&`.
+    nested: bool,
+    /// The row and column within the window as `?:`s of the comparisons, not in the `if`.
+    choice: bool,
+    /// The window's top and left when constant.
+    top: u64,
+    left: u64,
+}
+
+impl Sprite {
+    fn draw(r: &mut Rng) -> Sprite {
+        Sprite {
+            follows_bot: r.chance(60),
+            nested: r.chance(40),
+            choice: r.chance(30),
+            top: r.range(0, 470),
+            left: r.range(0, 630),
+        }
+    }
+
+    /// Its Verilog on the pixel clock `net`; it drives `sprite_px`.
+    fn verilog(&self, net: &str) -> String {
+        let edges = if self.follows_bot {
+            "        top <= {1'b0, locy, 2'b00} - 11'd7;
+        bottom <= {1'b0, locy, 2'b00} + 11'd8;
+        left <= {1'b0, locx, 2'b00} - 11'd7;
+        right <= {1'b0, locx, 2'b00} + 11'd8;
+"
+            .to_string()
+        } else {
+            format!(
+                "        top <= 11'd{t};\n        bottom <= 11'd{b};\n        left <= 11'd{l};\n        right <= 11'd{r};\n",
+                t = self.top,
+                b = self.top + 15,
+                l = self.left,
+                r = self.left + 15
+            )
+        };
+        let inside_rows = "pixel_row >= top && pixel_row <= bottom";
+        let inside_cols = "pixel_column >= left && pixel_column <= right";
+        let (at, within) = if self.choice {
+            (
+                "",
+                "    wire [3:0] spr_row = (pixel_row >= top) ? pixel_row - top : 4'd0;
+    wire [3:0] spr_col = (pixel_column >= left) ? pixel_column - left : 4'd0;
+",
+            )
+        } else {
+            (
+                "                spr_row <= pixel_row - top;
+                spr_col <= pixel_column - left;
+",
+                "    reg [3:0] spr_row = 4'd0, spr_col = 4'd0;\n",
+            )
+        };
+        let body =
+            format!("{at}                sprite_px <= spr_row[3] ^ spr_col[3] ^ (spr_row[1:0] == spr_col[1:0]);\n");
+        let test = if self.nested {
+            format!(
+                "        if ({inside_rows}) begin
+            if ({inside_cols}) begin
+{body}            end else sprite_px <= 1'b0;
+        end else sprite_px <= 1'b0;
+"
+            )
+        } else {
+            format!(
+                "        if (({inside_rows}) && ({inside_cols})) begin
+{b}        end else sprite_px <= 1'b0;
+",
+                b = body.replace("                ", "            ")
+            )
+        };
+        format!(
+            "    // A sprite on the raster, its pixel on LED 14.
+    reg [10:0] top = 11'd0, bottom = 11'd0, left = 11'd0, right = 11'd0;
+    reg sprite_px = 1'b0;
+{within}    always @(posedge {net}) begin
+{edges}{test}    end
+"
+        )
     }
 }
 

@@ -17,6 +17,11 @@
 //              note: Verilator puts the choice of constants into the counter's comparison)
 //   REFRESH_BITS  the display counter's width: each digit is lit for 2^(REFRESH_BITS-3)
 //              clocks
+//   SPRITE     1: a 16 x 16 sprite where the bot is on a 640 x 480 raster, its pixel on LED 13
+//              (a team's icon, shown for debugging): the raster on a 25 MHz pixel clock that
+//              is a register the design toggles, its row and column compared with the
+//              window's edges (registers), the row and column within the window read only
+//              inside it
 //
 // With the course's debounce (botsim's, board.md 2.1), examples/common's port interface (nexys4_bot_if) and the bot.
 `timescale 1ns / 1ps
@@ -25,7 +30,8 @@ module nexys4fpga #(
     parameter CLOCKING = 0,
     parameter FREE32 = 0,
     parameter TOGGLES = 0,
-    parameter REFRESH_BITS = 18
+    parameter REFRESH_BITS = 18,
+    parameter SPRITE = 0
 ) (
     input  wire        clk,
     input  wire        btnCpuReset,
@@ -153,7 +159,46 @@ module nexys4fpga #(
             tone_count <= tone_count + 18'd1;
         end
     end
-    assign led = {led15, TOGGLES == 2 ? tog25 : TOGGLES == 3 ? tone : leds[14], leds[13:0]};
+    // The sprite: a pixel clock toggled every other clock, a 800 x 525 raster on it.
+    wire led13;
+    generate
+        if (SPRITE == 1) begin : sprite
+            reg pix_en = 1'b0, pix_clk = 1'b0;
+            always @(posedge sys_clk) begin
+                pix_en <= ~pix_en;
+                if (pix_en) pix_clk <= ~pix_clk;
+            end
+            reg [9:0] h = 10'd0, v = 10'd0;
+            always @(posedge pix_clk) begin
+                if (h == 10'd799) begin
+                    h <= 10'd0;
+                    v <= v == 10'd524 ? 10'd0 : v + 10'd1;
+                end else begin
+                    h <= h + 10'd1;
+                end
+            end
+            reg [9:0] top = 10'd0, bottom = 10'd0, left = 10'd0, right = 10'd0;
+            reg [3:0] spr_row = 4'd0, spr_col = 4'd0;
+            reg sprite_px = 1'b0;
+            always @(posedge pix_clk) begin
+                top <= {locy, 2'b00} - 10'd7;
+                bottom <= {locy, 2'b00} + 10'd8;
+                left <= {locx, 2'b00} - 10'd7;
+                right <= {locx, 2'b00} + 10'd8;
+                if (v >= top && v <= bottom && h >= left && h <= right) begin
+                    spr_row <= v - top;
+                    spr_col <= h - left;
+                    sprite_px <= spr_row[3] ^ spr_col[0];
+                end else begin
+                    sprite_px <= 1'b0;
+                end
+            end
+            assign led13 = sprite_px;
+        end else begin : no_sprite
+            assign led13 = leds[13];
+        end
+    endgenerate
+    assign led = {led15, TOGGLES == 2 ? tog25 : TOGGLES == 3 ? tone : leds[14], led13, leds[12:0]};
     assign JA = {6'd0, TOGGLES == 1 ? tog25 : 1'b0, TOGGLES == 1 ? tog10 : 1'b0};
 endmodule
 

@@ -11,6 +11,16 @@
 # registering each new model's points: 12 s against 1 s).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+. scripts/lib/tests.sh
+# The board tests' binary as built with the Verilator the PATH has (BOTSIM_BOARDS_BIN, which
+# .ci/run finds with the main build's settings; else built here): its tests run `botsim
+# board`, which builds each design with $VERILATOR when it runs, so it is not compiled again
+# (that took 46 s of CPU; the core's tests are, with the models linked in).
+boards=${BOTSIM_BOARDS_BIN:-}
+if [ -z "$boards" ]; then
+  load_test_binaries boards
+  boards=${TEST_BINS#boards=}
+fi
 version=5.48.0
 dir=$PWD/target/verilator-latest
 if [ ! -x "$dir/verilator/bin/verilator" ]; then
@@ -23,13 +33,12 @@ echo "verilator-latest: $("$VERILATOR" --getenv VERILATOR_ROOT) ($(grep -m1 'def
 # botsim depends on are reused. Boards are cached by Verilator version too.
 # --workspace as every CI cargo command has it (features resolved alike: nothing rebuilt twice).
 cargo test --workspace --release -q --test cpu_timing --test cpu_lockstep --test bot_spec --test scoreboard --test lockstep_ports
-cargo test --workspace --release -q --test boards -- --exact \
+"$boards" -q --exact \
   board::the_example_design_shows_the_bots_registers_on_its_display \
   board::a_vga_frame_from_the_designs_pins_equals_botsim_frame_for_the_same_state \
   shapes::a_polling_cpu_beside_a_2_18_refresh_counter \
   shapes::a_dcm_with_the_display_on_its_divided_clock
 if [ "${VERILATOR_LATEST_XINIT:-}" = 1 ]; then
-  . scripts/lib/tests.sh
   work=$(mktemp -d)
   trap 'rm -rf "$work"' EXIT
   xinit_check "$work"

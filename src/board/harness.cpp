@@ -119,6 +119,14 @@ constexpr uint64_t kCounterSettlePs = (1ull << 8) * 10000;
 constexpr uint64_t kShortPatiencePs = (1ull << 10) * 10000;
 constexpr size_t kMaxPhases = 64;
 constexpr uint64_t kPhasesPerPeriod = 16;
+// A skip of fewer clocks than this costs more than it saves (a mark, a proof, a skip:
+// about 60 clocks' simulation each); after this many in a row (a UART's baud tick ending
+// every skip) every settle lasts a rest, doubled after as many again up to the longest,
+// and none once a skip pays.
+constexpr uint64_t kWorthPs = (1ull << 8) * 10000;
+constexpr int kPoorSkips = 64;
+constexpr uint64_t kFirstRestPs = (1ull << 10) * 10000;
+constexpr uint64_t kMaxRestPs = (1ull << 16) * 10000;
 // A counter that turns at every skip is tried as state when its turns are this many in a row,
 // at most this far apart, at least this many of the period found apart, and the longer
 // period is at most this many turns (see Counting); a trial pays when it skips at least this
@@ -267,6 +275,8 @@ struct FastForward {
     std::vector<Counting> counters;
     bool drifting = false;       // the last period moved a counter: the next must move it as far
     uint64_t settle = 0;         // how long the models stay quiet before a mark
+    int poor = 0;                // skips in a row too short to pay for their proof
+    uint64_t rest = 0;           // after too many: how long every settle lasts at least
     // Why marks found no period: for each variable (by offset), how many marks it ended by
     // still differing, or by a counter leaving its interval before a skip.
     std::vector<BoardMember> members;
@@ -940,6 +950,7 @@ __attribute__((noinline)) uint64_t ff_counter_moved(Board* b, uint64_t t) {
     // After a skip the period is known: the board settles for two of them (a VGA line's
     // counter turns every line), or the settling time if that is shorter.
     f.settle = f.proven ? std::min(kCounterSettlePs, 2 * f.last_period) : kCounterSettlePs;
+    f.settle = std::max(f.settle, f.rest);
     // After a skip the period is known: a few of them. Before one is found, no less than
     // the mark had (it may need all of it).
     const uint64_t few = std::max(4 * f.last_period, kShortPatiencePs);
@@ -1193,6 +1204,15 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
     }
     refresh_shims(b);
     f.mark_t += (k + 1) * period;  // the start of the period the board is now in
+    if (skipped >= kWorthPs) {
+        f.poor = 0;
+        f.rest = 0;
+    } else if (++f.poor == kPoorSkips) {
+        f.poor = 0;
+        f.rest = f.rest ? std::min(2 * f.rest, kMaxRestPs) : kFirstRestPs;
+        FF_TRACE("ff %.6f ms: skips too short to pay: a rest of %llu clocks before each mark\n", t / 1e9,
+                 (unsigned long long)(f.rest / 10000));
+    }
     // A core's count that ends in the next period (its room used up): the period is looked
     // for again within a few, not after the long wait a mark may have grown to.
     if (models == 2 && h->ff_room(h->ctx, 1) == 0) f.patience = std::max(4 * period, kShortPatiencePs);

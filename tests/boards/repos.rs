@@ -21,12 +21,18 @@ fn summary(o: &Output) -> (serde_json::Value, String) {
 /// The messages of a run asked for JSON are on standard error only when not `--json`; these
 /// tests ask for both: the summary from a `--json` run, the lines from the same run without.
 fn run(dir: &Path, args: &[&str]) -> (serde_json::Value, String) {
+    let (s, said, _) = run_told(dir, args);
+    (s, said)
+}
+
+/// As [`run`], with what the run without `--json` told on standard output too.
+fn run_told(dir: &Path, args: &[&str]) -> (serde_json::Value, String, String) {
     let mut with_json = args.to_vec();
     with_json.push("--json");
     let (s, _) = summary(&board_in(dir, &with_json));
     let o = board_in(dir, args);
     assert!(o.status.success(), "{}", stderr(&o));
-    (s, stderr(&o))
+    (s, stderr(&o), String::from_utf8_lossy(&o.stdout).into_owned())
 }
 
 /// The display the example firmware shows for the bot's registers after `samples` samples
@@ -526,7 +532,7 @@ fn two_bots_of_two_kinds_each_traced_as_the_one_bot_of_project_2() {
     let game = clone_of("two_bots");
     let course = clone_of("unnamed_bot");
     let args = [".", "--param", "SIMULATE=1", "--seconds", "0.16", "--trace-csv", "trace.csv", "--png", "path.png"];
-    let (s, said) = run(game.path(), &args);
+    let (s, said, told) = run_told(game.path(), &args);
     let first = said.lines().find(|l| l.starts_with("botsim board: top")).unwrap();
     assert!(first.contains(", 2 bots: `nexys4fpga."), "{first}");
     assert!(said.contains("  the team's bot `bot31` (bot31/bot31.v:"), "{said}");
@@ -535,7 +541,6 @@ fn two_bots_of_two_kinds_each_traced_as_the_one_bot_of_project_2() {
     assert_eq!(bots[0]["module"], "bot");
     assert_eq!(bots[1]["module"], "bot31");
     let monster = bots[1]["path"].as_str().unwrap();
-    let told = String::from_utf8_lossy(&board_in(game.path(), &args).stdout).into_owned();
     assert!(told.contains(&format!("  the bot at `{monster}`: {} samples, ended at (", bots[1]["samples"])), "{told}");
     let (c, _) = run(course.path(), &args);
     let samples = c["samples"].as_u64().unwrap();

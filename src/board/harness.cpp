@@ -134,7 +134,7 @@ constexpr uint64_t kMaxRestPs = (1ull << 16) * 10000;
 constexpr int kTurnsBeforeTrial = 3;
 constexpr uint64_t kMaxTurnEveryPs = (1ull << 16) * 10000;
 constexpr uint64_t kTurnPeriods = 2;
-constexpr uint64_t kMaxTrialTurns = 16;
+constexpr uint64_t kMaxTrialTurns = 4;
 constexpr uint64_t kTrialPays = 4;
 // The values a counter's turns are remembered at (Counting::turns), the least recently turned
 // at forgotten first.

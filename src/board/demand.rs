@@ -445,14 +445,17 @@ impl<'a, 't> Parser<'a, 't> {
     fn comparison(&self, c: &Expr) -> Option<(String, Guard)> {
         let Expr::Bin(op, a, b) = c else { return None };
         let op = Cmp::of(op)?;
+        // (Under casts that keep all its bits: a narrowing one compares its low bits only.)
         let root_var = |e: &Expr| -> Option<(usize, String)> {
             let mut e = e;
-            while let Expr::Cast(_, x) = e {
+            let mut kept = u32::MAX;
+            while let Expr::Cast(bits, x) = e {
+                kept = kept.min(*bits);
                 e = x;
             }
             match e {
-                Expr::Var(at, name) if !self.locals.contains_key(name.as_str()) && (self.width)(name).is_some() => {
-                    Some((*at, name.clone()))
+                Expr::Var(at, name) if !self.locals.contains_key(name.as_str()) => {
+                    (self.width)(name).filter(|w| *w <= kept).map(|_| (*at, name.clone()))
                 }
                 _ => None,
             }
@@ -556,7 +559,14 @@ impl<'a, 't> Parser<'a, 't> {
     fn compare(&mut self, e: &Expr, c: u64) {
         match e {
             Expr::Var(at, _) => self.record(*at, Demand::Compare(c)),
-            Expr::Cast(bits, x) if matches!(**x, Expr::Var(..)) && c <= mask(*bits) => self.compare(x, c),
+            // A cast that keeps all the variable's bits (a narrowing one compares its low bits,
+            // which repeat: all of it is needed then).
+            Expr::Cast(bits, x)
+                if matches!(&**x, Expr::Var(_, name) if self.var_width(name).is_some_and(|w| w <= *bits))
+                    && c <= mask(*bits) =>
+            {
+                self.compare(x, c)
+            }
             _ => {
                 if !self.compare_consts(e, &Expr::Num(c)) {
                     self.demand(e, u64::MAX);
@@ -894,6 +904,15 @@ mod tests {
                 Demand::Guarded { bits: 0xf, guards: guards(&[eq]) },
                 Demand::Guarded { bits: 0xf0, guards: guards(&[ne]) }
             ]
+        );
+        // A narrowing cast compares the low bits only: no guard of the variable, and the
+        // comparison is of a sum that wraps at 8 bits (which spoils a wider counter).
+        let code = "if (((CData)(vlSelf->x) < 3U)) { vlSelf->a = vlSelf->x; }";
+        let mut three = [0; MAX_CHOICES];
+        three[0] = 3;
+        assert_eq!(
+            of_x(code, &w),
+            [Demand::CompareConsts { consts: three, n: 1, offset: 0, wrap: 0xff }, Demand::Bits(0xf)]
         );
         // An `|` of comparisons, or a comparison of another variable only: nothing guarded.
         let code = "if (((vlSelf->x < 3U) | (vlSelf->col > 5U))) { vlSelf->a = vlSelf->x; }";

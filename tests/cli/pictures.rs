@@ -1,6 +1,6 @@
 //! `botsim frame`, `run --frames` and `botsim map` as a user runs them.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

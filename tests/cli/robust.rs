@@ -2,7 +2,7 @@
 //! nothing hangs, Ctrl-C leaves complete files, and a full disk is an error, never a
 //! truncated file presented as success. The README's bad-input table lists these cases.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::{Command, Stdio};

@@ -7,7 +7,7 @@
 
 use std::process::Command;
 
-mod common;
+use crate::common;
 use common::root;
 
 /// A small deterministic generator (xorshift64*), so a failure names its seed.

@@ -1,7 +1,7 @@
 //! World files: the course maps read in place, every format round-trips, bad files give one
 //! clear error with a location.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

@@ -1,6 +1,6 @@
 //! `botsim asm` and `botsim disasm` as a user runs them.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

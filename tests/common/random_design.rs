@@ -476,7 +476,12 @@ pub fn generate(seed: u64) -> Design {
 
     // Whether the generator knows the design to repeat within reach (the peripherals' traffic
     // at random times aside).
-    let reach = reach(&parts, &clocks, simulate, kind, vga.is_some() && (vga_on_led || sprite.is_some()));
+    let vga_observed = match (vga.is_some(), vga_on_led, sprite.is_some()) {
+        (true, true, _) => Some("an LED shows the VGA timing (a frame is 1.68 M clocks)"),
+        (true, _, true) => Some("an LED shows a sprite on the VGA raster (a frame is 1.68 M clocks)"),
+        _ => None,
+    };
+    let reach = reach(&parts, &clocks, simulate, kind, vga_observed);
     let reach = match (out_watch, kind, reach) {
         (true, Program::Delay(_), Ok(_)) => Err("an LED shows out_port, where the delay's count is".into()),
         (_, _, r) => r,
@@ -1566,9 +1571,15 @@ impl Sprite {
 }
 
 /// Whether the design repeats within reach, and with which period (100 MHz clocks).
-fn reach(parts: &[Part], clocks: &[Clock], simulate: bool, kind: Program, vga_observed: bool) -> Result<u64, String> {
-    if vga_observed {
-        return Err("an LED shows the VGA timing (a frame is 1.68 M clocks)".into());
+fn reach(
+    parts: &[Part],
+    clocks: &[Clock],
+    simulate: bool,
+    kind: Program,
+    vga_observed: Option<&str>,
+) -> Result<u64, String> {
+    if let Some(why) = vga_observed {
+        return Err(why.into());
     }
     let osc = clocks[0].period;
     // The course's modules: 6-clock wrap counters with SIMULATE = 1 (a display of 8 digits

@@ -420,12 +420,10 @@ impl<'a, 't> Parser<'a, 't> {
     fn guards_of(&self, c: &Expr) -> (Held, Held) {
         let mut then = Vec::new();
         self.conjuncts(c, &mut then);
-        let otherwise = match (c, then.as_slice()) {
-            (Expr::Bin(..), [(name, g)]) if self.comparison(c).is_some() => {
-                vec![(name.clone(), Guard { op: g.op.negated(), with: g.with })]
-            }
-            _ => Vec::new(),
-        };
+        let otherwise = self
+            .comparison(c)
+            .map(|(name, g)| vec![(name, Guard { op: g.op.negated(), with: g.with })])
+            .unwrap_or_default();
         (then, otherwise)
     }
 
@@ -881,30 +879,21 @@ mod tests {
         // Not one comparison: the else arm is not guarded.
         assert_eq!(d[3], Demand::Bits(0xf));
         assert_eq!(d.len(), 4);
-        // One comparison, the constant on the left: the else arm holds its negation.
+        // One comparison (the constant on the left, or a choice's condition): each arm is
+        // guarded by its side of it.
+        let two_sided = |code: &str, k: u64, op: Cmp, then: u64, otherwise: u64| {
+            let g = |op: Cmp| guards(&[Guard { op, with: GuardValue::Const(k) }]);
+            let want = [
+                Demand::Compare(k),
+                Demand::Guarded { bits: then, guards: g(op) },
+                Demand::Guarded { bits: otherwise, guards: g(op.negated()) },
+            ];
+            assert_eq!(of_x(code, &w), want, "{code}");
+        };
         let code = "if ((0x20U < vlSelf->x)) { vlSelf->a = vlSelf->x; } else { vlSelf->a = (vlSelf->x >> 2U); }";
-        let gt = Guard { op: Cmp::Gt, with: GuardValue::Const(0x20) };
-        let le = Guard { op: Cmp::Le, with: GuardValue::Const(0x20) };
-        assert_eq!(
-            of_x(code, &w),
-            [
-                Demand::Compare(0x20),
-                Demand::Guarded { bits: 0xf, guards: guards(&[gt]) },
-                Demand::Guarded { bits: 0x3c, guards: guards(&[le]) }
-            ]
-        );
-        // A choice: each arm under its side of the comparison.
+        two_sided(code, 0x20, Cmp::Gt, 0xf, 0x3c);
         let code = "vlSelf->a = ((0x1fU == vlSelf->x) ? vlSelf->x : (vlSelf->x >> 4U));";
-        let eq = Guard { op: Cmp::Eq, with: GuardValue::Const(0x1f) };
-        let ne = Guard { op: Cmp::Ne, with: GuardValue::Const(0x1f) };
-        assert_eq!(
-            of_x(code, &w),
-            [
-                Demand::Compare(0x1f),
-                Demand::Guarded { bits: 0xf, guards: guards(&[eq]) },
-                Demand::Guarded { bits: 0xf0, guards: guards(&[ne]) }
-            ]
-        );
+        two_sided(code, 0x1f, Cmp::Eq, 0xf, 0xf0);
         // A narrowing cast compares the low bits only: no guard of the variable, and the
         // comparison is of a sum that wraps at 8 bits (which spoils a wider counter).
         let code = "if (((CData)(vlSelf->x) < 3U)) { vlSelf->a = vlSelf->x; }";

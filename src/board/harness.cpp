@@ -792,6 +792,12 @@ void counter_interval(Counting& k, uint64_t x, const uint8_t* at) {
     k.width = below + above == ~0ull ? ~0ull : below + above + 1;
 }
 
+// How far a counter in its interval may still move in its direction before it leaves it.
+inline uint64_t room_left(const Counting& k, const uint8_t* root) {
+    const uint64_t at = (counter_value(root, k) - k.lo) & k.mask;
+    return k.c.down ? at : k.width - 1 - at;
+}
+
 // A counter is still in its interval, and the variables it is compared with hold.
 inline bool counter_inside(const Counting& k, const uint8_t* root) {
     if (k.width == ~0ull) return true;
@@ -1116,8 +1122,7 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
         const Counting* cutter = nullptr;
         for (const Counting& c : f.counters) {
             if (!c.drift || c.width == ~0ull) continue;  // still, or free to wrap
-            const uint64_t at = (counter_value(root, c) - c.lo) & c.mask;
-            const uint64_t left = c.c.down ? at : c.width - 1 - at;
+            const uint64_t left = room_left(c, root);
             if (left / c.drift < counted) {
                 counted = left / c.drift;
                 cutter = &c;
@@ -1135,8 +1140,7 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
         auto counters_fit = [&](const Phase& p) {
             for (const Counting& c : f.counters) {
                 if (!c.drift || c.width == ~0ull) continue;
-                const uint64_t at = (counter_value(root, c) - c.lo) & c.mask;
-                const uint64_t left = c.c.down ? at : c.width - 1 - at;
+                const uint64_t left = room_left(c, root);
                 const uint64_t was = counter_value(m, c), there = counter_value(p.root.data(), c);
                 const uint64_t part = (c.c.down ? was - there : there - was) & c.mask;
                 if (part > left - k * c.drift) return false;  // (k * drift <= left: k <= counted)

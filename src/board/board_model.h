@@ -42,7 +42,8 @@ struct BoardGuarded {
 // width in bits, whether it counts down, its largest step, the lowest bit a shifted read sees
 // (64: none), the constants it is compared with, the bit below which only masks read it
 // (64: none; the low part then repeats while the rest counts), the lowest bit a read
-// above that split sees (64: none), the variables it is compared with and its guarded reads.
+// above that split sees (64: none), the variables it is compared with, its guarded reads and
+// the constants it may be set to.
 struct BoardCounter {
     size_t off, len;
     uint32_t bits;
@@ -53,6 +54,7 @@ struct BoardCounter {
     uint32_t split, split_shift;
     std::vector<BoardBound> bounds;
     std::vector<BoardGuarded> guarded;
+    std::vector<uint64_t> sets;
 };
 
 // The wrapper's ports: where the model keeps each (in its root object).

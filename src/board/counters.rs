@@ -35,7 +35,7 @@
 //! assert_eq!((found[0].name.as_str(), found[0].bits, found[0].step, found[0].shift), ("refresh", 18, 1, Some(15)));
 //! ```
 
-use std::collections::{BTreeMap, HashSet};
+use std::collections::{BTreeMap, BTreeSet, HashSet};
 
 use super::cpp::{closing, functions, strip_comments, tokens, Tok};
 use super::demand::{demands, Cmp, Demand, GuardValue};
@@ -70,6 +70,10 @@ pub struct Counter {
     /// within its window, [`Demand::Guarded`]), by the lowest bit each sees: they count
     /// (as [`Counter::shift`]'s reads do) only in an interval where the guard holds.
     pub guarded: Vec<GuardedRead>,
+    /// The constants it may be set to (a reset, a wrap at a terminal count; a delayed
+    /// copy's initialisation too): a period in which it never took one of them cannot have
+    /// set it to one, so every period after moves it as far (the harness's one-period proof).
+    pub sets: Vec<u64>,
 }
 
 /// A read of a counter's bits from `lo` up that happens only where each of `guards` holds:
@@ -182,6 +186,7 @@ pub fn find(
                 split_shift: cut.and_then(|(_, lo)| lo),
                 bounds,
                 guarded,
+                sets: s.sets.into_iter().collect(),
             }
         })
         .collect();
@@ -218,6 +223,8 @@ struct Seen {
     bounds: Vec<(String, u64)>,
     /// The bits each guarded read sees (`lo..=hi`), and its guard.
     guarded: Vec<SeenGuarded>,
+    /// The constants written to it.
+    sets: BTreeSet<u64>,
 }
 
 /// A guarded read as the scan finds it: the bits it sees (`lo`, `hi`) and its guards.
@@ -374,7 +381,9 @@ fn scan(
                 Some(writes) => {
                     for w in writes {
                         match w {
-                            Write::Const => {}
+                            Write::Const(k) => {
+                                s.sets.insert(k & mask(widths[name]));
+                            }
                             Write::Copy { at } => {
                                 consumed.insert(b + 1 + at);
                             }
@@ -478,7 +487,7 @@ fn scan(
 #[derive(Debug, PartialEq, Eq)]
 enum Write {
     /// A constant.
-    Const,
+    Const(u64),
     /// The variable itself or its delayed copy (`__Vdly__x = vlSelf->x`, `vlSelf->x = __Vdly__x`);
     /// `at`: where that read is in the right-hand side.
     Copy { at: usize },
@@ -548,7 +557,7 @@ fn strip(rhs: &[Tok], mut from: usize, mut to: usize) -> (usize, usize) {
 fn one_kind(rhs: &[Tok], from: usize, to: usize, name: &str, widths: &BTreeMap<String, u32>) -> Option<Write> {
     let (mut from, mut to) = strip(rhs, from, to);
     if to == from + 1 && number(rhs[from]).is_some() {
-        return Some(Write::Const);
+        return number(rhs[from]).map(Write::Const);
     }
     let is_self = |a: usize, b: usize| -> bool {
         let m = |t: &Tok| matches!(t, Tok::Id(x) if *x == name);
@@ -816,8 +825,15 @@ mod tests {
         let nba = NBA.replacen("    vlSelf->seg", &format!("{write}    vlSelf->seg"), 1);
         let c = found(&nba);
         let r = c.iter().find(|c| c.name.ends_with("refresh")).unwrap_or_else(|| panic!("{c:?}"));
-        // The condition's comparison is a read like any other.
-        assert_eq!((r.step, r.consts.clone()), (1, vec![0x3ffff]));
+        // The condition's comparison is a read like any other; the constants are what it
+        // may be set to.
+        assert_eq!((r.step, r.consts.clone(), r.sets.clone()), (1, vec![0x3ffff], vec![0]));
+        // (Each constant once, within its width.)
+        let reset_to = write.replacen("? 0U :", "? 0x7fffffU :", 1);
+        let nba = NBA.replacen("    vlSelf->seg", &format!("{reset_to}    vlSelf->seg"), 1);
+        let c = found(&nba);
+        let r = c.iter().find(|c| c.name.ends_with("refresh")).unwrap();
+        assert_eq!(r.sets, vec![0, 0x3ffff]);
         // A branch that is neither spoils it.
         let nba = NBA.replacen(
             "    vlSelf->seg",

@@ -192,6 +192,9 @@ struct Counting {
     BoardCounter c;
     uint64_t mask = 0;
     uint64_t lo = 0, width = 0;
+    // The part of the interval around the mark's value without a constant the counter may
+    // be set to (see FastForward::unsteady).
+    uint64_t steady_lo = 0, steady_width = 0;
     uint64_t drift = 0;
     int level = 0;
     uint64_t exact = 0;  // the bits compared as state (level 1: those below the split)
@@ -205,8 +208,10 @@ struct Counting {
     };
     std::array<Turn, kTurnValues> turns{};
     size_t nturns = 0;
-    bool trial = false;                      // tried as state for a longer period
-    int tried = 0;                           // trials that did not pay
+    // Tried as state for a longer period: its first skip to come judges it (Open), or it
+    // paid (Paid) and stays state until a mark finds no period.
+    enum class Trial : uint8_t { None, Open, Paid } trial = Trial::None;
+    int tried = 0;                           // trials in a row that did not pay
     std::vector<uint64_t> bound_values;      // the compared variables' values at the mark
 };
 
@@ -274,6 +279,12 @@ struct FastForward {
     // by their drift per period once two periods in a row moved each by the same amount.
     std::vector<Counting> counters;
     bool drifting = false;       // the last period moved a counter: the next must move it as far
+    // Since the mark, a counter took a value outside its steady interval (one it may be set
+    // to, or beyond): it may have been set to a constant, so a period that moved it proves
+    // nothing alone. Without that, every write to a counter in the period was a step (a set
+    // would have left it on its constant), and the next period moves each as far: one
+    // period is proof enough.
+    bool unsteady = false;
     uint64_t settle = 0;         // how long the models stay quiet before a mark
     int poor = 0;                // skips in a row too short to pay for their proof
     uint64_t rest = 0;           // after too many: how long every settle lasts at least
@@ -747,8 +758,9 @@ void counter_interval(Counting& k, uint64_t x, const uint8_t* at) {
     const BoardCounter& c = k.c;
     k.bound_values.clear();
     if (k.level == 2) {
-        k.lo = 0;
-        k.width = ~0ull;
+        // (Compared whole, it cannot drift.)
+        k.lo = k.steady_lo = 0;
+        k.width = k.steady_width = ~0ull;
         return;
     }
     for (const BoardBound& v : c.bounds) k.bound_values.push_back(bound_value(at, v));
@@ -759,20 +771,10 @@ void counter_interval(Counting& k, uint64_t x, const uint8_t* at) {
         for (const BoardGuarded& g : c.guarded)
             if (shift > g.lo && guard_holds(g, x, k.bound_values)) shift = g.lo;
     }
-    if (shift >= c.bits && c.consts.empty() && c.bounds.empty()) {
-        // Nothing reads it (above the split): it may even wrap.
-        k.lo = 0;
-        k.width = ~0ull;
-        return;
-    }
+    // The values below and above `x` in the interval, and in the steady one.
     uint64_t below = x, above = k.mask - x;
-    if (shift < c.bits) {
-        const uint64_t low = (1ull << shift) - 1;
-        below = std::min(below, x & low);
-        above = std::min(above, low - (x & low));
-    }
-    // A value the design tells apart: the interval stops short of it.
-    auto apart = [&](uint64_t v) {
+    uint64_t steady_below = below, steady_above = above;
+    auto apart_from = [&](uint64_t v, uint64_t& below, uint64_t& above) {
         if (v > k.mask) return;  // never reached
         if (v == x) {
             below = above = 0;
@@ -782,6 +784,31 @@ void counter_interval(Counting& k, uint64_t x, const uint8_t* at) {
             below = std::min(below, x - v - 1);
         }
     };
+    auto steady = [&]() {
+        steady_below = std::min(steady_below, below);
+        steady_above = std::min(steady_above, above);
+        bool empty = false;
+        for (uint64_t v : c.sets) {
+            empty |= v == x;
+            apart_from(v, steady_below, steady_above);
+        }
+        k.steady_lo = x - steady_below;
+        k.steady_width = empty ? 0 : steady_below + steady_above + 1;
+    };
+    if (shift >= c.bits && c.consts.empty() && c.bounds.empty()) {
+        // Nothing reads it (above the split): it may even wrap.
+        k.lo = 0;
+        k.width = ~0ull;
+        steady();
+        return;
+    }
+    if (shift < c.bits) {
+        const uint64_t low = (1ull << shift) - 1;
+        below = std::min(below, x & low);
+        above = std::min(above, low - (x & low));
+    }
+    // A value the design tells apart: the interval stops short of it.
+    auto apart = [&](uint64_t v) { apart_from(v, below, above); };
     for (uint64_t v : c.consts) apart(v);
     for (size_t i = 0; i < c.bounds.size(); i++) {
         const uint64_t offset = c.bounds[i].offset & k.mask;
@@ -790,6 +817,7 @@ void counter_interval(Counting& k, uint64_t x, const uint8_t* at) {
     }
     k.lo = x - below;
     k.width = below + above == ~0ull ? ~0ull : below + above + 1;
+    steady();
 }
 
 // How far a counter in its interval may still move in its direction before it leaves it.
@@ -805,9 +833,12 @@ inline bool counter_inside(const Counting& k, const uint8_t* root) {
         if (bound_value(root, k.c.bounds[i]) != k.bound_values[i]) return false;
     return ((counter_value(root, k) - k.lo) & k.mask) < k.width;
 }
-inline bool counters_inside(const FastForward& f, const uint8_t* root) {
-    for (const Counting& k : f.counters)
+// Every counter is in its interval (and the board's unsteady once one leaves its steady one).
+inline bool counters_inside(FastForward& f, const uint8_t* root) {
+    for (const Counting& k : f.counters) {
         if (!counter_inside(k, root)) return false;
+        f.unsteady |= ((counter_value(root, k) - k.steady_lo) & k.mask) >= k.steady_width;
+    }
     return true;
 }
 
@@ -815,6 +846,13 @@ inline bool counters_inside(const FastForward& f, const uint8_t* root) {
 void set_level(Counting& k, int level) {
     k.level = level;
     k.exact = level == 0 ? 0 : level == 1 ? (1ull << k.c.split) - 1 : k.mask;
+}
+
+// A counter tried as state is a counter again, and waits longer before another trial.
+void end_trial(Counting& k) {
+    set_level(k, 0);
+    k.trial = Counting::Trial::None;
+    k.tried++;
 }
 
 // BOTSIM_FF_TRACE=1 in the environment: the fast-forward's decisions on standard error (marks,
@@ -831,6 +869,7 @@ void ff_mark(Board* b, uint64_t t, bool drifting = false) {
     FastForward& f = b->ff;
     std::memcpy(f.mark.data(), b->model.root, f.mark.size());
     f.drifting = drifting;
+    f.unsteady = false;
     for (Counting& k : f.counters) {
         counter_interval(k, counter_value(f.mark.data(), k), f.mark.data());
         if (!drifting) k.drift = 0;
@@ -911,9 +950,22 @@ __attribute__((noinline)) uint64_t ff_counter_moved(Board* b, uint64_t t) {
     FastForward& f = b->ff;
     const uint8_t* root = b->model.root;
     if (!f.proven) {
-        bool again = false;
-        for (Counting& k : f.counters) again |= !counter_inside(k, root) && ++k.early >= 2;
-        if (again) {
+        bool again = false, trial = false;
+        for (Counting& k : f.counters) {
+            again |= !counter_inside(k, root) && ++k.early >= 2;
+            trial |= k.trial != Counting::Trial::None;
+        }
+        if (again && trial) {
+            // The longer period of a counter tried as state needs the others in their
+            // intervals for a few of its turns: one that leaves its own twice before (a sprite's
+            // row counter, read at every line within the sprite) says it cannot pay here. The
+            // counter on trial counts again, and the board is marked afresh.
+            FF_TRACE("ff %.6f ms: a counter left its interval within a trial: the trial ends\n", t / 1e9);
+            for (Counting& k : f.counters) {
+                if (k.trial != Counting::Trial::None) end_trial(k);
+                k.early = 0;
+            }
+        } else if (again) {
             for (Counting& k : f.counters) {
                 if (!counter_inside(k, root))
                     FF_TRACE("ff %.6f ms: counter at %zu (%s, %llu; its interval %llu + %llu) is state\n", t / 1e9,
@@ -938,13 +990,13 @@ __attribute__((noinline)) uint64_t ff_counter_moved(Board* b, uint64_t t) {
             const Counting::Turn turn = note_turn(k, counter_value(root, k), t);
             const uint64_t every = turn.every;
             const uint64_t turns = f.last_period ? f.last_period / std::gcd(every, f.last_period) : ~0ull;
-            if (k.level < 2 && !k.trial && turn.repeats >= (kTurnsBeforeTrial << k.tried) && every <= kMaxTurnEveryPs &&
+            if (k.level < 2 && k.trial == Counting::Trial::None && turn.repeats >= (kTurnsBeforeTrial << k.tried) && every <= kMaxTurnEveryPs &&
                 every >= kTurnPeriods * f.last_period && turns <= kMaxTrialTurns) {
                 FF_TRACE("ff %.6f ms: counter at %zu (%s) turns every %llu clocks: tried as state\n", t / 1e9, k.c.off,
                          member_name(f, k.c.off),
                          (unsigned long long)(every / 10000));
                 set_level(k, 2);
-                k.trial = true;
+                k.trial = Counting::Trial::Open;
                 k.nturns = 0;
                 trial_patience = std::max(trial_patience, 2 * turns * every);
             }
@@ -1021,11 +1073,9 @@ __attribute__((noinline)) uint64_t ff_restart(Board* b, uint64_t t) {
         f.patience = std::min(2 * f.patience, kMaxPeriodPs);
         const uint8_t* root = b->model.root;
         for (Counting& k : f.counters) {
-            if (k.trial) {
+            if (k.trial != Counting::Trial::None) {
                 // No longer period: back to a counter, and a longer wait before another trial.
-                set_level(k, 0);
-                k.trial = false;
-                k.tried++;
+                end_trial(k);
                 continue;
             }
             if ((counter_value(root, k) ^ counter_value(f.mark.data(), k)) & k.exact) {
@@ -1085,10 +1135,13 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
         ff_snap(b, t);
         return 0;
     }
-    // The counters: how far each moved in the period. A period that moved one is taken once the
-    // next moved each as far: neither set one to a constant (that would have ended both at the
-    // same value), and no read could tell any apart in either (they stayed in their intervals),
-    // so every period from the mark's on does the same, each moving them as far.
+    // The counters: how far each moved in the period. No read could tell any apart (they
+    // stayed in their intervals), so every period from the mark's on does the same, each
+    // moving them as far, if none was set to a constant in it: none took a value it may be
+    // set to (f.unsteady), or the next period moved each as far (a set would have ended both
+    // at the same value). Beside a core that counts, always the next (its proof's room is
+    // then that of the period after the first: a count found at its last period ends in
+    // the second, not in a skip of none that would take it for an inner loop's).
     bool drift = false, same = f.drifting;
     for (Counting& k : f.counters) {
         const uint64_t now = counter_value(root, k), then = counter_value(m, k);
@@ -1097,7 +1150,7 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
         same &= d == k.drift;
         k.drift = d;
     }
-    if (drift && !same) {
+    if (drift && !same && (f.unsteady || models == 2)) {
         ff_mark(b, t, true);
         return 0;
     }
@@ -1158,13 +1211,14 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
     // A counter on trial as state: the longer period it let the board find pays if it skips
     // far; else it is a counter again (from the next mark).
     for (Counting& c : f.counters) {
-        if (!c.trial) continue;
-        c.trial = false;
-        if (k < kTrialPays) {
+        if (c.trial != Counting::Trial::Open) continue;
+        if (k >= kTrialPays) {
+            c.trial = Counting::Trial::Paid;
+            c.tried = 0;
+        } else {
             FF_TRACE("ff %.6f ms: counter at %zu: its trial skips %llu periods only\n", t / 1e9, c.c.off,
                      (unsigned long long)k);
-            c.tried++;
-            set_level(c, 0);
+            end_trial(c);
             f.marked = false;  // (after this skip: the counter's interval is taken again at the next mark)
             f.quiet_from = t;
             f.settle = kCounterSettlePs;

@@ -422,7 +422,7 @@ pub fn header(
             .map(|(v, k)| format!("{{(size_t)((const char*)&r->{v} - (const char*)r), sizeof(r->{v}), {k}ull}}"))
             .collect();
         h.push_str(&format!(
-            "    out.push_back({{(size_t)((const char*)&r->{n} - (const char*)r), sizeof(r->{n}), {bits}, {down}, {step}ull, {shift}, {{{consts}}}, {split}, {split_shift}, {{{bounds}}}, {{{guarded}}}}});\n",
+            "    out.push_back({{(size_t)((const char*)&r->{n} - (const char*)r), sizeof(r->{n}), {bits}, {down}, {step}ull, {shift}, {{{consts}}}, {split}, {split_shift}, {{{bounds}}}, {{{guarded}}}, {{{sets}}}}});\n",
             n = c.name,
             bits = c.bits,
             down = c.down,
@@ -432,7 +432,8 @@ pub fn header(
             split = c.split.unwrap_or(64),
             split_shift = c.split_shift.unwrap_or(64),
             bounds = bounds.join(", "),
-            guarded = guarded.join(", ")
+            guarded = guarded.join(", "),
+            sets = c.sets.iter().map(|k| format!("{k}ull")).collect::<Vec<_>>().join(", ")
         ));
     }
     h.push_str("}\n");

@@ -22,6 +22,10 @@
 //              is a register the design toggles, its row and column compared with the
 //              window's edges (registers), the row and column within the window read only
 //              inside it
+//   WATCHDOG   1: LED 12 lights when a heartbeat (a 9-bit LFSR's tick, every 511 clocks)
+//              has not come for 1000 clocks: a count cleared by each tick, or held at 0
+//              while bit 19 of a free counter is clear (so it never lights; the count is
+//              set to its constant in the middle of a period, which proves nothing alone)
 //
 // With the course's debounce (botsim's, board.md 2.1), examples/common's port interface (nexys4_bot_if) and the bot.
 `timescale 1ns / 1ps
@@ -31,7 +35,8 @@ module nexys4fpga #(
     parameter FREE32 = 0,
     parameter TOGGLES = 0,
     parameter REFRESH_BITS = 18,
-    parameter SPRITE = 0
+    parameter SPRITE = 0,
+    parameter WATCHDOG = 0
 ) (
     input  wire        clk,
     input  wire        btnCpuReset,
@@ -198,7 +203,25 @@ module nexys4fpga #(
             assign led13 = leds[13];
         end
     endgenerate
-    assign led = {led15, TOGGLES == 2 ? tog25 : TOGGLES == 3 ? tone : leds[14], led13, leds[12:0]};
+    // The watchdog.
+    wire led12;
+    generate
+        if (WATCHDOG == 1) begin : watchdog
+            reg [17:0] armed = 18'd0;
+            reg [8:0] beat = 9'h1ff;
+            reg [15:0] since = 16'd0;
+            always @(posedge sys_clk) begin
+                armed <= armed + 18'd1;
+                beat <= {beat[7:0], beat[8] ^ beat[4]};
+                if (!armed[17] || beat == 9'h001) since <= 16'd0;
+                else since <= since + 16'd1;
+            end
+            assign led12 = since >= 16'd1000;
+        end else begin : no_watchdog
+            assign led12 = leds[12];
+        end
+    endgenerate
+    assign led = {led15, TOGGLES == 2 ? tog25 : TOGGLES == 3 ? tone : leds[14], led13, led12, leds[11:0]};
     assign JA = {6'd0, TOGGLES == 1 ? tog25 : 1'b0, TOGGLES == 1 ? tog10 : 1'b0};
 endmodule
 

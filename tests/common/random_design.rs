@@ -6,8 +6,8 @@
 //! KCPSM6 with its program (`teampgm.psm`, which botsim assembles) waiting in one of a few
 //! kinds of loop, its port interface, the upd_sysregs interrupt, and the bot; around them a
 //! random mix of the things teams add: wrap counters of any terminal count, free-running
-//! counters, clock dividers, toggles, rotating shift registers, PWM compares, LFSRs, some
-//! enabled by others' ticks, on the oscillator or on clocks from an MMCM or a DCM_SP with
+//! counters, clock dividers, toggles, rotating shift registers, PWM compares, LFSRs,
+//! watchdogs cleared by a heartbeat, some enabled by others' ticks, on the oscillator or on clocks from an MMCM or a DCM_SP with
 //! rational ratios; their bits feed the LEDs, the display's digits and points, the CPU's input
 //! ports and sometimes a VGA output (the course's `dtg` on a 25 MHz clock, or a team's own that
 //! counts its totals inclusively).
@@ -273,6 +273,8 @@ pub fn generate(seed: u64) -> Design {
     // Parts written as students write them (their own debouncer, Nexys3-release shaped),
     // from a stream of their own: a seed's other parts are as they were.
     let mut style_stream = Rng::new(seed ^ 0x5354_594C);
+    // A watchdog in place of a part, sometimes (its own stream too).
+    let mut watchdog_stream = Rng::new(seed ^ 0x5744_4F47);
     for i in 0..n {
         let clock = if clocks.len() > 1 && r.chance(40) { r.range(1, clocks.len() as u64 - 1) as usize } else { 0 };
         // Enabled by an earlier part's one-bit output (its tick, its toggle), sometimes.
@@ -288,6 +290,9 @@ pub fn generate(seed: u64) -> Design {
             (true, true) => Held::Alternating,
         };
         let mut part = make_part(&mut r, i, clock, enable.map(|j| &parts[j]), simulate, tame, held);
+        if watchdog_stream.chance(8) {
+            part = watchdog(&mut watchdog_stream, i, clock);
+        }
         if style_stream.chance(12) {
             part = team_debouncer(&mut style_stream, i, clock, tame);
         }
@@ -1460,6 +1465,122 @@ endmodule
         fast: false,
         module,
         resets: (clock == 0).then(|| format!("tdb{i}_pb[0]")),
+    }
+}
+
+/// A watchdog (the shapes design's WATCHDOG=1): a count that a heartbeat clears while armed,
+/// its alarm (`count >= limit`) the part's bit. The heartbeat is an LFSR's state, a wrap
+/// counter's zero or a ring's bit; armed always or by a free counter's high bit; disarmed,
+/// the count is held at 0 or counts on; written with `if`s or a `?:`, the alarm a wire or a
+/// register. The heartbeat clears the count in the middle of the board's period, so a
+/// period that saw its first clear moved the count by what looks like a drift no later
+/// period repeats (the fast-forward then needs a second period's proof). Not claimed within
+/// reach.
+fn watchdog(r: &mut Rng, i: usize, clock: usize) -> Part {
+    let clk = format!("@CLK{clock}@");
+    let n = format!("wd{i}");
+    // The heartbeat, and whether it repeats within reach by the generator's rules for its
+    // kind (an LFSR of 7 bits or fewer, a ring, a counter of 64 or fewer).
+    let (beat_decl, beat_step, beat, every, how, short) = match r.range(0, 2) {
+        0 => {
+            let (width, taps): (u32, [u32; 2]) = *r.pick(&[(5, [4, 2]), (7, [6, 5]), (9, [8, 4]), (10, [9, 6])]);
+            (
+                format!("    reg [{}:0] {n}_lfsr = {{{width}{{1'b1}}}};\n", width - 1),
+                format!(
+                    "        {n}_lfsr <= {{{n}_lfsr[{}:0], {n}_lfsr[{}] ^ {n}_lfsr[{}]}};\n",
+                    width - 2,
+                    taps[0],
+                    taps[1]
+                ),
+                format!("{n}_lfsr == {width}'d1"),
+                (1u64 << width) - 1,
+                format!("an LFSR of {width} bits"),
+                width <= 7,
+            )
+        }
+        1 => {
+            let every = r.range(20, 2000);
+            (
+                format!("    reg [10:0] {n}_hb = 11'd0;\n"),
+                format!("        {n}_hb <= {n}_hb == 11'd{} ? 11'd0 : {n}_hb + 11'd1;\n", every - 1),
+                format!("{n}_hb == 11'd0"),
+                every,
+                format!("a counter to {every}"),
+                every <= 64,
+            )
+        }
+        _ => {
+            let every = r.range(8, 64);
+            (
+                format!("    reg [{}:0] {n}_ring = {every}'d1;\n", every - 1),
+                format!("        {n}_ring <= {{{n}_ring[{}:0], {n}_ring[{}]}};\n", every - 2, every - 1),
+                format!("{n}_ring[0]"),
+                every,
+                format!("a ring of {every} bits"),
+                true,
+            )
+        }
+    };
+    let arm_bit = r.chance(70).then(|| r.range(12, 19));
+    let (arm_decl, arm_step, armed) = if let Some(bit) = arm_bit {
+        (
+            format!("    reg [{bit}:0] {n}_arm = {}'d0;\n", bit + 1),
+            format!("        {n}_arm <= {n}_arm + 1'b1;\n"),
+            format!("{n}_arm[{bit}]"),
+        )
+    } else {
+        (String::new(), String::new(), "1'b1".to_string())
+    };
+    let width = r.range(10, 16) as u32;
+    let limit = r.range(every / 2 + 1, 3 * every).min((1 << width) - 1);
+    let held = r.chance(50);
+    let clear = if held { format!("!{armed} || ({beat})") } else { format!("{armed} && ({beat})") };
+    let count = if r.chance(50) {
+        format!("        if ({clear}) {n}_count <= {width}'d0;\n        else {n}_count <= {n}_count + 1'b1;\n")
+    } else {
+        format!("        {n}_count <= ({clear}) ? 0 : {n}_count + 1;\n")
+    };
+    let registered = r.chance(40);
+    let alarm = if registered {
+        format!(
+            "    reg {n}_alarm = 1'b0;\n    always @(posedge {clk}) {n}_alarm <= {n}_count > {width}'d{};\n",
+            limit - 1
+        )
+    } else {
+        format!("    wire {n}_alarm = {n}_count >= {width}'d{limit};\n")
+    };
+    let verilog = format!(
+        "    // A watchdog: its count cleared by a heartbeat ({how}).
+{beat_decl}{arm_decl}    reg [{w1}:0] {n}_count = {width}'d0;
+    always @(posedge {clk}) begin
+{beat_step}{arm_step}{count}    end
+{alarm}",
+        w1 = width - 1
+    );
+    // Armed, the count repeats with the heartbeat; disarmed and held, it is 0; the arming
+    // counter's bit is a boundary. Counting on while disarmed, or a heartbeat not within
+    // reach, is not claimed.
+    let shape = match (short, arm_bit) {
+        (false, _) => Shape::Unknown("a watchdog's heartbeat between short and long"),
+        (true, None) => periodic(every),
+        (true, Some(bit)) if held && bit >= 16 => Shape::Known { period: every, boundary: Some(1 << bit) },
+        (true, Some(_)) => Shape::Unknown("a watchdog armed at times between short and long, or counting on"),
+    };
+    Part {
+        verilog,
+        bit: format!("{n}_alarm"),
+        value: format!("{{{n}_count[{}:{}], {n}_alarm}}", width - 1, width - 4),
+        shape,
+        clock,
+        text: format!(
+            "a watchdog: a {width}-bit count cleared by a heartbeat ({how}) every {every} cycles{}, {} disarmed, its alarm at {limit}{}",
+            if armed == "1'b1" { ", always armed".to_string() } else { format!(", armed by {armed}") },
+            if held { "held at 0" } else { "counting on" },
+            if registered { " (registered)" } else { "" }
+        ),
+        fast: false,
+        module: String::new(),
+        resets: None,
     }
 }
 

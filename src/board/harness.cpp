@@ -211,7 +211,7 @@ struct Counting {
     // Tried as state for a longer period: its first skip to come judges it (Open), or it
     // paid (Paid) and stays state until a mark finds no period.
     enum class Trial : uint8_t { None, Open, Paid } trial = Trial::None;
-    int tried = 0;                           // trials in a row that did not pay
+    int tried = 0;                           // trials ended since one last paid
     std::vector<uint64_t> bound_values;      // the compared variables' values at the mark
 };
 

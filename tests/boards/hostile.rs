@@ -227,14 +227,7 @@ fn ctrl_c_stops_a_build_whole_and_two_runs_share_one_build() {
     std::thread::sleep(Duration::from_secs(2));
     // SAFETY: signals the child this test started.
     unsafe { libc::kill(child.id() as libc::pid_t, libc::SIGINT) };
-    let start = Instant::now();
-    let status = loop {
-        if let Some(s) = child.try_wait().unwrap() {
-            break s;
-        }
-        assert!(start.elapsed() < Duration::from_secs(10), "Ctrl-C did not stop the build");
-        std::thread::sleep(Duration::from_millis(20));
-    };
+    let status = common::exit_within(&mut child, Duration::from_secs(10), "Ctrl-C did not stop the build");
     assert_eq!(status.code(), Some(130));
     assert!(builds(cache.path()).is_empty(), "{:?}", builds(cache.path()));
     // No process of that build remains (the compilers ran in their own process group).

@@ -5,10 +5,10 @@
 //! Verilog under Icarus (a four-state simulator: an uninitialised register is `x` there, and
 //! fails) see the same random inputs, and every output pin must agree at every clock.
 
-use std::process::Command;
+use std::path::PathBuf;
 
 use crate::common;
-use common::root;
+use common::{icarus, root};
 
 /// A small deterministic generator (xorshift64*), so a failure names its seed.
 struct Rng(u64);
@@ -127,35 +127,17 @@ fn icarus(tb: &str, module: &str, inputs: &[String]) -> Option<Vec<String>> {
 
 /// The same with botsim's files `files` (paths from the repository's root).
 fn icarus_with(tb: &str, files: &[&str], inputs: &[String]) -> Option<Vec<String>> {
-    if Command::new("iverilog").arg("-V").output().is_err() {
-        assert!(std::env::var_os("BOTSIM_REQUIRE_TOOLS").is_none(), "iverilog is not installed (scripts/setup.sh)");
-        eprintln!("note: iverilog is not installed; skipped");
+    if !icarus::installed() {
         return None;
     }
     let dir = tempfile::tempdir().unwrap();
     std::fs::write(dir.path().join("tb.v"), tb).unwrap();
     std::fs::write(dir.path().join("in.mem"), inputs.join("\n") + "\n").unwrap();
-    let sim = dir.path().join("sim");
-    let o = Command::new("iverilog")
-        .args(["-g2005", "-o"])
-        .arg(&sim)
-        .args(["-s", "tb"])
-        .arg(dir.path().join("tb.v"))
-        .args(files.iter().map(|f| root().join(f)))
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "iverilog: {}", String::from_utf8_lossy(&o.stderr));
-    let o = Command::new("vvp")
-        .arg("-n")
-        .arg(&sim)
-        .arg(format!("+n={}", inputs.len()))
-        .current_dir(dir.path())
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "vvp: {}", String::from_utf8_lossy(&o.stderr));
-    let lines: Vec<String> =
-        String::from_utf8_lossy(&o.stdout).lines().filter(|l| !l.starts_with("WARNING")).map(str::to_string).collect();
-    assert_eq!(lines.len(), inputs.len(), "{}", String::from_utf8_lossy(&o.stdout));
+    let files: Vec<PathBuf> =
+        std::iter::once(dir.path().join("tb.v")).chain(files.iter().map(|f| root().join(f))).collect();
+    let out = icarus::simulate(dir.path(), "tb", &files, &[format!("+n={}", inputs.len())]);
+    let lines: Vec<String> = out.lines().filter(|l| !l.starts_with("WARNING")).map(str::to_string).collect();
+    assert_eq!(lines.len(), inputs.len(), "{out}");
     Some(lines)
 }
 
@@ -367,35 +349,21 @@ impl Primitives {
         let b = |k: u32| v >> k & 1 == 1;
         // At the edge (the asynchronous clear and preset act as soon as they are set).
         let (ce, d) = (b(CE), b(D));
+        // A flip-flop with a clock enable, forced to `to` while `force` is set.
+        let next = |q: bool, force: bool, to: bool| {
+            if force {
+                to
+            } else if ce {
+                d
+            } else {
+                q
+            }
+        };
         self.fd = d;
-        self.fdre = if b(R) {
-            false
-        } else if ce {
-            d
-        } else {
-            self.fdre
-        };
-        self.fdse = if b(SET) {
-            true
-        } else if ce {
-            d
-        } else {
-            self.fdse
-        };
-        self.fdce = if b(CLR) {
-            false
-        } else if ce {
-            d
-        } else {
-            self.fdce
-        };
-        self.fdpe = if b(PRE) {
-            true
-        } else if ce {
-            d
-        } else {
-            self.fdpe
-        };
+        self.fdre = next(self.fdre, b(R), false);
+        self.fdse = next(self.fdse, b(SET), true);
+        self.fdce = next(self.fdce, b(CLR), false);
+        self.fdpe = next(self.fdpe, b(PRE), true);
         if ce {
             self.srl16 = self.srl16 << 1 | d as u16;
             self.srl32 = self.srl32 << 1 | d as u32;

@@ -201,14 +201,7 @@ fn ctrl_c_stops_a_long_run_and_leaves_complete_files() {
     std::thread::sleep(Duration::from_millis(1500));
     let kill = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
     assert!(kill.success());
-    let t = Instant::now();
-    let status = loop {
-        if let Some(s) = child.try_wait().unwrap() {
-            break s;
-        }
-        assert!(t.elapsed() < Duration::from_secs(30), "no exit within 30 s of Ctrl-C");
-        std::thread::sleep(Duration::from_millis(20));
-    };
+    let status = common::exit_within(&mut child, Duration::from_secs(30), "no exit within 30 s of Ctrl-C");
     let o = child.wait_with_output().unwrap();
     let e = String::from_utf8_lossy(&o.stderr);
     assert_eq!(status.code(), Some(130), "{e}");

@@ -67,14 +67,7 @@ impl Live {
 
     /// Wait for the process to end by itself (after a `stop`), within the budget.
     pub fn wait(&mut self) -> std::process::ExitStatus {
-        let start = Instant::now();
-        loop {
-            if let Some(s) = self.child.try_wait().unwrap() {
-                return s;
-            }
-            assert!(start.elapsed() < BUDGET, "the live board did not end");
-            std::thread::sleep(Duration::from_millis(50));
-        }
+        super::exit_within(&mut self.child, BUDGET, "the live board did not end")
     }
 }
 

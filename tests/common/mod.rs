@@ -15,7 +15,8 @@ pub mod strategies;
 pub mod variants;
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::{Child, Command, ExitStatus, Output};
+use std::time::{Duration, Instant};
 
 /// The repository's folder.
 pub fn root() -> PathBuf {
@@ -127,5 +128,17 @@ pub fn frames_show_sample(dir: &Path, csv: &Path, sample: usize, frames: &[u32])
                 &want.2[3 * i..3 * i + 3]
             );
         }
+    }
+}
+
+/// Wait for `child` to end, failing the test with `what` if it has not within `budget`.
+pub fn exit_within(child: &mut Child, budget: Duration, what: &str) -> ExitStatus {
+    let start = Instant::now();
+    loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            return s;
+        }
+        assert!(start.elapsed() < budget, "{what}");
+        std::thread::sleep(Duration::from_millis(20));
     }
 }

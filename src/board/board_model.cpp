@@ -75,6 +75,9 @@ DesignModel botsim_model_new(VerilatedContext* ctx) {
     m.io.xbot_regs[2] = &t->xbot_regs3;
     m.observed_known = kObservedKnown;
     m.out_port_free = botsim_out_port_free;
+    m.reads_at = botsim_reads_at;
+    m.reads = botsim_reads;
+    m.external = botsim_external;
     m.members = [](const uint8_t* r, std::vector<BoardMember>& out) { botsim_members(root_of(r), out); };
     m.counters = [](const uint8_t* r, std::vector<BoardCounter>& out) { botsim_counters(root_of(r), out); };
     m.eval = [](void* top) { top_of(top)->eval(); };

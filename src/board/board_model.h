@@ -91,6 +91,11 @@ struct DesignModel {
     // the root's variables and its counters.
     bool observed_known;
     void (*members)(const uint8_t* root, std::vector<BoardMember>& out);
+    // Member i's reads: reads[reads_at[i] .. reads_at[i + 1]) (indices among the members, the
+    // observed ones' only), and whether it touches what leaves the model (external[i]).
+    const uint32_t* reads_at;
+    const uint32_t* reads;
+    const uint8_t* external;
     // The KCPSM6 models (by the Verilator name of their instance) whose out_port the design
     // reads only under a write strobe (src/board/strobes.rs); null-terminated.
     const char* const* out_port_free;

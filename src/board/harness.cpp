@@ -136,6 +136,15 @@ constexpr uint64_t kMaxTurnEveryPs = (1ull << 16) * 10000;
 constexpr uint64_t kTurnPeriods = 2;
 constexpr uint64_t kMaxTrialTurns = 4;
 constexpr uint64_t kTrialPays = 4;
+// A free part (FreePart): how long the board is watched for one (2^13 clocks), how long its
+// cycle may be (2^16 clocks), and how many marks in a row its contact may end before it is
+// given up.
+constexpr uint64_t kFreeWatchPs = (1ull << 13) * 10000;
+constexpr uint64_t kMaxFreeCycle = 1ull << 16;
+constexpr int kFreeContactMisses = 8;
+// After a watch that found none, this many marks without a period pass before the next watch,
+// doubled after each such up to the most.
+constexpr int kFreeMostWait = 8;
 // The values a counter's turns are remembered at (Counting::turns), the least recently turned
 // at forgotten first.
 constexpr size_t kTurnValues = 8;
@@ -243,6 +252,7 @@ struct Phase {
     std::vector<uint8_t> root;  // Verilator's state then
     std::vector<ClockPhase> clocks;  // and every clock's
     size_t shown = 0;           // the period's records up to then
+    uint64_t bot_cycles = 0;    // the bot's clock edges from the mark to then (the wrapper's count)
 };
 
 // A KCPSM6 model's outputs register in kcpsm6_iss.v and the model: the fast-forward compares
@@ -252,8 +262,44 @@ struct IssShim {
     size_t q, cpu;
 };
 
+// A free part: variables that change among themselves alone while everything they read from
+// the rest of the board, and everything of theirs the rest reads, stays as it was (a baud
+// rate divider running beside an idle UART, a free-running LFSR whose output nothing takes
+// while the firmware waits). Such a part, closed but for constants, repeats its own cycle
+// forever, whatever the rest does; the rest sees only constants from it, so its period is
+// found without it. Its contact (what crosses between the two, by the reads of
+// src/board/observed.rs) stays as it was at every clock, it comes back to its bytes within
+// its cycle, the rest repeats its period: a skip then puts the part at its place in its cycle,
+// a table of its bytes at each clock since the cycle began. Found by watching which variables
+// change after a mark finds no period: those that change, joined with what reads them, in a
+// group that touches nothing that leaves the model (records, DPI); a board may have several.
+struct FreeGroup {
+    std::vector<Span> part, contact;  // its bytes; those that must stay as at `origin`
+    size_t bytes = 0;                 // its bytes in all
+    std::vector<uint8_t> cycle;       // its bytes at each clock since `origin`
+    std::vector<uint8_t> touch;       // the contact's bytes at `origin`
+    uint64_t seen = 0;                // clocks recorded since `origin`
+    uint64_t q = 0;                   // its cycle in clocks (0: not found yet)
+    uint64_t origin = 0;              // when the cycle's first bytes were taken
+    uint64_t next_t = 0;              // the clock it looks at next (another: one not seen)
+    int misses = 0;                   // contact changes since its last skip
+};
+struct FreePart {
+    bool watching = false;
+    std::vector<BoardMember> order;   // the members in botsim_observed.h's order (reads' indices)
+    std::vector<uint8_t> vary;        // while watching: the bits that changed from a mark
+    uint64_t watch_until = 0;
+    int wait = 0, waited = 0;         // marks without a period before the next watch
+    size_t blocker = 0;               // the byte that kept the mark before the watch
+    std::vector<FreeGroup> groups;    // the free parts found, each with its own cycle
+    std::vector<char> taken;          // the bytes of the root in one of them
+    std::vector<Counting> counters;   // their counters: not counted while they are free
+    std::vector<Span> spans;          // the compared spans with none free
+};
+
 struct FastForward {
     bool on = false;
+    FreePart free;
     std::vector<IssShim> shims;
     std::vector<uint8_t> mark;  // Verilator's state at the mark
     std::vector<ClockPhase> mark_clocks;  // and every clock's
@@ -269,6 +315,7 @@ struct FastForward {
     size_t hint = 0;             // the aligned word that differed last, and its compared bytes
     uint64_t hint_mask = 0;
     size_t bot_cycles = 0;       // where the wrapper's bot_cycles counter is (not compared)
+    uint64_t mark_bot_cycles = 0;  // its value at the mark
     std::vector<BoardEvent> shown;  // what the board showed in the period, times from the mark
     bool overflow = false;          // too much for `shown`: no skip from this mark
     std::vector<Phase> phases;      // snapshots while the period is proved (buffers reused)
@@ -655,6 +702,9 @@ int board_fast_forward(Board* b, int mode) {
     }
     f.hint = 0;
     f.hint_mask = 0;
+    f.free = FreePart{};
+    if (observed) b->model.members(b->model.root, f.free.order);
+    f.free.taken.assign(b->model.root_size, 0);
     f.mark.assign(b->model.root_size, 0);
     f.marked = false;
     f.activity = ~0ull;
@@ -877,6 +927,10 @@ static const bool kFfTrace = std::getenv("BOTSIM_FF_TRACE") != nullptr;
         if (kFfTrace) std::fprintf(stderr, __VA_ARGS__); \
     } while (0)
 
+inline void free_bytes_out(const FreeGroup& g, const uint8_t* root, uint8_t* out);
+bool free_track(Board* b, uint64_t t);
+void free_start(Board* b, FreeGroup& g, uint64_t t);
+
 // Mark the state the fast-forward compares with. `drifting`: the counters' drifts found in the
 // period that ends here stay, for the next to confirm.
 void ff_mark(Board* b, uint64_t t, bool drifting = false) {
@@ -893,6 +947,7 @@ void ff_mark(Board* b, uint64_t t, bool drifting = false) {
     f.mark_clocks.resize(b->clocks.size());
     for (size_t i = 0; i < b->clocks.size(); i++) f.mark_clocks[i] = phase_of(b->clocks[i], t);
     f.mark_t = t;
+    f.mark_bot_cycles = *b->io.bot_cycles;
     f.marked = true;
     f.proven = false;
     f.shown.clear();
@@ -928,11 +983,262 @@ void ff_snap_take(Board* b, uint64_t t) {
     p.clocks.resize(b->clocks.size());
     for (size_t i = 0; i < b->clocks.size(); i++) p.clocks[i] = phase_of(b->clocks[i], t);
     p.shown = f.shown.size();
+    p.bot_cycles = *b->io.bot_cycles - f.mark_bot_cycles;
     b->host->ff_snap(b->host->ctx);
 }
 
 uint64_t ff_compare(Board* b, uint64_t t, uint64_t until_ps, BoardEvent* buf, uint32_t cap, uint32_t* n, Shown& s);
 uint64_t ff_restart(Board* b, uint64_t t);
+
+// A free part's bytes (FreePart) from `root` into `out`, or from `in` into `root`.
+inline void free_bytes_out(const FreeGroup& g, const uint8_t* root, uint8_t* out) {
+    for (const Span& x : g.part) {
+        std::memcpy(out, root + x.off, x.len);
+        out += x.len;
+    }
+}
+inline void free_bytes_in(const FreeGroup& g, uint8_t* root, const uint8_t* in) {
+    for (const Span& x : g.part) {
+        std::memcpy(root + x.off, in, x.len);
+        in += x.len;
+    }
+}
+
+// The runs of bytes of `from` (sorted, disjoint) where `keep[byte]`, merged.
+std::vector<Span> spans_where(const std::vector<Span>& from, const std::vector<char>& keep) {
+    std::vector<Span> out;
+    for (const Span& x : from) {
+        for (uint32_t i = x.off; i < x.off + x.len; i++) {
+            if (!keep[i]) continue;
+            if (!out.empty() && out.back().off + out.back().len == i) out.back().len++;
+            else out.push_back({i, 1});
+        }
+    }
+    return out;
+}
+
+// A board may have a free part when what it compares is what the run observes, its reads are
+// known, and it runs one clock.
+bool free_possible(const Board* b) {
+    if (!b->ff.observed_only || !b->model.reads_at || b->ff.free.order.empty()) return false;
+    for (size_t i = 1; i < b->clocks.size(); i++)
+        if (!b->clocks[i].parked) return false;
+    return true;
+}
+
+// A watch that found none: a longer wait before the next.
+void free_none(FreePart& p) {
+    p.watching = false;
+    p.wait = p.wait ? std::min(2 * p.wait, kFreeMostWait) : 1;
+    p.waited = 0;
+}
+
+// Give the free parts up: the counters and spans as they were.
+void free_off(FastForward& f) {
+    FreePart& p = f.free;
+    if (!p.groups.empty()) {
+        f.spans = p.spans;
+        for (const Counting& k : p.counters) f.counters.push_back(k);
+        p.counters.clear();
+        p.groups.clear();
+        std::fill(p.taken.begin(), p.taken.end(), 0);
+        f.hint = 0;
+        f.hint_mask = 0;
+    }
+    free_none(p);
+}
+
+// The watch is over: the variables that changed, each joined with the variables that read a
+// changing one (its readers change with it, or stay only as long as it lets them); a group
+// that touches nothing leaving the model, and holds the variable that kept the last mark from
+// its period (`blocker`, an offset), is free.
+void free_choose(Board* b, uint64_t t, size_t blocker) {
+    FastForward& f = b->ff;
+    FreePart& p = f.free;
+    const std::vector<BoardMember>& ms = p.order;
+    const DesignModel& model = b->model;
+    const size_t n = ms.size();
+    std::vector<char> varying(n, 0);
+    for (size_t i = 0; i < n; i++) {
+        if (!ms[i].observed) continue;
+        for (size_t j = 0; j < ms[i].len && !varying[i]; j++) varying[i] = p.vary[ms[i].off + j] != 0;
+    }
+    std::vector<uint32_t> up(n);
+    for (size_t i = 0; i < n; i++) up[i] = (uint32_t)i;
+    auto find = [&](uint32_t i) {
+        while (up[i] != i) i = up[i] = up[up[i]];
+        return i;
+    };
+    for (size_t i = 0; i < n; i++) {
+        if (!ms[i].observed) continue;
+        for (uint32_t k = model.reads_at[i]; k < model.reads_at[i + 1]; k++) {
+            const uint32_t r = model.reads[k];
+            if (varying[r]) up[find((uint32_t)i)] = find(r);
+        }
+    }
+    std::vector<char> changes(n, 0), leaves(n, 0);
+    for (size_t i = 0; i < n; i++) {
+        if (!ms[i].observed) continue;
+        const uint32_t c = find((uint32_t)i);
+        changes[c] |= varying[i];
+        leaves[c] |= model.external[i];
+    }
+    // The group of the variable that kept the mark from its period, if it is free (another
+    // free group, a display's refresh counter with its digit, is left to the counters).
+    size_t group = n;
+    for (size_t i = 0; i < n; i++)
+        if (ms[i].observed && blocker >= ms[i].off && blocker < ms[i].off + ms[i].len) group = find((uint32_t)i);
+    std::vector<char> in(n, 0);
+    size_t count = 0;
+    bool joins = false;  // it holds a free part found before: not one apart from it
+    for (size_t i = 0; i < n && group < n; i++) {
+        in[i] = ms[i].observed && find((uint32_t)i) == group && changes[group] && !leaves[group];
+        count += in[i];
+        joins |= in[i] && p.taken[ms[i].off];
+    }
+    if (!count || joins) {
+        FF_TRACE("ff %.6f ms: no free part (what kept the mark changes with %s)\n", t / 1e9,
+                 count ? "a free part found before" : "what leaves the model");
+        free_none(p);
+        return;
+    }
+    // What crosses between the part and the rest: whatever one side reads of the other.
+    std::vector<char> part_byte(b->model.root_size, 0), contact_byte(b->model.root_size, 0);
+    size_t bytes = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (!ms[i].observed) continue;
+        if (in[i]) {
+            std::memset(&part_byte[ms[i].off], 1, ms[i].len);
+            bytes += ms[i].len;
+        }
+        for (uint32_t k = model.reads_at[i]; k < model.reads_at[i + 1]; k++) {
+            const uint32_t r = model.reads[k];
+            if (in[i] != in[r]) std::memset(&contact_byte[ms[r].off], 1, ms[r].len);
+        }
+    }
+    const std::vector<Span> all{{0, (uint32_t)b->model.root_size}};
+    FreeGroup g;
+    g.part = spans_where(all, part_byte);
+    g.contact = spans_where(all, contact_byte);
+    g.bytes = bytes;
+    if (p.groups.empty()) p.spans = f.spans;
+    std::vector<char> rest(part_byte.size());
+    for (size_t i = 0; i < rest.size(); i++) {
+        rest[i] = !part_byte[i];
+        p.taken[i] |= part_byte[i];
+    }
+    f.spans = spans_where(f.spans, rest);
+    for (size_t i = 0; i < f.counters.size();) {
+        if (part_byte[f.counters[i].c.off]) {
+            p.counters.push_back(f.counters[i]);
+            f.counters.erase(f.counters.begin() + (long)i);
+        } else {
+            i++;
+        }
+    }
+    f.hint = 0;
+    f.hint_mask = 0;
+    p.watching = false;
+    p.groups.push_back(std::move(g));
+    free_start(b, p.groups.back(), t);
+    if (kFfTrace) {
+        std::fprintf(stderr, "ff %.6f ms: a free part of %zu variables (%zu bytes; %zu spans of contact):", t / 1e9, count,
+                     bytes, p.groups.back().contact.size());
+        for (size_t i = 0, shown = 0; i < n && shown < 6; i++)
+            if (in[i]) std::fprintf(stderr, "%s %s", shown++ ? "," : "", ms[i].name);
+        std::fprintf(stderr, "%s\n", count > 6 ? ", ..." : "");
+    }
+}
+
+// Every clock of a mark while a free part is watched for: false when the watch chose (the
+// board is marked afresh).
+__attribute__((noinline)) bool free_watch(Board* b, uint64_t t) {
+    FastForward& f = b->ff;
+    FreePart& p = f.free;
+    const uint8_t* root = b->model.root;
+    const uint8_t* m = f.mark.data();
+    for (const BoardMember& x : p.order)
+        if (x.observed)
+            for (size_t j = x.off; j < x.off + x.len; j++) p.vary[j] |= root[j] ^ m[j];
+    if (t < p.watch_until) return true;
+    free_choose(b, t, p.blocker);
+    f.marked = false;
+    f.quiet_from = t;
+    return false;
+}
+
+// A free part's cycle taken from `t` on.
+void free_start(Board* b, FreeGroup& g, uint64_t t) {
+    if (g.cycle.size() < g.bytes) g.cycle.resize(g.bytes);
+    free_bytes_out(g, b->model.root, g.cycle.data());
+    g.touch.clear();
+    for (const Span& x : g.contact) g.touch.insert(g.touch.end(), b->model.root + x.off, b->model.root + x.off + x.len);
+    g.seen = 1;
+    g.q = 0;
+    g.origin = t;
+    g.next_t = t + b->clocks[0].num;
+}
+
+// Every clock while free parts are on, marked or not: each one's contact as at its cycle's
+// start (else the cycle starts over, and a mark is over: false), its bytes until it is back.
+__attribute__((noinline)) bool free_track(Board* b, uint64_t t) {
+    FastForward& f = b->ff;
+    FreePart& p = f.free;
+    const uint8_t* root = b->model.root;
+    const uint64_t clock = b->clocks[0].num;
+    bool mark_over = false;
+    for (FreeGroup& g : p.groups) {
+        // A clock it did not see (the fast-forward was off for a while): its contact is not
+        // known to have stayed, the cycle starts over.
+        if (t != g.next_t) {
+            free_start(b, g, t);
+            mark_over = true;
+            continue;
+        }
+        g.next_t = t + clock;
+        bool changed = false;
+        const uint8_t* was = g.touch.data();
+        for (const Span& x : g.contact) {
+            if (std::memcmp(root + x.off, was, x.len) != 0) {
+                FF_TRACE("ff %.6f ms: a free part's contact changed (%s)\n", t / 1e9, member_name(f, x.off));
+                changed = true;
+                break;
+            }
+            was += x.len;
+        }
+        if (changed) {
+            if (++g.misses >= kFreeContactMisses) {
+                FF_TRACE("ff %.6f ms: its contact changes too often: the free parts are given up\n", t / 1e9);
+                free_off(f);
+                break;
+            }
+            free_start(b, g, t);
+            mark_over = true;
+            continue;
+        }
+        if (g.q) continue;
+        const uint64_t e = (t - g.origin) / clock;
+        if (e >= kMaxFreeCycle) {
+            FF_TRACE("ff %.6f ms: a free part is not back within %llu clocks: the free parts are given up\n",
+                     t / 1e9, (unsigned long long)e);
+            free_off(f);
+            break;
+        }
+        if (g.cycle.size() < (e + 1) * g.bytes) g.cycle.resize(2 * (e + 1) * g.bytes);
+        uint8_t* at = g.cycle.data() + e * g.bytes;
+        free_bytes_out(g, root, at);
+        g.seen = e + 1;
+        if (std::memcmp(at, g.cycle.data(), g.bytes) == 0) {
+            g.q = e;
+            FF_TRACE("ff %.6f ms: a free part's cycle is %llu clocks\n", t / 1e9, (unsigned long long)e);
+        }
+    }
+    if (!mark_over) return true;
+    const bool marked = f.marked;
+    f.marked = false;
+    if (marked) f.quiet_from = t;
+    return !marked;
+}
 
 // Remember that counter `k` turned at `value` at `t`: how long after its last turn there, and
 // how many times in a row it was that long (0: the first, or another time apart).
@@ -1038,8 +1344,10 @@ __attribute__((noinline)) uint64_t ff_counter_moved(Board* b, uint64_t t) {
 inline __attribute__((always_inline)) uint64_t ff_step(Board* b, uint64_t t, uint64_t until_ps, BoardEvent* buf,
                                                        uint32_t cap, uint32_t* n, Shown& s) {
     FastForward& f = b->ff;
+    if (!f.free.groups.empty() && !free_track(b, t)) return 0;
     if (b->host->activity != f.activity || !f.marked || f.overflow || t - f.mark_t > f.patience)
         return ff_restart(b, t);
+    if (f.free.watching && !free_watch(b, t)) return 0;
     uint8_t* root = b->model.root;
     if (!f.counters.empty() && !counters_inside(f, root)) return ff_counter_moved(b, t);
     uint8_t* m = f.mark.data();
@@ -1085,6 +1393,15 @@ __attribute__((noinline)) uint64_t ff_restart(Board* b, uint64_t t) {
         // taken for a short one that is not back where it was may be a long one marked near
         // its turn: it counts again.
         f.patience = std::min(2 * f.patience, kMaxPeriodPs);
+        FreePart& p = f.free;
+        if (busy >= 0 && !p.watching && ++p.waited > p.wait && free_possible(b)) {
+            // Perhaps a part of the board runs apart from the rest: watch what changes.
+            p.watching = true;
+            p.vary.assign(b->model.root_size, 0);
+            p.watch_until = t + std::min(f.patience, kFreeWatchPs);
+            p.blocker = f.members[busy].off;
+            FF_TRACE("ff %.6f ms: watching for a free part\n", t / 1e9);
+        }
         const uint8_t* root = b->model.root;
         for (Counting& k : f.counters) {
             if (k.trial != Counting::Trial::None) {
@@ -1168,6 +1485,14 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
         ff_mark(b, t, true);
         return 0;
     }
+    // A free part not yet back where it was at its cycle's start: no skip yet. The board
+    // is marked again here (as after a period that drifted), so that the period found is
+    // always the first from its mark: the records kept are of one period, the one a skip
+    // repeats.
+    if (std::any_of(f.free.groups.begin(), f.free.groups.end(), [](const FreeGroup& g) { return !g.q; })) {
+        ff_mark(b, t, true);
+        return 0;
+    }
     // The board repeats the period since the mark. Whole periods, then a phase of the next,
     // within the run, with room for their records, up to the bot's next port write, and with
     // every counter in its interval. With no room for one, the mark moves on one period: the
@@ -1238,7 +1563,7 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
             f.settle = kCounterSettlePs;
         }
     }
-    const uint64_t edges = h->ff_skip(h->ctx, k, (uint32_t)phase);
+    uint64_t edges = h->ff_skip(h->ctx, k, (uint32_t)phase);
     // Period j after the mark's shows what the mark's did, j periods later: the first of
     // them written out, the others as a repeat of it.
     auto shown = [&](size_t count, uint64_t from) {
@@ -1274,6 +1599,15 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
         for (size_t i = 0; i < nspans; i++) std::memcpy(root + spans[i].off, p.root.data() + spans[i].off, spans[i].len);
         skipped += p.at;
     }
+    for (FreeGroup& g : f.free.groups) {
+        // Each free part where its cycle is then.
+        g.misses = 0;
+        if (skipped) {
+            const uint64_t e = (t + skipped - g.origin) / b->clocks[0].num;
+            free_bytes_in(g, root, g.cycle.data() + (e % g.q) * g.bytes);
+            g.next_t = t + skipped + b->clocks[0].num;
+        }
+    }
     refresh_shims(b);
     f.mark_t += (k + 1) * period;  // the start of the period the board is now in
     if (skipped >= kWorthPs) {
@@ -1296,6 +1630,11 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
         Clock& c = b->clocks[i];
         if (!c.parked) set_phase(c, phase ? f.phases[phase - 1].clocks[i] : phase_of(c, t), t + skipped);
     }
+    // A bot of the team's own RTL (no model counts its edges): as many as the wrapper counted
+    // in the periods and the phase proved.
+    const uint64_t per_bot = bot_cycles - f.mark_bot_cycles;
+    f.mark_bot_cycles = bot_cycles + k * per_bot;
+    if (!edges) edges = k * per_bot + (phase ? f.phases[phase - 1].bot_cycles : 0);
     *b->io.bot_cycles = bot_cycles + edges;
     b->now = t + skipped;
     b->ctx.time(b->now);

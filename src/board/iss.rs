@@ -833,7 +833,9 @@ impl Host {
             programs.push((site.path.clone(), r.image.clone()));
         }
         let mut h = Host::new(programs, recording);
-        h.board_alone = plan.bot_path.is_none();
+        // No bot model bounds a skip: a board without a bot, or one whose bot is the team's
+        // own RTL (BotSim 3.1: its state is Verilator's, its KCPSM6 one of the models above).
+        h.board_alone = plan.bot_path.is_none() || plan.team_bot.is_some();
         Ok(h)
     }
 

@@ -73,6 +73,12 @@ pub struct Member {
     pub name: String,
     /// A run without a waveform or frames can observe it.
     pub observed: bool,
+    /// The observed variables its value depends on (indices among the members), through any
+    /// chain of Verilator's locals, functions and triggers; empty for one not observed.
+    pub reads: Vec<usize>,
+    /// What it depends on or feeds leaves the model (a record of the harness, a DPI call's
+    /// argument or result): its value is not the model's own to repeat.
+    pub external: bool,
 }
 
 /// Every variable of the root (from its header `root`), each with whether a run observes it,
@@ -225,7 +231,52 @@ impl Analysis {
 
     /// Every variable of the root with whether a run observes it.
     pub(super) fn members(&self) -> Vec<Member> {
-        self.names.iter().map(|name| Member { name: name.clone(), observed: self.observed(name) }).collect()
+        let n = self.g.preds.len();
+        // Graph node -> member index, for the members; which nodes leave the model.
+        let mut index = vec![usize::MAX; n];
+        for (k, name) in self.names.iter().enumerate() {
+            if let Some(&i) = self.g.ids.get(&member_node(name)) {
+                index[i] = k;
+            }
+        }
+        // A member the harness or a DPI call reads or writes leaves the model itself; one
+        // computed from a DPI call's result (a KCPSM6 model's outputs) too.
+        let (mut outside, mut result) = (vec![false; n], vec![false; n]);
+        for &r in &self.g.roots {
+            outside[r] = true;
+        }
+        for &r in &self.g.results {
+            result[r] = true;
+        }
+        // Each observed member's reads: the members met walking back through the other nodes.
+        let mut stamp = vec![usize::MAX; n];
+        self.names
+            .iter()
+            .enumerate()
+            .map(|(k, name)| {
+                let observed = self.observed(name);
+                let node = self.g.ids.get(&member_node(name)).copied();
+                let (mut reads, mut external) = (Vec::new(), false);
+                if let (true, Some(start)) = (observed, node) {
+                    external = outside[start];
+                    stamp[start] = k;
+                    let mut stack: Vec<usize> = self.g.preds[start].clone();
+                    while let Some(i) = stack.pop() {
+                        if std::mem::replace(&mut stamp[i], k) == k {
+                            continue;
+                        }
+                        if index[i] != usize::MAX {
+                            reads.push(index[i]);
+                        } else {
+                            external |= result[i];
+                            stack.extend(self.g.preds[i].iter().copied().filter(|&p| stamp[p] != k));
+                        }
+                    }
+                    reads.sort_unstable();
+                }
+                Member { name: name.clone(), observed, reads, external }
+            })
+            .collect()
     }
 
     /// [`unshown`] for this analysis (its graph gains the waveform functions' locals).
@@ -389,6 +440,24 @@ pub fn header(
         }
     }
     h.push_str("}\n");
+    // Each observed variable's reads (indices among the members, from `botsim_reads_at[i]` to
+    // `botsim_reads_at[i + 1]` in `botsim_reads`) and whether it touches what leaves the model
+    // (the harness's free parts, harness.cpp).
+    let ms: &[Member] = members.as_deref().unwrap_or(&[]);
+    let mut at = vec![0usize];
+    let mut reads = Vec::new();
+    for m in ms {
+        reads.extend(m.reads.iter().map(|r| r.to_string()));
+        at.push(reads.len());
+    }
+    reads.push("0".into()); // (never empty)
+    let list = |v: Vec<String>| v.join(", ");
+    h.push_str(&format!(
+        "static const uint32_t botsim_reads_at[] = {{{}}};\nstatic const uint32_t botsim_reads[] = {{{}}};\nstatic const uint8_t botsim_external[] = {{{}}};\n",
+        list(at.iter().map(|a| a.to_string()).collect()),
+        list(reads),
+        list(ms.iter().map(|m| u8::from(m.external).to_string()).chain(["0".into()]).collect()),
+    ));
     // The counters (super::counters): each one's bytes, width, direction, largest step, the
     // lowest bit a shifted read sees (64: none), the constants it is compared with, the bit
     // where no read straddles (64: none), the lowest bit a read above it sees (64: none) and
@@ -515,6 +584,8 @@ struct Graph {
     ids: HashMap<String, usize>,
     preds: Vec<Vec<usize>>,
     roots: Vec<usize>,
+    /// What a call outside the model writes (a DPI function's result, its arguments).
+    results: Vec<usize>,
 }
 
 impl Graph {
@@ -882,6 +953,7 @@ impl<'a> Parser<'a, '_> {
         if named.outside {
             self.g.roots.extend(sources.iter().copied());
             self.g.roots.extend(targets.iter().copied());
+            self.g.results.extend(targets.iter().chain(&named.outputs).copied());
         }
         for f in &named.calls {
             let node = self.g.node(&fun_node(f));
@@ -1022,6 +1094,28 @@ mod tests {
         let seen =
             observed("    if ((5U == (IData)(vlSelf->frames))) {\n        VL_FINISH_MT(\"top.v\", 9, \"\");\n    }\n");
         assert!(seen.iter().any(|s| s == "frames"), "{seen:?}");
+    }
+
+    #[test]
+    fn each_observed_variable_knows_what_it_reads_and_whether_it_leaves_the_model() {
+        // A free count beside the CPU model (the DPI call in the same function: its function
+        // running is not the call's result).
+        let c = code("    vlSelf->frames = (0xffU & ((IData)(1U) + (IData)(vlSelf->frames)));\n    vlSelf->an = vlSelf->frames;\n");
+        let m = members(ROOT, &[&c]).unwrap();
+        let at = |n: &str| m.iter().position(|x| x.name == n).unwrap_or_else(|| panic!("{n}"));
+        let frames = &m[at("frames")];
+        assert!(frames.observed && !frames.external, "{frames:?}");
+        // Its clock's trigger, through the function and the trigger; not itself.
+        for n in ["clk", "__Vtrigrprev__TOP__clk"] {
+            assert!(frames.reads.contains(&at(n)), "{n}: {frames:?}");
+        }
+        assert!(!frames.reads.contains(&at("frames")), "{frames:?}");
+        // The model's pins and what its result feeds leave the model, as do the records.
+        for n in ["en", "digit", "an"] {
+            assert!(m[at(n)].external, "{n}: {:?}", m[at(n)]);
+        }
+        // Not observed: no reads.
+        assert!(m[at("col")].reads.is_empty() && !m[at("col")].observed);
     }
 
     #[test]

@@ -183,12 +183,13 @@ fn check_one(seed: u64) -> f64 {
 /// 88 (a watchdog armed every 2^15 clocks whose heartbeat, every 1138, may first clear it in
 /// the middle of the first period after the arming: its records differed from every edge's
 /// at the second pin change when one period was taken for proof; so did 305's and, before
-/// the watchdog's heartbeats grew longer, 292's). A sprite
+/// the watchdog's heartbeats grew longer, 292's), 22 (two free parts: LFSRs stepped at baud
+/// ticks beside idle transmitters, whose contacts the random buttons change). A sprite
 /// on the raster whose pixel an LED shows (pdxrayw_p2video's icon) is checked edge for edge
 /// in 62, 67, 87, 102, 250 and 295 (each a variant: constant or moving, nested or one `if`,
 /// `?:`), locally; CI checks its shape in tests/boards/shapes.rs. `BOTSIM_RANDOM_ALSO`
 /// replaces them (empty: none).
-const ALSO: &str = "28,316,189,88";
+const ALSO: &str = "28,316,189,88,22";
 
 #[test]
 fn random_designs_record_what_every_edge_does_and_skip_what_repeats() {

@@ -182,6 +182,14 @@ fn a_watchdog_cleared_by_a_heartbeat_in_the_middle_of_the_period() {
     skips_and_equals_every_edge_at_least(&["WATCHDOG=1", "REFRESH_BITS=20"], 0.6);
 }
 
+#[test]
+fn a_part_that_runs_apart_from_everything_observed() {
+    // FREE_PART=1: an LFSR of a 32,767-clock cycle that only a register reads, and that only
+    // while a switch is on (it is off): the rest repeats with it every 32,767 x its own
+    // period only. Its cycle apart, the rest's period skips.
+    skips_and_equals_every_edge_at_least(&["FREE_PART=1"], 0.88);
+}
+
 /// The shapes design's arguments with `extra`.
 fn shapes(extra: &[&str]) -> Output {
     let mut args = vec!["tests/board_designs/shapes", "examples/common/nexys4_bot_if.v"];

@@ -273,8 +273,9 @@ pub fn generate(seed: u64) -> Design {
     // Parts written as students write them (their own debouncer, Nexys3-release shaped),
     // from a stream of their own: a seed's other parts are as they were.
     let mut style_stream = Rng::new(seed ^ 0x5354_594C);
-    // A watchdog in place of a part, sometimes (its own stream too).
+    // A watchdog in place of a part, sometimes (its own stream too); a free part likewise.
     let mut watchdog_stream = Rng::new(seed ^ 0x5744_4F47);
+    let mut free_stream = Rng::new(seed ^ 0x4652_4545);
     for i in 0..n {
         let clock = if clocks.len() > 1 && r.chance(40) { r.range(1, clocks.len() as u64 - 1) as usize } else { 0 };
         // Enabled by an earlier part's one-bit output (its tick, its toggle), sometimes.
@@ -292,6 +293,9 @@ pub fn generate(seed: u64) -> Design {
         let mut part = make_part(&mut r, i, clock, enable.map(|j| &parts[j]), simulate, tame, held);
         if watchdog_stream.chance(8) {
             part = watchdog(&mut watchdog_stream, i, clock);
+        }
+        if free_stream.chance(8) {
+            part = free_part(&mut free_stream, i, clock);
         }
         if style_stream.chance(12) {
             part = team_debouncer(&mut style_stream, i, clock, tame);
@@ -1578,6 +1582,80 @@ fn watchdog(r: &mut Rng, i: usize, clock: usize) -> Part {
             if held { "held at 0" } else { "counting on" },
             if registered { " (registered)" } else { "" }
         ),
+        fast: false,
+        module: String::new(),
+        resets: None,
+    }
+}
+
+/// A part that runs apart from everything observed, as a UART's baud rate divider does beside
+/// an idle transmitter (ddle_rojobotworld's `uart_tx6`, built of LUTs): a free-running source
+/// (an LFSR stepped every cycle, or at the tick of a wrap counter, or a divider counting the
+/// ticks) whose bit only a register reads: one that takes it while a switch is on, or an idle
+/// transmitter's line, which shows it only while sending (a switch and a button together
+/// start a send; the switches and buttons are random). While the switch is off or nothing is
+/// sent, the board repeats with the rest's period only with the source's cycle. Not claimed
+/// within reach.
+fn free_part(r: &mut Rng, i: usize, clock: usize) -> Part {
+    let clk = format!("@CLK{clock}@");
+    let n = format!("fp{i}");
+    let (width, taps): (u32, [u32; 2]) = *r.pick(&[(7, [6, 5]), (9, [8, 4]), (10, [9, 6])]);
+    let lfsr_step = format!("{{{n}_src[{}:0], {n}_src[{}] ^ {n}_src[{}]}}", width - 2, taps[0], taps[1]);
+    let baud = r.chance(60).then(|| r.range(20, 100));
+    let (decl, step, bit, how) = match (baud, r.chance(50)) {
+        (None, _) => (
+            format!("    reg [{}:0] {n}_src = {width}'d1;\n", width - 1),
+            format!("        {n}_src <= {lfsr_step};\n"),
+            format!("{n}_src[0]"),
+            format!("an LFSR of {width} bits"),
+        ),
+        (Some(b), lfsr) => {
+            let counters = format!("    reg [6:0] {n}_baud = 7'd0;\n    reg {n}_tick = 1'b0;\n");
+            let tick = format!(
+                "        if ({n}_baud == 7'd{}) begin\n            {n}_baud <= 7'd0;\n            {n}_tick <= 1'b1;\n        end else begin\n            {n}_baud <= {n}_baud + 7'd1;\n            {n}_tick <= 1'b0;\n        end\n",
+                b - 1
+            );
+            if lfsr {
+                (
+                    format!("{counters}    reg [{}:0] {n}_src = {width}'d1;\n", width - 1),
+                    format!("{tick}        if ({n}_tick) {n}_src <= {lfsr_step};\n"),
+                    format!("{n}_src[0]"),
+                    format!("an LFSR of {width} bits stepped every {b} cycles"),
+                )
+            } else {
+                (
+                    format!("{counters}    reg [3:0] {n}_src = 4'd0;\n"),
+                    format!("{tick}        {n}_src <= {n}_tick ? {n}_src + 4'd1 : {n}_src;\n"),
+                    format!("{n}_tick && {n}_src == 4'd15"),
+                    format!("a divider of 16 ticks every {b} cycles"),
+                )
+            }
+        }
+    };
+    let sw = r.range(8, 13);
+    let (taker, what) = if r.chance(50) {
+        (
+            format!("    reg {n}_out = 1'b0;\n    always @(posedge {clk}) {n}_out <= db_sw[{sw}] & ({bit});\n"),
+            format!("taken while switch {sw} is on"),
+        )
+    } else {
+        let btn = r.range(0, 4);
+        (
+            format!(
+                "    reg {n}_busy = 1'b0;\n    reg [3:0] {n}_bits = 4'd0;\n    reg {n}_out = 1'b1;\n    always @(posedge {clk}) begin\n        if (!{n}_busy) begin\n            {n}_out <= 1'b1;\n            if (db_sw[{sw}] && db_btns[{btn}]) {n}_busy <= 1'b1;\n        end else if ({bit}) begin\n            {n}_out <= {n}_bits[0];\n            {n}_bits <= {n}_bits + 4'd1;\n            if ({n}_bits == 4'd9) {n}_busy <= 1'b0;\n        end\n    end\n"
+            ),
+            format!("an idle transmitter's line, sending while switch {sw} and button {btn} are on"),
+        )
+    };
+    Part {
+        verilog: format!(
+            "    // A free part: {how}, {what}.\n{decl}    always @(posedge {clk}) begin\n{step}    end\n{taker}"
+        ),
+        bit: format!("{n}_out"),
+        value: format!("{{4'd0, {n}_out}}"),
+        shape: Shape::Unknown("a free part"),
+        clock,
+        text: format!("a free part: {how}, {what}"),
         fast: false,
         module: String::new(),
         resets: None,

@@ -26,6 +26,9 @@
 //              has not come for 1000 clocks: a count cleared by each tick, or held at 0
 //              while bit 19 of a free counter is clear (so it never lights; the count is
 //              set to its constant in the middle of a period, which proves nothing alone)
+//   FREE_PART  1: LED 11 shows a register that takes a bit of a 15-bit LFSR (stepped every clock,
+//              its cycle 32,767 clocks) only while switch 15 is on: off, the LFSR runs
+//              apart from everything observed, and the board repeats only with it
 //
 // With the course's debounce (botsim's, board.md 2.1), examples/common's port interface (nexys4_bot_if) and the bot.
 `timescale 1ns / 1ps
@@ -36,7 +39,8 @@ module nexys4fpga #(
     parameter TOGGLES = 0,
     parameter REFRESH_BITS = 18,
     parameter SPRITE = 0,
-    parameter WATCHDOG = 0
+    parameter WATCHDOG = 0,
+    parameter FREE_PART = 0
 ) (
     input  wire        clk,
     input  wire        btnCpuReset,
@@ -221,7 +225,22 @@ module nexys4fpga #(
             assign led12 = leds[12];
         end
     endgenerate
-    assign led = {led15, TOGGLES == 2 ? tog25 : TOGGLES == 3 ? tone : leds[14], led13, led12, leds[11:0]};
+    // The free part.
+    wire led11;
+    generate
+        if (FREE_PART == 1) begin : free_part
+            reg [14:0] lfsr = 15'h1;
+            reg taken = 1'b0;
+            always @(posedge sys_clk) begin
+                lfsr <= {lfsr[13:0], lfsr[14] ^ lfsr[13]};
+                taken <= sw[15] & lfsr[0];
+            end
+            assign led11 = taken;
+        end else begin : no_free_part
+            assign led11 = leds[11];
+        end
+    endgenerate
+    assign led = {led15, TOGGLES == 2 ? tog25 : TOGGLES == 3 ? tone : leds[14], led13, led12, led11, leds[10:0]};
     assign JA = {6'd0, TOGGLES == 1 ? tog25 : 1'b0, TOGGLES == 1 ? tog10 : 1'b0};
 endmodule
 

@@ -68,8 +68,11 @@ pub(crate) struct Watch {
 /// outer loop's period (whose count is the outer one, or which does not count). Loops nest
 /// to any depth: each inner count joins the state in turn, and stays while the outer
 /// periods it shows are found. A count on trial (just taken as state) whose outer period is
-/// not found within a few marks (the board's patience doubling at each) counts again, and
-/// is tried again only after twice as many ends.
+/// not found and skipped within a few marks (the board's patience doubling at each) counts
+/// again, and is tried again only after twice as many ends: an outer period too long to be
+/// proved between the turns of the board's counters (a 1 ms delay loop beside a display
+/// refreshed every 2 ms, which needs two periods' proof) is found but never skipped, and the
+/// inner count's own periods skip more.
 #[derive(Default)]
 struct Nest {
     /// Per byte of a count: its ends since its last trial, and its trials that found nothing.
@@ -79,8 +82,9 @@ struct Nest {
     /// The bytes on trial (the last taken), and the marks since their trial began.
     trial: Vec<usize>,
     trial_marks: u32,
+    /// The trial's outer period was found (not yet skipped), this many marks ago.
+    found_marks: Option<u32>,
 }
-
 struct Ends {
     at: usize,
     times: u32,
@@ -98,6 +102,9 @@ const SHORT_ROOM: u64 = 8;
 /// Ends of a count before a trial; marks a trial lasts.
 const ENDS_BEFORE_TRIAL: u32 = 2;
 const TRIAL_MARKS: u32 = 10;
+
+/// Marks a trial lasts once its outer period was found, if it is not skipped.
+const FOUND_MARKS: u32 = 3;
 
 impl Watch {
     pub fn new() -> Watch {
@@ -226,6 +233,7 @@ impl Watch {
     /// period did not count.
     pub fn skip(&mut self, periods: u64) -> Option<Cpu> {
         let Proof::Counting(p) = &mut self.proof else { return None };
+        self.nest.skipped(periods);
         if periods >= p.room() && self.room_found <= SHORT_ROOM {
             // The count ends in the next period, having been skipped little.
             self.nest.ended(&p.homes());
@@ -263,14 +271,28 @@ impl Nest {
         }
     }
 
-    /// A period that counts found (its count is not the state's): the trial's outer period.
+    /// A period that counts found (its count is not the state's): the trial's outer period,
+    /// which pays once it is skipped (`skipped`).
     fn found(&mut self) {
+        if self.trial.is_empty() {
+            self.trial_marks = 0;
+        } else {
+            self.found_marks.get_or_insert(0);
+        }
+    }
+
+    /// Periods of a count skipped: a trial's outer period paid.
+    fn skipped(&mut self, periods: u64) {
+        if periods == 0 {
+            return;
+        }
         for at in self.trial.drain(..) {
             if let Some(e) = self.ends.iter_mut().find(|e| e.at == at) {
                 e.failed = 0;
             }
         }
         self.trial_marks = 0;
+        self.found_marks = None;
     }
 
     /// A period that does not count found: a trial holds while it repeats.
@@ -285,7 +307,9 @@ impl Nest {
             return;
         }
         self.trial_marks += 1;
-        if self.trial_marks > TRIAL_MARKS {
+        let found_marks = self.found_marks.map(|m| m + 1);
+        self.found_marks = found_marks;
+        if self.trial_marks > TRIAL_MARKS || found_marks.is_some_and(|m| m > FOUND_MARKS) {
             for at in self.trial.drain(..) {
                 self.state.retain(|&s| s != at);
                 if let Some(e) = self.ends.iter_mut().find(|e| e.at == at) {
@@ -294,6 +318,7 @@ impl Nest {
                 }
             }
             self.trial_marks = 0;
+            self.found_marks = None;
         }
     }
 }
@@ -365,8 +390,26 @@ mod tests {
         // above), and a board of 18 cycles finds the middle loop's: s1 counts.
         assert_eq!(look(&mut w, &mark, 4, 1), None);
         assert_eq!(look(&mut w, &mark, 18, 3), Some((18, Same::Counting)));
-        assert!(w.nest.trial.is_empty(), "the trial found its outer period");
+        assert_eq!(w.nest.trial, vec![2], "found, not yet skipped");
         assert_eq!(w.room(), Some(1), "s1 is 2 now: one more middle turn before it ends");
+        w.skip(1).unwrap();
+        assert!(w.nest.trial.is_empty(), "the trial's outer period skipped: it paid");
+        assert!(w.nest.state.contains(&2), "{:?}", w.nest.state);
+    }
+
+    #[test]
+    fn a_trial_whose_outer_period_is_found_but_never_skipped_ends() {
+        let mut n = Nest::default();
+        n.ended(&[7]);
+        n.ended(&[7]);
+        n.found();
+        n.skipped(0);
+        for _ in 0..FOUND_MARKS {
+            n.mark();
+        }
+        assert_eq!(n.state, vec![7], "still on trial");
+        n.mark();
+        assert!(n.state.is_empty() && n.trial.is_empty(), "the trial ended: {:?}", n.state);
     }
 
     #[test]
@@ -389,8 +432,9 @@ mod tests {
         assert!(n.state.is_empty(), "four ends now");
         n.ended(&[7]);
         assert_eq!(n.state, vec![7]);
-        // Found: it stays state, and a later trial of another count leaves it.
+        // Found and skipped: it stays state, and a later trial of another count leaves it.
         n.found();
+        n.skipped(1);
         n.ended(&[9]);
         n.ended(&[9]);
         for _ in 0..=TRIAL_MARKS {

@@ -1033,18 +1033,26 @@ void free_none(FreePart& p) {
     p.waited = 0;
 }
 
-// Give the free parts up: the counters and spans as they were.
-void free_off(FastForward& f) {
+// Give free part `i` up: its bytes compared again, its counters counters again.
+void free_drop(FastForward& f, size_t i) {
     FreePart& p = f.free;
-    if (!p.groups.empty()) {
-        f.spans = p.spans;
-        for (const Counting& k : p.counters) f.counters.push_back(k);
-        p.counters.clear();
-        p.groups.clear();
-        std::fill(p.taken.begin(), p.taken.end(), 0);
-        f.hint = 0;
-        f.hint_mask = 0;
+    p.groups.erase(p.groups.begin() + (long)i);
+    std::fill(p.taken.begin(), p.taken.end(), 0);
+    for (const FreeGroup& g : p.groups)
+        for (const Span& x : g.part) std::fill(p.taken.begin() + x.off, p.taken.begin() + x.off + x.len, 1);
+    std::vector<char> rest(p.taken.size());
+    for (size_t j = 0; j < rest.size(); j++) rest[j] = !p.taken[j];
+    f.spans = spans_where(p.spans, rest);
+    for (size_t j = 0; j < p.counters.size();) {
+        if (!p.taken[p.counters[j].c.off]) {
+            f.counters.push_back(p.counters[j]);
+            p.counters.erase(p.counters.begin() + (long)j);
+        } else {
+            j++;
+        }
     }
+    f.hint = 0;
+    f.hint_mask = 0;
     free_none(p);
 }
 
@@ -1187,7 +1195,8 @@ __attribute__((noinline)) bool free_track(Board* b, uint64_t t) {
     const uint8_t* root = b->model.root;
     const uint64_t clock = b->clocks[0].num;
     bool mark_over = false;
-    for (FreeGroup& g : p.groups) {
+    for (size_t i = 0; i < p.groups.size(); i++) {
+        FreeGroup& g = p.groups[i];
         // A clock it did not see (the fast-forward was off for a while): its contact is not
         // known to have stayed, the cycle starts over.
         if (t != g.next_t) {
@@ -1207,22 +1216,23 @@ __attribute__((noinline)) bool free_track(Board* b, uint64_t t) {
             was += x.len;
         }
         if (changed) {
+            mark_over = true;
             if (++g.misses >= kFreeContactMisses) {
-                FF_TRACE("ff %.6f ms: its contact changes too often: the free parts are given up\n", t / 1e9);
-                free_off(f);
-                break;
+                FF_TRACE("ff %.6f ms: its contact changes too often: the free part is given up\n", t / 1e9);
+                free_drop(f, i--);
+                continue;
             }
             free_start(b, g, t);
-            mark_over = true;
             continue;
         }
         if (g.q) continue;
         const uint64_t e = (t - g.origin) / clock;
         if (e >= kMaxFreeCycle) {
-            FF_TRACE("ff %.6f ms: a free part is not back within %llu clocks: the free parts are given up\n",
-                     t / 1e9, (unsigned long long)e);
-            free_off(f);
-            break;
+            FF_TRACE("ff %.6f ms: a free part is not back within %llu clocks: it is given up\n", t / 1e9,
+                     (unsigned long long)e);
+            free_drop(f, i--);
+            mark_over = true;
+            continue;
         }
         if (g.cycle.size() < (e + 1) * g.bytes) g.cycle.resize(2 * (e + 1) * g.bytes);
         uint8_t* at = g.cycle.data() + e * g.bytes;
@@ -1619,9 +1629,16 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
         FF_TRACE("ff %.6f ms: skips too short to pay: a rest of %llu clocks before each mark\n", t / 1e9,
                  (unsigned long long)(f.rest / 10000));
     }
-    // A core's count that ends in the next period (its room used up): the period is looked
-    // for again within a few, not after the long wait a mark may have grown to.
-    if (models == 2 && h->ff_room(h->ctx, 1) == 0) f.patience = std::max(4 * period, kShortPatiencePs);
+    // A core's count that ends in the next period (its room used up): that period is not the
+    // mark's again (the count is reloaded, an outer one steps); the board is marked afresh
+    // once it is over, and the period looked for within a few, not after the long wait a mark
+    // may have grown to.
+    if (models == 2 && h->ff_room(h->ctx, 1) == 0) {
+        f.patience = std::max(4 * period, kShortPatiencePs);
+        f.marked = false;
+        f.quiet_from = t + skipped;
+        f.settle = period + kCounterSettlePs;
+    }
     FF_TRACE("ff %.6f ms: period %llu clocks, %zu shown, skip %llu periods + phase %zu (%.6f ms)\n", t / 1e9,
              (unsigned long long)(period / 10000), per, (unsigned long long)k, phase, skipped / 1e9);
     if (k == 0 && phase == 0) return 0;

@@ -144,7 +144,7 @@ constexpr uint64_t kMaxFreeCycle = 1ull << 16;
 constexpr int kFreeContactMisses = 8;
 // After a watch that found none, this many marks without a period pass before the next watch,
 // doubled after each such up to the most.
-constexpr int kFreeMostWait = 8;
+constexpr int kFreeMostWait = 64;
 // The values a counter's turns are remembered at (Counting::turns), the least recently turned
 // at forgotten first.
 constexpr size_t kTurnValues = 8;
@@ -155,6 +155,8 @@ constexpr size_t kMaxShown = 1 << 16;
 // The most records one evaluation writes: the display, the VGA pins, the LEDs, the lines, the
 // bot's outputs, its sample and the other bots' three.
 constexpr uint32_t kMaxPerEval = 9;
+// Words that differed before the last, looked at before a full comparison (ff_step).
+constexpr size_t kOldHints = 3;
 
 // The fast-forward (a one-clock board whose KCPSM6s are models and whose bot is a model):
 // after a rising edge, when the whole model (every byte of Verilator's state, every KCPSM6
@@ -277,7 +279,10 @@ struct FreeGroup {
     std::vector<Span> part, contact;  // its bytes; those that must stay as at `origin`
     size_t bytes = 0;                 // its bytes in all
     std::vector<uint8_t> cycle;       // its bytes at each clock since `origin`
-    std::vector<uint8_t> touch;       // the contact's bytes at `origin`
+    // The contact as aligned words of the root and the bytes of each it covers (a load and a
+    // compare each at every clock), and their values at `origin`.
+    std::vector<std::pair<size_t, uint64_t>> words;
+    std::vector<uint64_t> touch_words;
     uint64_t seen = 0;                // clocks recorded since `origin`
     uint64_t q = 0;                   // its cycle in clocks (0: not found yet)
     uint64_t origin = 0;              // when the cycle's first bytes were taken
@@ -288,6 +293,7 @@ struct FreePart {
     bool watching = false;
     std::vector<BoardMember> order;   // the members in botsim_observed.h's order (reads' indices)
     std::vector<uint8_t> vary;        // while watching: the bits that changed from a mark
+    std::vector<Span> watched;        // the observed variables' bytes
     uint64_t watch_until = 0;
     int wait = 0, waited = 0;         // marks without a period before the next watch
     size_t blocker = 0;               // the byte that kept the mark before the watch
@@ -314,6 +320,11 @@ struct FastForward {
     bool observed_only = false;  // the spans are what a run observes (no VGA pins)
     size_t hint = 0;             // the aligned word that differed last, and its compared bytes
     uint64_t hint_mask = 0;
+    bool hint_is_span = false;   // (a word of the spans, not a counter's compared bits)
+    // Words of the spans that differed before it (see ff_step).
+    std::array<size_t, kOldHints> old_hint{};
+    std::array<uint64_t, kOldHints> old_mask{};
+    size_t next_old = 0;
     size_t bot_cycles = 0;       // where the wrapper's bot_cycles counter is (not compared)
     uint64_t mark_bot_cycles = 0;  // its value at the mark
     std::vector<BoardEvent> shown;  // what the board showed in the period, times from the mark
@@ -702,8 +713,20 @@ int board_fast_forward(Board* b, int mode) {
     }
     f.hint = 0;
     f.hint_mask = 0;
+    f.old_mask.fill(0);
+    f.hint_is_span = false;
     f.free = FreePart{};
-    if (observed) b->model.members(b->model.root, f.free.order);
+    if (observed) {
+        b->model.members(b->model.root, f.free.order);
+        for (const BoardMember& m : f.members) {  // (sorted by their bytes)
+            if (!m.observed) continue;
+            std::vector<Span>& w = f.free.watched;
+            if (!w.empty() && w.back().off + w.back().len >= m.off)
+                w.back().len = std::max(w.back().len, (uint32_t)(m.off + m.len - w.back().off));
+            else
+                w.push_back({(uint32_t)m.off, (uint32_t)m.len});
+        }
+    }
     f.free.taken.assign(b->model.root_size, 0);
     f.mark.assign(b->model.root_size, 0);
     f.marked = false;
@@ -1053,6 +1076,8 @@ void free_drop(FastForward& f, size_t i) {
     }
     f.hint = 0;
     f.hint_mask = 0;
+    f.old_mask.fill(0);
+    f.hint_is_span = false;
     free_none(p);
 }
 
@@ -1146,6 +1171,8 @@ void free_choose(Board* b, uint64_t t, size_t blocker) {
     }
     f.hint = 0;
     f.hint_mask = 0;
+    f.old_mask.fill(0);
+    f.hint_is_span = false;
     p.watching = false;
     p.groups.push_back(std::move(g));
     free_start(b, p.groups.back(), t);
@@ -1165,8 +1192,7 @@ __attribute__((noinline)) bool free_watch(Board* b, uint64_t t) {
     FreePart& p = f.free;
     const uint8_t* root = b->model.root;
     const uint8_t* m = f.mark.data();
-    for (const BoardMember& x : p.order)
-        if (x.observed)
+    for (const Span& x : p.watched)
             for (size_t j = x.off; j < x.off + x.len; j++) p.vary[j] |= root[j] ^ m[j];
     if (t < p.watch_until) return true;
     free_choose(b, t, p.blocker);
@@ -1179,8 +1205,16 @@ __attribute__((noinline)) bool free_watch(Board* b, uint64_t t) {
 void free_start(Board* b, FreeGroup& g, uint64_t t) {
     if (g.cycle.size() < g.bytes) g.cycle.resize(g.bytes);
     free_bytes_out(g, b->model.root, g.cycle.data());
-    g.touch.clear();
-    for (const Span& x : g.contact) g.touch.insert(g.touch.end(), b->model.root + x.off, b->model.root + x.off + x.len);
+    g.words.clear();
+    g.touch_words.clear();
+    for (const Span& x : g.contact) {
+        for (size_t i = x.off; i < x.off + x.len; i++) {
+            const size_t w = i & ~(size_t)7;
+            if (g.words.empty() || g.words.back().first != w) g.words.push_back({w, 0});
+            g.words.back().second |= 0xFFull << (8 * (i - w));
+        }
+    }
+    for (const auto& [w, mask] : g.words) g.touch_words.push_back(load64(b->model.root + w) & mask);
     g.seen = 1;
     g.q = 0;
     g.origin = t;
@@ -1206,14 +1240,15 @@ __attribute__((noinline)) bool free_track(Board* b, uint64_t t) {
         }
         g.next_t = t + clock;
         bool changed = false;
-        const uint8_t* was = g.touch.data();
-        for (const Span& x : g.contact) {
-            if (std::memcmp(root + x.off, was, x.len) != 0) {
-                FF_TRACE("ff %.6f ms: a free part's contact changed (%s)\n", t / 1e9, member_name(f, x.off));
+        for (size_t k = 0; k < g.words.size(); k++) {
+            if ((load64(root + g.words[k].first) & g.words[k].second) != g.touch_words[k]) {
+                FF_TRACE("ff %.6f ms: a free part's contact changed (%s)\n", t / 1e9,
+                         member_name(f, g.words[k].first + (size_t)__builtin_ctzll(
+                                                               (load64(root + g.words[k].first) & g.words[k].second) ^
+                                                               g.touch_words[k]) / 8));
                 changed = true;
                 break;
             }
-            was += x.len;
         }
         if (changed) {
             mark_over = true;
@@ -1366,6 +1401,20 @@ inline __attribute__((always_inline)) uint64_t ff_step(Board* b, uint64_t t, uin
         ff_snap(b, t);
         return 0;
     }
+    // A word that differed before and differs now becomes the word looked at first (a board
+    // whose CPUs loop in a few clocks has words that match the mark often: the one that
+    // differs longest is kept first, and is the one a mark's end blames).
+    for (size_t i = 0; i < kOldHints; i++) {
+        if ((load64(root + f.old_hint[i]) ^ load64(m + f.old_hint[i])) & f.old_mask[i]) {
+            std::swap(f.hint, f.old_hint[i]);
+            std::swap(f.hint_mask, f.old_mask[i]);
+            // (A counter's bits are compared only while it is state: not kept.)
+            if (!f.hint_is_span) f.old_mask[i] = 0;
+            f.hint_is_span = true;
+            ff_snap(b, t);
+            return 0;
+        }
+    }
     return ff_compare(b, t, until_ps, buf, cap, n, s);
 }
 
@@ -1404,7 +1453,8 @@ __attribute__((noinline)) uint64_t ff_restart(Board* b, uint64_t t) {
         // its turn: it counts again.
         f.patience = std::min(2 * f.patience, kMaxPeriodPs);
         FreePart& p = f.free;
-        if (busy >= 0 && !p.watching && ++p.waited > p.wait && free_possible(b)) {
+        // (Not while skips are too short to pay: the board is busy, a UART sending.)
+        if (busy >= 0 && !p.watching && !f.rest && ++p.waited > p.wait && free_possible(b)) {
             // Perhaps a part of the board runs apart from the rest: watch what changes.
             p.watching = true;
             p.vary.assign(b->model.root_size, 0);
@@ -1443,6 +1493,12 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
         if (std::memcmp(root + x.off, m + x.off, x.len) == 0) continue;
         size_t p = x.off;
         while (root[p] == m[p]) p++;
+        if (f.hint_mask && f.hint_is_span) {
+            f.old_hint[f.next_old] = f.hint;
+            f.old_mask[f.next_old] = f.hint_mask;
+            f.next_old = (f.next_old + 1) % kOldHints;
+        }
+        f.hint_is_span = true;
         f.hint = p & ~(size_t)7;
         f.hint_mask = 0;
         for (size_t j = 0; j < 8; j++)
@@ -1455,6 +1511,7 @@ __attribute__((noinline)) uint64_t ff_compare(Board* b, uint64_t t, uint64_t unt
     for (const Counting& k : f.counters) {
         const uint64_t differ = (counter_value(root, k) ^ counter_value(m, k)) & k.exact;
         if (!differ) continue;
+        f.hint_is_span = false;
         f.hint = k.c.off & ~(size_t)7;
         const size_t at = k.c.off - f.hint;
         f.hint_mask = at + k.c.len <= 8 ? k.exact << (8 * at) : 0;

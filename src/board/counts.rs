@@ -307,9 +307,10 @@ impl Nest {
             return;
         }
         self.trial_marks += 1;
-        let found_marks = self.found_marks.map(|m| m + 1);
-        self.found_marks = found_marks;
-        if self.trial_marks > TRIAL_MARKS || found_marks.is_some_and(|m| m > FOUND_MARKS) {
+        if let Some(m) = &mut self.found_marks {
+            *m += 1;
+        }
+        if self.trial_marks > TRIAL_MARKS || self.found_marks.is_some_and(|m| m > FOUND_MARKS) {
             for at in self.trial.drain(..) {
                 self.state.retain(|&s| s != at);
                 if let Some(e) = self.ends.iter_mut().find(|e| e.at == at) {

@@ -283,7 +283,6 @@ struct FreeGroup {
     // compare each at every clock), and their values at `origin`.
     std::vector<std::pair<size_t, uint64_t>> words;
     std::vector<uint64_t> touch_words;
-    uint64_t seen = 0;                // clocks recorded since `origin`
     uint64_t q = 0;                   // its cycle in clocks (0: not found yet)
     uint64_t origin = 0;              // when the cycle's first bytes were taken
     uint64_t next_t = 0;              // the clock it looks at next (another: one not seen)
@@ -354,6 +353,14 @@ struct FastForward {
     // design compares it with came before anything else did).
     std::vector<uint64_t> cut;
 };
+
+// The hints forgotten (the compared spans changed): the next edge compares in full.
+inline void reset_hints(FastForward& f) {
+    f.hint = 0;
+    f.hint_mask = 0;
+    f.old_mask.fill(0);
+    f.hint_is_span = false;
+}
 
 // The variable whose byte `off` is, in the (sorted) members, or -1.
 inline long member_at(const FastForward& f, size_t off) {
@@ -711,10 +718,7 @@ int board_fast_forward(Board* b, int mode) {
         if (c.parked && !park && !c.stopped) c.schedule_from(b->now + 1);
         c.parked = park;
     }
-    f.hint = 0;
-    f.hint_mask = 0;
-    f.old_mask.fill(0);
-    f.hint_is_span = false;
+    reset_hints(f);
     f.free = FreePart{};
     if (observed) {
         b->model.members(b->model.root, f.free.order);
@@ -1056,6 +1060,21 @@ void free_none(FreePart& p) {
     p.waited = 0;
 }
 
+// The compared spans and the counters as the free parts leave them (`taken`): the spans with
+// none free less their bytes, each counter counted or kept apart; the hints taken afresh.
+void free_apply(FastForward& f) {
+    FreePart& p = f.free;
+    std::vector<char> rest(p.taken.size());
+    for (size_t j = 0; j < rest.size(); j++) rest[j] = !p.taken[j];
+    f.spans = spans_where(p.spans, rest);
+    std::vector<Counting> all = std::move(f.counters);
+    all.insert(all.end(), p.counters.begin(), p.counters.end());
+    f.counters.clear();
+    p.counters.clear();
+    for (Counting& k : all) (p.taken[k.c.off] ? p.counters : f.counters).push_back(std::move(k));
+    reset_hints(f);
+}
+
 // Give free part `i` up: its bytes compared again, its counters counters again.
 void free_drop(FastForward& f, size_t i) {
     FreePart& p = f.free;
@@ -1063,21 +1082,7 @@ void free_drop(FastForward& f, size_t i) {
     std::fill(p.taken.begin(), p.taken.end(), 0);
     for (const FreeGroup& g : p.groups)
         for (const Span& x : g.part) std::fill(p.taken.begin() + x.off, p.taken.begin() + x.off + x.len, 1);
-    std::vector<char> rest(p.taken.size());
-    for (size_t j = 0; j < rest.size(); j++) rest[j] = !p.taken[j];
-    f.spans = spans_where(p.spans, rest);
-    for (size_t j = 0; j < p.counters.size();) {
-        if (!p.taken[p.counters[j].c.off]) {
-            f.counters.push_back(p.counters[j]);
-            p.counters.erase(p.counters.begin() + (long)j);
-        } else {
-            j++;
-        }
-    }
-    f.hint = 0;
-    f.hint_mask = 0;
-    f.old_mask.fill(0);
-    f.hint_is_span = false;
+    free_apply(f);
     free_none(p);
 }
 
@@ -1155,24 +1160,8 @@ void free_choose(Board* b, uint64_t t, size_t blocker) {
     g.contact = spans_where(all, contact_byte);
     g.bytes = bytes;
     if (p.groups.empty()) p.spans = f.spans;
-    std::vector<char> rest(part_byte.size());
-    for (size_t i = 0; i < rest.size(); i++) {
-        rest[i] = !part_byte[i];
-        p.taken[i] |= part_byte[i];
-    }
-    f.spans = spans_where(f.spans, rest);
-    for (size_t i = 0; i < f.counters.size();) {
-        if (part_byte[f.counters[i].c.off]) {
-            p.counters.push_back(f.counters[i]);
-            f.counters.erase(f.counters.begin() + (long)i);
-        } else {
-            i++;
-        }
-    }
-    f.hint = 0;
-    f.hint_mask = 0;
-    f.old_mask.fill(0);
-    f.hint_is_span = false;
+    for (size_t i = 0; i < part_byte.size(); i++) p.taken[i] |= part_byte[i];
+    free_apply(f);
     p.watching = false;
     p.groups.push_back(std::move(g));
     free_start(b, p.groups.back(), t);
@@ -1215,7 +1204,6 @@ void free_start(Board* b, FreeGroup& g, uint64_t t) {
         }
     }
     for (const auto& [w, mask] : g.words) g.touch_words.push_back(load64(b->model.root + w) & mask);
-    g.seen = 1;
     g.q = 0;
     g.origin = t;
     g.next_t = t + b->clocks[0].num;
@@ -1272,7 +1260,6 @@ __attribute__((noinline)) bool free_track(Board* b, uint64_t t) {
         if (g.cycle.size() < (e + 1) * g.bytes) g.cycle.resize(2 * (e + 1) * g.bytes);
         uint8_t* at = g.cycle.data() + e * g.bytes;
         free_bytes_out(g, root, at);
-        g.seen = e + 1;
         if (std::memcmp(at, g.cycle.data(), g.bytes) == 0) {
             g.q = e;
             FF_TRACE("ff %.6f ms: a free part's cycle is %llu clocks\n", t / 1e9, (unsigned long long)e);

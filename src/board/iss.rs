@@ -439,7 +439,8 @@ pub struct Host {
     /// Boxed: the design holds pointers to them while the vector grows.
     #[allow(clippy::vec_box)]
     bots: Vec<Box<BotModel>>,
-    /// The design has no bot (the board alone): nothing of a bot bounds a skip.
+    /// No bot model (a board without a bot, or a team's own bot all in RTL): nothing of a
+    /// bot bounds a skip.
     board_alone: bool,
     raw: RawHost,
 }

@@ -51,6 +51,15 @@ typedef struct BoardCpuFns {
     /* The design reads this instance's out_port only under a write strobe (the analysis of
      * src/board/strobes.rs): a count shown there between OUTPUTs cannot change the board. */
     void (*out_port_free)(void* cpu);
+    /* The design lets this instance run apart from the board (src/board/apart.rs), as its
+     * entry in botsim_observed.h's `botsim_apart` says; or no longer (null: a run that
+     * compares all of the board). */
+    void (*apart_capable)(void* cpu, const char* entry);
+    /* Since the last mark the instance runs apart: the fast-forward compares neither it nor
+     * its followers, and the host runs it on its own over a skip (up to just before its next
+     * port access). Until the next mark, or until its reset, sleep or interrupt rises (which
+     * counts as activity). */
+    int (*apart)(void* cpu);
 } BoardCpuFns;
 
 /* A probe on one RTL KCPSM6's ports (the lock-step build), which begins with a pointer to

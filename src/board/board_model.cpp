@@ -75,6 +75,7 @@ DesignModel botsim_model_new(VerilatedContext* ctx) {
     m.io.xbot_regs[2] = &t->xbot_regs3;
     m.observed_known = kObservedKnown;
     m.out_port_free = botsim_out_port_free;
+    m.apart = botsim_apart;
     m.reads_at = botsim_reads_at;
     m.reads = botsim_reads;
     m.external = botsim_external;

@@ -99,6 +99,9 @@ struct DesignModel {
     // The KCPSM6 models (by the Verilator name of their instance) whose out_port the design
     // reads only under a write strobe (src/board/strobes.rs); null-terminated.
     const char* const* out_port_free;
+    // The KCPSM6 models that may run apart from the board (src/board/apart.rs): each entry
+    // the instance's Verilator name and its followers, separated by spaces; null-terminated.
+    const char* const* apart;
     void (*counters)(const uint8_t* root, std::vector<BoardCounter>& out);
     // Vboard::eval(); the evaluation proper, which eval() wraps; the trigger computation
     // alone, or null when the Verilator has none (BOTSIM_EVAL_TRIGGERS).

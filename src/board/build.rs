@@ -515,6 +515,7 @@ fn analyse(step: &Step, delays: Option<&str>) -> Result<super::checks::Checked, 
             &checked.members,
             &checked.counters,
             &checked.out_port_free,
+            &checked.apart,
             checked.triggers_fn.as_deref(),
         ),
     )?;

@@ -97,6 +97,9 @@ pub struct Checked {
     /// The KCPSM6 models whose out_port the design reads only under a write strobe
     /// (super::strobes).
     pub out_port_free: Vec<String>,
+    /// The KCPSM6 models that may run apart from the board, and their followers
+    /// (super::apart).
+    pub apart: Vec<super::apart::Apart>,
     /// The generated function that computes the active triggers alone (its name differs
     /// between Verilator versions), for the harness's rising-edges-only evaluation.
     pub triggers_fn: Option<String>,
@@ -130,7 +133,8 @@ impl Checked {
                 let triggers_fn = g.triggers_fn.clone();
                 let eval: Vec<&str> = g.eval.iter().map(String::as_str).collect();
                 let out_port_free = super::strobes::out_port_free(&g.root, &eval);
-                Checked { verdicts, members, unshown, counters, out_port_free, triggers_fn }
+                let apart = super::apart::cores_apart(&g.root, &eval);
+                Checked { verdicts, members, unshown, counters, out_port_free, apart, triggers_fn }
             }
             None => {
                 let why = "Verilator's output could not be read".to_string();
@@ -145,6 +149,7 @@ impl Checked {
                     unshown: Err(why),
                     counters: Vec::new(),
                     out_port_free: Vec::new(),
+                    apart: Vec::new(),
                     triggers_fn: None,
                 }
             }

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <array>
+#include <sstream>
 #include <cstdarg>
 #include <cstdint>
 #include <cstdio>
@@ -264,6 +265,18 @@ struct IssShim {
     size_t q, cpu;
 };
 
+// A KCPSM6 model that may run apart from the board (src/board/apart.rs: what it shows between
+// port accesses reaches nothing but its followers, the variables that only feed its own
+// `instruction` and `in_port`). While the host says it runs apart (from a mark on), neither
+// it nor its followers are compared: the host runs it on its own over a skip, up to just
+// before its next port access, and the followers, written in full at every edge, are its
+// again an edge later.
+struct ApartCore {
+    size_t cpu;                   // where its model pointer is
+    std::vector<Span> followers;  // their bytes
+    bool on = false;
+};
+
 // A free part: variables that change among themselves alone while everything they read from
 // the rest of the board, and everything of theirs the rest reads, stays as it was (a baud
 // rate divider running beside an idle UART, a free-running LFSR whose output nothing takes
@@ -299,13 +312,15 @@ struct FreePart {
     std::vector<FreeGroup> groups;    // the free parts found, each with its own cycle
     std::vector<char> taken;          // the bytes of the root in one of them
     std::vector<Counting> counters;   // their counters: not counted while they are free
-    std::vector<Span> spans;          // the compared spans with none free
 };
 
 struct FastForward {
     bool on = false;
     FreePart free;
     std::vector<IssShim> shims;
+    std::vector<ApartCore> apart;
+    std::vector<char> apart_bytes;  // the root's bytes of the followers of the cores apart
+    std::vector<Span> all_spans;    // the compared spans with no free part and no core apart
     std::vector<uint8_t> mark;  // Verilator's state at the mark
     std::vector<ClockPhase> mark_clocks;  // and every clock's
     bool marked = false;
@@ -633,9 +648,24 @@ void find_shims(Board* b, const std::vector<BoardMember>& ms) {
             bool free = false;
             for (const char* const* p = b->model.out_port_free; p && *p; p++) free |= core == *p;
             if (cpu && free) (*(const BoardCpuFns* const*)cpu)->out_port_free(cpu);
+            // A core that may run apart: its entry is its name, then its followers'.
+            for (const char* const* p = b->model.apart; cpu && p && *p; p++) {
+                std::istringstream names(*p);
+                std::string name;
+                names >> name;
+                if (name != core) continue;
+                ApartCore a;
+                a.cpu = c.off;
+                while (names >> name && name[0] != '@')
+                    for (const BoardMember& v : ms)
+                        if (v.name == name) a.followers.push_back({(uint32_t)v.off, (uint32_t)v.len});
+                f.apart.push_back(a);
+                (*(const BoardCpuFns* const*)cpu)->apart_capable(cpu, *p);
+            }
         }
     }
 }
+
 
 // After a skip: every KCPSM6 model's outputs register as the model's outputs now.
 inline void refresh_shims(Board* b) {
@@ -653,6 +683,12 @@ inline void refresh_shims(Board* b) {
 int board_fast_forward(Board* b, int mode) {
     FastForward& f = b->ff;
     const bool observed = mode == 2 && b->model.observed_known;
+    // No core runs apart but where the run compares what it observes (found again below).
+    for (const ApartCore& a : f.apart) {
+        void* cpu = *(void* const*)(b->model.root + a.cpu);
+        if (cpu) (*(const BoardCpuFns* const*)cpu)->apart_capable(cpu, nullptr);
+    }
+    f.apart.clear();
     f.spans.clear();
     f.counters.clear();
     if (observed) {
@@ -732,6 +768,8 @@ int board_fast_forward(Board* b, int mode) {
         }
     }
     f.free.taken.assign(b->model.root_size, 0);
+    f.apart_bytes.assign(b->model.root_size, 0);
+    f.all_spans = f.spans;
     f.mark.assign(b->model.root_size, 0);
     f.marked = false;
     f.activity = ~0ull;
@@ -958,6 +996,29 @@ inline void free_bytes_out(const FreeGroup& g, const uint8_t* root, uint8_t* out
 bool free_track(Board* b, uint64_t t);
 void free_start(Board* b, FreeGroup& g, uint64_t t);
 
+void free_apply(FastForward& f);
+// At a mark: which cores run apart (the host decided); the compared spans without their
+// followers when that changed.
+void apart_mark(Board* b, uint64_t t) {
+    FastForward& f = b->ff;
+    bool changed = false;
+    for (ApartCore& a : f.apart) {
+        void* cpu = *(void* const*)(b->model.root + a.cpu);
+        const bool on = cpu && (*(const BoardCpuFns* const*)cpu)->apart(cpu);
+        if (on == a.on) continue;
+        a.on = on;
+        changed = true;
+        FF_TRACE("ff %.6f ms: a core %s apart (%zu followers' spans)\n", t / 1e9, on ? "runs" : "no longer runs",
+                 a.followers.size());
+    }
+    if (!changed) return;
+    std::fill(f.apart_bytes.begin(), f.apart_bytes.end(), 0);
+    for (const ApartCore& a : f.apart)
+        for (const Span& x : a.followers)
+            if (a.on) std::fill(f.apart_bytes.begin() + x.off, f.apart_bytes.begin() + x.off + x.len, 1);
+    free_apply(f);
+}
+
 // Mark the state the fast-forward compares with. `drifting`: the counters' drifts found in the
 // period that ends here stay, for the next to confirm.
 void ff_mark(Board* b, uint64_t t, bool drifting = false) {
@@ -987,6 +1048,7 @@ void ff_mark(Board* b, uint64_t t, bool drifting = false) {
     if (f.last_period) every = std::min(every, std::max(f.last_period / kPhasesPerPeriod, kCounterSettlePs));
     f.phase_every = std::max(every, f.patience / kMaxPhases);
     b->host->ff_mark(b->host->ctx);
+    if (!f.apart.empty()) apart_mark(b, t);
 }
 
 // While the period is proved: a snapshot of every model, now and then (inline: most edges
@@ -1065,8 +1127,8 @@ void free_none(FreePart& p) {
 void free_apply(FastForward& f) {
     FreePart& p = f.free;
     std::vector<char> rest(p.taken.size());
-    for (size_t j = 0; j < rest.size(); j++) rest[j] = !p.taken[j];
-    f.spans = spans_where(p.spans, rest);
+    for (size_t j = 0; j < rest.size(); j++) rest[j] = !p.taken[j] && !f.apart_bytes[j];
+    f.spans = spans_where(f.all_spans, rest);
     std::vector<Counting> all = std::move(f.counters);
     all.insert(all.end(), p.counters.begin(), p.counters.end());
     f.counters.clear();
@@ -1159,7 +1221,6 @@ void free_choose(Board* b, uint64_t t, size_t blocker) {
     g.part = spans_where(all, part_byte);
     g.contact = spans_where(all, contact_byte);
     g.bytes = bytes;
-    if (p.groups.empty()) p.spans = f.spans;
     for (size_t i = 0; i < part_byte.size(); i++) p.taken[i] |= part_byte[i];
     free_apply(f);
     p.watching = false;

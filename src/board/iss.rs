@@ -15,11 +15,12 @@ use std::collections::BTreeMap;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-use kcpsm6::iss::{Bus, Config, Cpu, Phase, Pins, PortKind, ScratchPad};
+use kcpsm6::iss::{Bus, Config, Cpu, Phase, Pins, PortKind, Routines, ScratchPad};
 use kcpsm6::source::SourceMap;
 use kcpsm6::trace::Tracer;
 use kcpsm6::Image;
 
+use super::apart::Ports;
 use super::counts::{Same, Watch};
 use super::replay::{DebugWords, Replay};
 
@@ -33,9 +34,87 @@ struct CpuFns {
     state: unsafe extern "C" fn(*mut IssCpu) -> u64,
     debug: unsafe extern "C" fn(*mut IssCpu, *mut u32, *mut u32),
     out_port_free: unsafe extern "C" fn(*mut IssCpu),
+    apart_capable: unsafe extern "C" fn(*mut IssCpu, *const c_char),
+    apart: unsafe extern "C" fn(*mut IssCpu) -> c_int,
 }
 
-static FNS: CpuFns = CpuFns { tick: tick_ffi, state: state_ffi, debug: debug_ffi, out_port_free: out_port_free_ffi };
+static FNS: CpuFns = CpuFns {
+    tick: tick_ffi,
+    state: state_ffi,
+    debug: debug_ffi,
+    out_port_free: out_port_free_ffi,
+    apart_capable: apart_capable_ffi,
+    apart: apart_ffi,
+};
+
+unsafe extern "C" fn apart_capable_ffi(cpu: *mut IssCpu, entry: *const c_char) {
+    // SAFETY: the model pointer is one `Host::create` made; the entry is null or a string of
+    // botsim_observed.h.
+    let (cpu, entry) = unsafe { (&mut *cpu, (!entry.is_null()).then(|| CStr::from_ptr(entry).to_string_lossy())) };
+    cpu.apart.capable = entry.is_some_and(|e| cpu.inputs_written(&e));
+    cpu.apart.on &= cpu.apart.capable;
+}
+
+unsafe extern "C" fn apart_ffi(cpu: *mut IssCpu) -> c_int {
+    // SAFETY: as for apart_capable_ffi.
+    unsafe { (*cpu).apart.on as c_int }
+}
+
+/// A core that may run apart from the board (super::apart: the design reads what it shows
+/// between port accesses only under a strobe or into its followers). While it only computes
+/// with its reset, sleep and interrupt low, the fast-forward leaves it out of the period it
+/// looks for and runs it on its own over a skip, up to just before its next port access,
+/// found by running ahead on a copy (its delay subroutines replayed: [`Routines`]).
+#[derive(Default)]
+struct Apart {
+    capable: bool,
+    /// Apart since the last mark.
+    on: bool,
+    /// The core's cycles before `until` touch no port with its pins low (`known`: found since
+    /// they were last raised).
+    known: bool,
+    until: u64,
+    /// The instruction word at the pins is not checked before this cycle: the ROM's output,
+    /// a follower, is stale for a cycle after a skip.
+    unchecked_until: u64,
+    routines: Routines,
+    /// The reset, sleep and interrupt pins of the last cycle.
+    control: u64,
+}
+
+impl Apart {
+    /// The pins the core runs apart with held low: reset, sleep, interrupt (kcpsm6_iss.v's
+    /// bits 28, 27, 26).
+    const CONTROL: u64 = 7 << 26;
+    /// A core that comes back to its state within this many cycles repeats with the board:
+    /// it is compared, not run apart (a poll of the scratch pad).
+    const LOOP: u64 = 64;
+    /// How far a run-ahead looks (longer than a BotSim main loop at hw timing), the least
+    /// run apart worth it, and the cycles a skip ends before the next port access (its
+    /// `port_id` shown a cycle before the strobe, the followers a cycle behind).
+    const AHEAD: u64 = 1 << 23;
+    const LEAST: u64 = 1 << 12;
+    const MARGIN: u64 = 8;
+}
+
+/// A bus that notes the first port access.
+#[derive(Default)]
+struct Access {
+    at: Option<u64>,
+}
+
+impl Bus for Access {
+    fn input(&mut self, _port: u8, cycle: u64) -> u8 {
+        self.at.get_or_insert(cycle);
+        0
+    }
+    fn output(&mut self, _port: u8, _value: u8, cycle: u64) {
+        self.at.get_or_insert(cycle);
+    }
+    fn output_k(&mut self, _port: u8, _value: u8, cycle: u64) {
+        self.at.get_or_insert(cycle);
+    }
+}
 
 unsafe extern "C" fn out_port_free_ffi(cpu: *mut IssCpu) {
     // SAFETY: the model pointer is one `Host::create` made.
@@ -128,6 +207,7 @@ pub struct IssCpu {
     /// firmware that counts records since its mark.
     out: u64,
     watch: Watch,
+    apart: Apart,
 }
 
 pub use botsim_core::debug::Breaks;
@@ -196,7 +276,79 @@ impl IssCpu {
             phases: Vec::new(),
             out: 0,
             watch: Watch::new(),
+            apart: Apart::default(),
         }
+    }
+
+    /// Every INPUT of the program reads a port at which the followers of the entry `entry`
+    /// (super::apart's, as botsim_observed.h lists it) written for some ports only are
+    /// written: a constant port, one of theirs.
+    fn inputs_written(&self, entry: &str) -> bool {
+        let ports: Option<Vec<Ports>> =
+            entry.split(' ').filter_map(|w| w.strip_prefix('@')).map(Ports::parse).collect();
+        let Some(ports) = ports else { return false };
+        ports.is_empty()
+            || self.cpu.rom().iter().all(|&w| {
+                kcpsm6::isa::Opcode::of(w) != kcpsm6::isa::Opcode::Input
+                    || (w & 1 << 12 != 0 && ports.iter().all(|p| p.has(w as u8)))
+            })
+    }
+
+    /// At a mark: whether the core runs apart until the next (see [`Apart`]).
+    fn decide_apart(&mut self) {
+        if !self.apart.capable || !self.watch.enabled {
+            self.apart.on = false;
+            return;
+        }
+        let cpu = self.core().clone();
+        let now = cpu.cycle();
+        let a = &mut self.apart;
+        a.on = false;
+        if a.control != 0 || cpu.in_reset() || !cpu.running() || !cpu.bram_enable() {
+            a.known = false;
+            return;
+        }
+        if !a.known || a.until < now + Apart::LEAST {
+            // A loop that comes back to the same flops: compared with the board.
+            let mut probe = cpu.clone();
+            let mut bus = Access::default();
+            for _ in 0..Apart::LOOP {
+                probe.tick(Pins::default(), &mut bus);
+                if bus.at.is_some() {
+                    break;
+                }
+                if probe.pc() == cpu.pc() && probe.phase() == cpu.phase() && probe.same_state_as(&cpu) {
+                    a.known = false;
+                    return;
+                }
+            }
+            let mut ahead = cpu.clone();
+            let mut bus = Access::default();
+            ahead.run_with(&mut bus, now + Apart::AHEAD, |b| b.at.is_some(), &mut a.routines);
+            // The access's strobe cycle; its instruction began a cycle before.
+            a.until = bus.at.map_or(ahead.cycle(), |c| c.saturating_sub(1 + Apart::MARGIN));
+            a.known = true;
+        }
+        a.on = a.until >= now + Apart::LEAST;
+    }
+
+    /// The core's cycle now, and its cycles per period since the mark.
+    fn apart_period(&mut self) -> (u64, u64) {
+        let now = self.core().cycle();
+        (now, now - self.mark.as_ref().map_or(now, |m| m.cycle()))
+    }
+
+    /// Run the core, apart, `cycles` on with its pins low (fewer than its quiet horizon).
+    fn run_apart(&mut self, cycles: u64) {
+        let end = self.core().cycle() + cycles;
+        debug_assert!(end <= self.apart.until);
+        let (cpu, bus, a) = (&mut self.cpu, &mut self.bus, &mut self.apart);
+        cpu.run_with(bus, end.saturating_sub(2), |_| false, &mut a.routines);
+        while cpu.cycle() < end {
+            cpu.tick(Pins::default(), bus);
+        }
+        a.unchecked_until = end + 3;
+        self.out = self.state();
     }
 
     /// What a debug build's waveform shows of the core now. The first call makes this a
@@ -246,9 +398,23 @@ impl IssCpu {
             | (c.interrupt_ack() as u64) << 32
     }
 
+    /// Reset, sleep or interrupt changed: a core apart no longer runs as it did ahead.
+    #[cold]
+    fn control_changed(&mut self, control: u64) {
+        self.apart.control = control;
+        self.apart.known = false;
+        if std::mem::take(&mut self.apart.on) && !self.activity.is_null() {
+            // SAFETY: the host outlives its models.
+            unsafe { *self.activity += 1 };
+        }
+    }
+
     /// One cycle with the inputs `pins` (kcpsm6_iss.v's packing); the next cycle's outputs.
     #[inline]
     fn tick(&mut self, pins: u64) -> u64 {
+        if pins & Apart::CONTROL != self.apart.control {
+            self.control_changed(pins & Apart::CONTROL);
+        }
         self.watch.cycle(pins, self.out);
         self.out = self.tick_core(pins);
         self.out
@@ -273,7 +439,11 @@ impl IssCpu {
             }
         }
         let word = pins as u32 & 0x3FFFF;
-        if self.cpu.phase() == Phase::Decode && word != self.cpu.instruction() && self.mismatch.is_none() {
+        if self.cpu.phase() == Phase::Decode
+            && word != self.cpu.instruction()
+            && self.mismatch.is_none()
+            && self.cpu.cycle() >= self.apart.unchecked_until
+        {
             self.mismatch = Some(RomMismatch {
                 cycle: self.cpu.cycle(),
                 address: self.cpu.pc(),
@@ -588,6 +758,7 @@ impl Host {
     /// mark are dropped).
     fn ff_mark(&mut self) {
         for (_, c) in &mut self.cpus {
+            c.decide_apart();
             c.mark = Some(Box::new(c.core().clone()));
             c.phases.clear();
             c.watch.mark();
@@ -614,6 +785,9 @@ impl Host {
     fn ff_same(&mut self) -> Same {
         let mut all = Same::Yes;
         for (_, c) in &mut self.cpus {
+            if c.apart.on {
+                continue; // (run on its own over a skip)
+            }
             c.core();
             let Some(m) = c.mark.as_deref() else { return Same::No };
             match c.watch.same(m, &c.cpu) {
@@ -630,8 +804,13 @@ impl Host {
     /// on a board without a bot.
     fn ff_room(&mut self, periods: u64) -> u64 {
         let mut n = periods;
-        for (_, c) in &self.cpus {
-            if let Some(room) = c.watch.room() {
+        for (_, c) in &mut self.cpus {
+            if c.apart.on {
+                let (now, per) = c.apart_period();
+                if per > 0 {
+                    n = n.min(c.apart.until.saturating_sub(now) / per); // (0: it came to its port access)
+                }
+            } else if let Some(room) = c.watch.room() {
                 n = n.min(room);
             }
         }
@@ -655,6 +834,15 @@ impl Host {
         // A core that counts is moved on by whole periods only.
         if self.cpus.iter().any(|(_, c)| c.watch.counting()) {
             return false;
+        }
+        for (_, c) in &mut self.cpus {
+            if c.apart.on {
+                let (now, per) = c.apart_period();
+                let part = c.phases[phase - 1].cycle() - c.mark.as_ref().map_or(0, |m| m.cycle());
+                if now + periods * per + part > c.apart.until {
+                    return false;
+                }
+            }
         }
         if self.bots.is_empty() {
             return self.board_alone;
@@ -686,9 +874,14 @@ impl Host {
             let Some(mark) = c.mark.as_mut() else { continue };
             let per = now - mark.cycle();
             let moved = (periods + 1) * per;
+            let part = phase.checked_sub(1).map_or(0, |j| c.phases[j].cycle() - mark.cycle());
             mark.skip_period(moved);
             for p in &mut c.phases {
                 p.skip_period(moved);
+            }
+            if c.apart.on {
+                c.run_apart(periods * per + part);
+                continue;
             }
             match phase.checked_sub(1) {
                 Some(j) => c.cpu = c.phases[j].clone(),

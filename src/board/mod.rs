@@ -2,6 +2,7 @@
 //! (`botsim_core::board::plan`) into a shared library of the Verilated design with the C++
 //! harness (cached), [`model`] loads it and runs it.
 
+pub mod apart;
 pub mod build;
 pub mod checks;
 pub mod counters;

@@ -411,6 +411,7 @@ pub fn header(
     members: &Result<Vec<Member>, String>,
     counters: &[Counter],
     out_port_free: &[String],
+    apart: &[super::apart::Apart],
     triggers_fn: Option<&str>,
 ) -> String {
     let mut h = String::from(
@@ -511,6 +512,17 @@ pub fn header(
     h.push_str("static const char* const botsim_out_port_free[] = {");
     for core in out_port_free {
         h.push_str(&format!("\"{core}\", "));
+    }
+    h.push_str("nullptr};\n");
+    // The KCPSM6 models that may run apart (super::apart): each one's instance's name, then
+    // its followers, then `@` and the ports of each follower written for some ports only,
+    // separated by spaces.
+    h.push_str("static const char* const botsim_apart[] = {");
+    for a in apart {
+        let ports = a.ports.iter().map(|p| format!("@{p}"));
+        let words: Vec<String> =
+            std::iter::once(a.core.clone()).chain(a.followers.iter().cloned()).chain(ports).collect();
+        h.push_str(&format!("\"{}\", ", words.join(" ")));
     }
     h.push_str("nullptr};\n");
     h

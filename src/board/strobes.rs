@@ -30,7 +30,9 @@ use super::demand::{demands, Demand};
 pub const OUTPUTS: &str = "__DOT__botsim_iss_q";
 /// Its `out_port` bits, and the write strobes' (`write_strobe`, `k_write_strobe`).
 const OUT_PORT: u64 = 0xFF << 13;
-const STROBES: u64 = 3 << 29;
+pub(super) const STROBES: u64 = 3 << 29;
+/// Every strobe: the write strobes and `read_strobe` (bit 31).
+pub(super) const ALL_STROBES: u64 = 7 << 29;
 
 /// The KCPSM6 models (their instances' Verilator names) whose `out_port` the evaluation
 /// `code` (the root's functions) reads only under a write strobe.
@@ -53,7 +55,7 @@ pub fn out_port_free(root: &str, code: &[&str]) -> Vec<String> {
         .into_iter()
         .filter(|core| {
             let q = format!("{core}{OUTPUTS}");
-            let guards = guards(&bodies, &q);
+            let guards = guards(&bodies, &q, STROBES);
             bodies.iter().all(|t| gated(t, &q, &guards, &widths))
         })
         .map(str::to_string)
@@ -61,7 +63,7 @@ pub fn out_port_free(root: &str, code: &[&str]) -> Vec<String> {
 }
 
 /// `vlSelf->name` (or `vlSelfRef.name`) at `i`: the name.
-fn member<'a>(t: &[Tok<'a>], i: usize) -> Option<&'a str> {
+pub(super) fn member<'a>(t: &[Tok<'a>], i: usize) -> Option<&'a str> {
     match (t.get(i)?, t.get(i + 1)?, t.get(i + 2)?) {
         (Tok::Id("vlSelf" | "vlSelfRef"), Tok::P("->" | "."), Tok::Id(n)) => Some(n),
         _ => None,
@@ -72,8 +74,8 @@ fn member<'a>(t: &[Tok<'a>], i: usize) -> Option<&'a str> {
 type Write = (usize, usize, std::ops::Range<usize>);
 
 /// The guards of outputs register `q`: root variables whose every write is a strobe's
-/// condition, each after `q`'s last write in its function.
-fn guards(bodies: &[Vec<Tok>], q: &str) -> BTreeSet<String> {
+/// condition (a strobe of `strobes`), each after `q`'s last write in its function.
+pub(super) fn guards(bodies: &[Vec<Tok>], q: &str, strobes: u64) -> BTreeSet<String> {
     // Every write `vlSelf->g = ...;`: its function, where, and its value's tokens.
     let mut writes: BTreeMap<&str, Vec<Write>> = BTreeMap::new();
     let mut q_last: Vec<Option<usize>> = vec![None; bodies.len()];
@@ -100,7 +102,8 @@ fn guards(bodies: &[Vec<Tok>], q: &str) -> BTreeSet<String> {
                 continue;
             }
             let all = ws.iter().all(|(f, at, value)| {
-                q_last[*f].is_some_and(|q_at| q_at < *at) && strobe(&parse(&bodies[*f][value.clone()], q), &guards)
+                q_last[*f].is_some_and(|q_at| q_at < *at)
+                    && strobe(&parse(&bodies[*f][value.clone()], q), &guards, strobes)
             });
             if all {
                 guards.insert(name.to_string());
@@ -130,7 +133,7 @@ fn gated(t: &[Tok], q: &str, guards: &BTreeSet<String>, widths: &BTreeMap<String
                     }
                 }
                 if t.get(close + 1) == Some(&Tok::P("{")) {
-                    blocks.push(strobe(&parse(&t[i + 2..close], q), guards));
+                    blocks.push(strobe(&parse(&t[i + 2..close], q), guards, STROBES));
                     i = close + 2;
                     continue;
                 }
@@ -171,7 +174,7 @@ fn read_ok(t: &[Tok], i: usize, q: &str, reads: &std::collections::HashMap<usize
 
 /// A condition, as much of it as tells a strobe.
 #[derive(Debug)]
-enum Cond {
+pub(super) enum Cond {
     /// The outputs register shifted right.
     Q(u32),
     Const(u64),
@@ -185,15 +188,15 @@ enum Cond {
     Other,
 }
 
-/// True only with a strobe set.
-fn strobe(c: &Cond, guards: &BTreeSet<String>) -> bool {
-    let within = |m: u64| m != 0 && m & !STROBES == 0;
+/// True only with a strobe of `strobes` set.
+pub(super) fn strobe(c: &Cond, guards: &BTreeSet<String>, strobes: u64) -> bool {
+    let within = |m: u64| m != 0 && m & !strobes == 0;
     match c {
         Cond::And(a, b) => match (&**a, &**b) {
             (Cond::Const(m), Cond::Q(s)) | (Cond::Q(s), Cond::Const(m)) => *s < 64 && within(m << s),
-            _ => strobe(a, guards) || strobe(b, guards),
+            _ => strobe(a, guards, strobes) || strobe(b, guards, strobes),
         },
-        Cond::Or(a, b) => strobe(a, guards) && strobe(b, guards),
+        Cond::Or(a, b) => strobe(a, guards, strobes) && strobe(b, guards, strobes),
         Cond::Eq(a, b) => {
             // k == (m & q): the bits of k within m are all set.
             let (k, x) = match (&**a, &**b) {
@@ -203,17 +206,17 @@ fn strobe(c: &Cond, guards: &BTreeSet<String>) -> bool {
             match x {
                 Cond::And(l, r) => match (&**l, &**r) {
                     (Cond::Const(m), Cond::Q(s)) | (Cond::Q(s), Cond::Const(m)) => {
-                        *s < 64 && ((k & m) << s) & STROBES != 0
+                        *s < 64 && ((k & m) << s) & strobes != 0
                     }
                     _ => false,
                 },
-                Cond::Q(s) => *s < 64 && (k << s) & STROBES != 0,
+                Cond::Q(s) => *s < 64 && (k << s) & strobes != 0,
                 _ => false,
             }
         }
         // 0 != x: x is not zero.
         Cond::Ne(a, b) => match (&**a, &**b) {
-            (Cond::Const(0), x) | (x, Cond::Const(0)) => strobe(x, guards),
+            (Cond::Const(0), x) | (x, Cond::Const(0)) => strobe(x, guards, strobes),
             _ => false,
         },
         Cond::Var(g) => guards.contains(g),
@@ -222,7 +225,7 @@ fn strobe(c: &Cond, guards: &BTreeSet<String>) -> bool {
 }
 
 /// Parse a condition's tokens (casts dropped).
-fn parse(t: &[Tok], q: &str) -> Cond {
+pub(super) fn parse(t: &[Tok], q: &str) -> Cond {
     let mut toks: Vec<Tok> = Vec::with_capacity(t.len());
     let mut i = 0;
     while i < t.len() {

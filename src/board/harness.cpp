@@ -2001,7 +2001,10 @@ void no_debug(void*, uint32_t* regs, uint32_t* flags) {
     for (int i = 0; i < 4; i++) regs[i] = 0;
     *flags = 0;
 }
-const BoardCpuFns no_fns = {no_tick, no_state, no_debug};
+void no_out_port_free(void*) {}
+void no_apart_capable(void*, const char*) {}
+int no_apart(void*) { return 0; }
+const BoardCpuFns no_fns = {no_tick, no_state, no_debug, no_out_port_free, no_apart_capable, no_apart};
 const BoardCpuFns* const no_cpu = &no_fns;  // what an instance gets when there is no model
 }  // namespace
 

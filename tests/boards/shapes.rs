@@ -190,6 +190,16 @@ fn a_part_that_runs_apart_from_everything_observed() {
     skips_and_equals_every_edge_at_least(&["FREE_PART=1"], 0.88);
 }
 
+#[test]
+fn a_second_core_in_nested_delays_runs_apart_from_the_board() {
+    // OWN_CORE=1: a second KCPSM6 waits in four nested delay loops (17 ms) beside the team's
+    // CPU and a display refreshed every 2.6 ms, as a team's own BotSim 3.1 bot does; its read
+    // mux keeps its value at two ports. No common period of the loops and the display comes
+    // within a refresh: the core runs apart, on its own over each skip (3.5 % skipped
+    // without).
+    skips_and_equals_every_edge_at_least(&["OWN_CORE=1"], 0.95);
+}
+
 /// The shapes design's arguments with `extra`.
 fn shapes(extra: &[&str]) -> Output {
     let mut args = vec!["tests/board_designs/shapes", "examples/common/nexys4_bot_if.v"];

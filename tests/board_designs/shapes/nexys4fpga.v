@@ -29,6 +29,11 @@
 //   FREE_PART  1: LED 11 shows a register that takes a bit of a 15-bit LFSR (stepped every clock,
 //              its cycle 32,767 clocks) only while switch 15 is on: off, the LFSR runs
 //              apart from everything observed, and the board repeats only with it
+//   OWN_CORE   1: a second KCPSM6 (owncore.psm), as a team's own BotSim 3.1 bot has: it waits
+//              in four nested delay loops (17 ms), then reads switches 7-0 and shows them on
+//              LED 10 and a toggle on LED 9; its read mux registered as the course's
+//              world_if31 writes it, a `case` on port_id[3:0] without items 4 and 5 (which
+//              keep the last value) and without a default
 //
 // With the course's debounce (botsim's, board.md 2.1), examples/common's port interface (nexys4_bot_if) and the bot.
 `timescale 1ns / 1ps
@@ -40,7 +45,8 @@ module nexys4fpga #(
     parameter REFRESH_BITS = 18,
     parameter SPRITE = 0,
     parameter WATCHDOG = 0,
-    parameter FREE_PART = 0
+    parameter FREE_PART = 0,
+    parameter OWN_CORE = 0
 ) (
     input  wire        clk,
     input  wire        btnCpuReset,
@@ -240,7 +246,43 @@ module nexys4fpga #(
             assign led11 = leds[11];
         end
     endgenerate
-    assign led = {led15, TOGGLES == 2 ? tog25 : TOGGLES == 3 ? tone : leds[14], led13, led12, led11, leds[10:0]};
+    // The second core (held in reset but with OWN_CORE = 1).
+    wire [11:0] oc_address;
+    wire [17:0] oc_instruction;
+    wire        oc_bram_enable, oc_rdl, oc_write_strobe, oc_k_write_strobe, oc_read_strobe;
+    wire [ 7:0] oc_port_id, oc_out_port;
+    reg  [ 7:0] oc_in_port = 8'd0;
+    kcpsm6 #(.interrupt_vector(12'h3FF), .scratch_pad_memory_size(64), .hwbuild(8'h00)) OWNCPU (
+        .address(oc_address), .instruction(oc_instruction), .bram_enable(oc_bram_enable),
+        .port_id(oc_port_id), .write_strobe(oc_write_strobe), .k_write_strobe(oc_k_write_strobe),
+        .out_port(oc_out_port), .read_strobe(oc_read_strobe), .in_port(oc_in_port),
+        .interrupt(1'b0), .interrupt_ack(), .sleep(1'b0), .reset(sysreset | oc_rdl | OWN_CORE != 1),
+        .clk(sys_clk)
+    );
+    owncore OWNPGM (.enable(oc_bram_enable), .address(oc_address), .instruction(oc_instruction),
+        .rdl(oc_rdl), .clk(sys_clk));
+    always @(posedge sys_clk) begin
+        case (oc_port_id[3:0])
+            4'b0000: oc_in_port <= db_sw[7:0];
+            4'b0001: oc_in_port <= db_sw[15:8];
+            4'b0010: oc_in_port <= {3'd0, db_btns};
+            4'b0011: oc_in_port <= 8'h5A;
+            4'b0110: oc_in_port <= 8'h00;
+            4'b0111: oc_in_port <= 8'hA5;
+            4'b1000, 4'b1001, 4'b1010, 4'b1011: oc_in_port <= 8'd0;
+            4'b1100, 4'b1101, 4'b1110, 4'b1111: oc_in_port <= 8'hFF;
+        endcase
+    end
+    reg [1:0] oc_shown = 2'd0;
+    always @(posedge sys_clk) begin
+        if (sysreset) oc_shown <= 2'd0;
+        else if (oc_write_strobe) begin
+            if (oc_port_id == 8'h01) oc_shown[1] <= |oc_out_port;
+            if (oc_port_id == 8'h02) oc_shown[0] <= oc_out_port[0];
+        end
+    end
+    wire [1:0] led10_9 = OWN_CORE == 1 ? oc_shown : leds[10:9];
+    assign led = {led15, TOGGLES == 2 ? tog25 : TOGGLES == 3 ? tone : leds[14], led13, led12, led11, led10_9, leds[8:0]};
     assign JA = {6'd0, TOGGLES == 1 ? tog25 : 1'b0, TOGGLES == 1 ? tog10 : 1'b0};
 endmodule
 

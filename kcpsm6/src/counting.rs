@@ -280,6 +280,17 @@ impl CountingPeriod {
     /// held at `pins` and `inputs` read by its INPUTs in order; `out_port_free`: the design
     /// reads `out_port` only under a write strobe.
     pub fn find(mark: &Cpu, now: &Cpu, pins: Pins, inputs: &[u8], out_port_free: bool) -> Result<Self, Refusal> {
+        Self::find_seen(mark, now, pins, inputs, Seen { out_port: !out_port_free, port_id: true })
+    }
+
+    /// As [`CountingPeriod::find`] for a core that nothing sees between its port accesses (run
+    /// on its own, its pins low, reading nothing): a count may be shown on `out_port` and
+    /// `port_id`.
+    pub fn find_alone(mark: &Cpu, now: &Cpu) -> Result<Self, Refusal> {
+        Self::find_seen(mark, now, Pins::default(), &[], Seen { out_port: false, port_id: false })
+    }
+
+    fn find_seen(mark: &Cpu, now: &Cpu, pins: Pins, inputs: &[u8], seen: Seen) -> Result<Self, Refusal> {
         let refuse = |what| Err(Refusal { what, pc: None, count: None });
         if now.cycle() <= mark.cycle() || mark.config() != now.config() {
             return refuse(NOT_A_PERIOD);
@@ -301,11 +312,11 @@ impl CountingPeriod {
         // starts from where the one before left them one period earlier (a chain that spans
         // the period's start is found whole by the second), until the homes stay.
         let seeds: Vec<bool> = (0..BYTES).map(differs).collect();
-        let mut first = Proof::new(out_port_free, None, seeds.clone());
+        let mut first = Proof::new(seen, None, seeds.clone());
         first.run(mark, now, pins, inputs)?;
         let mut counts = first.counts_found(mark)?;
         for _ in 0..MAX_WIDTH {
-            let mut again = Proof::new(out_port_free, None, seeds.clone());
+            let mut again = Proof::new(seen, None, seeds.clone());
             again.homes = first.homes.clone();
             again.start_from(&first, &counts);
             again.run(mark, now, pins, inputs)?;
@@ -319,7 +330,7 @@ impl CountingPeriod {
         }
 
         // The second run, from every byte and flag as the first left it one period earlier.
-        let mut second = Proof::new(out_port_free, Some(&counts), Vec::new());
+        let mut second = Proof::new(seen, Some(&counts), Vec::new());
         second.start_from(&first, &counts);
         let start = (second.bytes, second.flags);
         second.run(mark, now, pins, inputs)?;
@@ -470,29 +481,27 @@ struct Proof<'a> {
     /// The bytes that differ between the period's ends: a chain starts a count only there
     /// (the first run).
     seeds: Vec<bool>,
-    out_port_free: bool,
+    seen: Seen,
     room: u64,
     pc: u16,
 }
 
+/// What the design sees of the core in every cycle: `out_port`, `port_id`.
+#[derive(Clone, Copy)]
+struct Seen {
+    out_port: bool,
+    port_id: bool,
+}
+
 impl<'a> Proof<'a> {
-    fn new(out_port_free: bool, counts: Option<&'a [Count]>, seeds: Vec<bool>) -> Self {
+    fn new(seen: Seen, counts: Option<&'a [Count]>, seeds: Vec<bool>) -> Self {
         let mut bytes = [Byte::Invariant; BYTES];
         if counts.is_none() {
             for (at, b) in bytes.iter_mut().enumerate() {
                 *b = Byte::Start(at as u16);
             }
         }
-        Proof {
-            bytes,
-            flags: [Flag::Invariant; FLAGS],
-            homes: Vec::new(),
-            counts,
-            seeds,
-            out_port_free,
-            room: u64::MAX,
-            pc: 0,
-        }
+        Proof { bytes, flags: [Flag::Invariant; FLAGS], homes: Vec::new(), counts, seeds, seen, room: u64::MAX, pc: 0 }
     }
 
     /// The counts this run found: their homes, their values at the period's start (from
@@ -609,10 +618,10 @@ impl<'a> Proof<'a> {
         let (x, y) = (xb + (w >> 8 & 15) as usize, bank + (w >> 4 & 15) as usize);
         // What the core shows in every cycle: port_id (sY unless the word has a constant) and
         // out_port (sX unless the word has one).
-        if w & 1 << 12 == 0 {
+        if w & 1 << 12 == 0 && self.seen.port_id {
             self.plain(self.bytes[y], "a count on port_id")?;
         }
-        if w & 1 << 13 == 0 && !self.out_port_free {
+        if w & 1 << 13 == 0 && self.seen.out_port {
             self.plain(self.bytes[x], "a count on out_port, which the design reads")?;
         }
 

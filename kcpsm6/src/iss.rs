@@ -825,13 +825,29 @@ impl Cpu {
     /// (reset sequence, stack errors) it ticks cycle by cycle. The busy-wait idiom
     /// `SUB sX, 01` / `JUMP NZ, <the SUB>` is fast-forwarded to its end in one step.
     pub fn run_fast<B: Bus>(&mut self, bus: &mut B, until: u64, stop: impl FnMut(&B) -> bool) {
-        self.run_inner(bus, until, stop, None);
+        let mut stop = stop;
+        self.run_inner(bus, until, |b, _| stop(b), None);
     }
 
     /// As [`Cpu::run_fast`], and a call of a subroutine that only computes, made before with
     /// the same inputs, is applied at once from its recording in `routines` (see
     /// [`Routines`]). Equal, cycle for cycle and event for event, to [`Cpu::tick`] (tested).
     pub fn run_with<B: Bus>(&mut self, bus: &mut B, until: u64, stop: impl FnMut(&B) -> bool, routines: &mut Routines) {
+        let mut stop = stop;
+        self.run_inner(bus, until, |b, _| stop(b), Some(routines));
+        routines.interrupted();
+    }
+
+    /// As [`Cpu::run_with`], `stop` also seeing the core after each instruction (or call
+    /// applied from a recording, or countdown finished): where a caller that runs a core on its
+    /// own looks for loops to skip.
+    pub fn run_watched<B: Bus>(
+        &mut self,
+        bus: &mut B,
+        until: u64,
+        stop: impl FnMut(&B, &Cpu) -> bool,
+        routines: &mut Routines,
+    ) {
         self.run_inner(bus, until, stop, Some(routines));
         routines.interrupted();
     }
@@ -840,7 +856,7 @@ impl Cpu {
         &mut self,
         bus: &mut B,
         until: u64,
-        mut stop: impl FnMut(&B) -> bool,
+        mut stop: impl FnMut(&B, &Cpu) -> bool,
         mut routines: Option<&mut Routines>,
     ) {
         while self.cycle < until {
@@ -849,7 +865,7 @@ impl Cpu {
                     r.interrupted();
                 }
                 self.tick(Pins::default(), bus);
-                if stop(bus) {
+                if stop(bus, self) {
                     return;
                 }
                 continue;
@@ -857,7 +873,7 @@ impl Cpu {
             if let Some(r) = routines.as_deref_mut() {
                 if r.at_instruction(self, until) {
                     r.after_instruction(self);
-                    if stop(bus) {
+                    if stop(bus, self) {
                         return;
                     }
                     continue;
@@ -881,7 +897,7 @@ impl Cpu {
             if let Some(r) = routines.as_deref_mut() {
                 r.after_instruction(self);
             }
-            if stop(bus) {
+            if stop(bus, self) {
                 return;
             }
         }

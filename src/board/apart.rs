@@ -14,7 +14,9 @@
 //! function of the last edge's outputs and the rest of the board, never of its own past): an
 //! unconditional write, an `if`/`else` written in every branch, a chain of `==` tests that
 //! covers every value of what it tests (a `case` without a `default`), or the ROM's
-//! `if (bram_enable)` (the core shows 1 there while it runs). And it must be read by nothing
+//! `if (bram_enable)` (1 in the first cycle of every instruction of a running core: the word
+//! at the next instruction's decode is always the fetch's, and the host leaves the decoded
+//! word unchecked for the cycles after a skip). And it must be read by nothing
 //! but the core's data pins: not its `reset`, `sleep` or `interrupt`, which the core's run on
 //! its own holds as they are.
 //!
@@ -527,7 +529,7 @@ fn written(t: &[Tok], range: Range<usize>, unit: &[&str], q: &str) -> Written {
     best
 }
 
-/// The test is the core's `bram_enable` (1 while it runs).
+/// The test is the core's `bram_enable` (1 at every fetch while it runs).
 fn bram_enable(t: &[Tok], c: &Range<usize>, q: &str) -> bool {
     match parse(&t[c.clone()], q) {
         Cond::And(a, b) => {

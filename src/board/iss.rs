@@ -15,7 +15,7 @@ use std::collections::BTreeMap;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-use kcpsm6::iss::{Bus, Config, Cpu, Phase, Pins, PortKind, Routines, ScratchPad};
+use kcpsm6::iss::{Bus, Config, Cpu, Phase, Pins, PortKind, ScratchPad};
 use kcpsm6::source::SourceMap;
 use kcpsm6::trace::Tracer;
 use kcpsm6::Image;
@@ -23,6 +23,7 @@ use kcpsm6::Image;
 use super::apart::Ports;
 use super::counts::{Same, Watch};
 use super::replay::{DebugWords, Replay};
+use super::solo::Solo;
 
 use botsim_core::sim::iss::{IssBot, LazyBot};
 use botsim_core::World;
@@ -64,7 +65,7 @@ unsafe extern "C" fn apart_ffi(cpu: *mut IssCpu) -> c_int {
 /// between port accesses only under a strobe or into its followers). While it only computes
 /// with its reset, sleep and interrupt low, the fast-forward leaves it out of the period it
 /// looks for and runs it on its own over a skip, up to just before its next port access,
-/// found by running ahead on a copy (its delay subroutines replayed: [`Routines`]).
+/// found by running ahead on a copy ([`Solo`]: its delays skipped).
 #[derive(Default)]
 struct Apart {
     capable: bool,
@@ -74,25 +75,38 @@ struct Apart {
     /// they were last raised).
     known: bool,
     until: u64,
+    /// The run-ahead found the access at `until` (not only looked that far).
+    found: bool,
     /// The instruction word at the pins is not checked before this cycle: the ROM's output,
     /// a follower, is stale for a cycle after a skip.
     unchecked_until: u64,
-    routines: Routines,
+    solo: Solo,
     /// The reset, sleep and interrupt pins of the last cycle.
     control: u64,
 }
 
 impl Apart {
+    /// Run a copy of `cpu` ahead with its pins low to its next port access (or as far as
+    /// [`Apart::AHEAD`]): `until`.
+    fn look_ahead(&mut self, cpu: &Cpu) {
+        let mut ahead = cpu.clone();
+        let at = self.solo.run(&mut ahead, cpu.cycle() + Apart::AHEAD, &mut kcpsm6::iss::NullBus::default());
+        // The access's strobe cycle; its instruction began a cycle before.
+        self.until = at.map_or(ahead.cycle(), |c| c.saturating_sub(1 + Apart::MARGIN));
+        self.found = at.is_some();
+        self.known = true;
+    }
+
     /// The pins the core runs apart with held low: reset, sleep, interrupt (kcpsm6_iss.v's
     /// bits 28, 27, 26).
     const CONTROL: u64 = 7 << 26;
     /// A core that comes back to its state within this many cycles repeats with the board:
     /// it is compared, not run apart (a poll of the scratch pad).
     const LOOP: u64 = 64;
-    /// How far a run-ahead looks (longer than a BotSim main loop at hw timing), the least
+    /// How far a run-ahead looks (its loops skipped: a second of the board costs it little), the least
     /// run apart worth it, and the cycles a skip ends before the next port access (its
     /// `port_id` shown a cycle before the strobe, the followers a cycle behind).
-    const AHEAD: u64 = 1 << 23;
+    const AHEAD: u64 = 1 << 30;
     const LEAST: u64 = 1 << 12;
     const MARGIN: u64 = 8;
 }
@@ -304,7 +318,7 @@ impl IssCpu {
         let now = cpu.cycle();
         let a = &mut self.apart;
         a.on = false;
-        if a.control != 0 || cpu.in_reset() || !cpu.running() || !cpu.bram_enable() {
+        if a.control != 0 || cpu.in_reset() || !cpu.running() {
             a.known = false;
             return;
         }
@@ -322,14 +336,20 @@ impl IssCpu {
                     return;
                 }
             }
-            let mut ahead = cpu.clone();
-            let mut bus = Access::default();
-            ahead.run_with(&mut bus, now + Apart::AHEAD, |b| b.at.is_some(), &mut a.routines);
-            // The access's strobe cycle; its instruction began a cycle before.
-            a.until = bus.at.map_or(ahead.cycle(), |c| c.saturating_sub(1 + Apart::MARGIN));
-            a.known = true;
+            a.look_ahead(&cpu);
         }
         a.on = a.until >= now + Apart::LEAST;
+    }
+
+    /// The core's cycles, apart, from now: at least `wanted` if it stays quiet that long
+    /// (looking further ahead than the last run-ahead if need be), else up to its access.
+    fn apart_room(&mut self, wanted: u64) -> u64 {
+        let now = self.core().cycle();
+        let a = &mut self.apart;
+        if !a.found && a.until < now.saturating_add(wanted) {
+            a.look_ahead(&self.cpu);
+        }
+        a.until.saturating_sub(now)
     }
 
     /// The core's cycle now, and its cycles per period since the mark.
@@ -343,10 +363,8 @@ impl IssCpu {
         let end = self.core().cycle() + cycles;
         debug_assert!(end <= self.apart.until);
         let (cpu, bus, a) = (&mut self.cpu, &mut self.bus, &mut self.apart);
-        cpu.run_with(bus, end.saturating_sub(2), |_| false, &mut a.routines);
-        while cpu.cycle() < end {
-            cpu.tick(Pins::default(), bus);
-        }
+        let access = a.solo.run(cpu, end, bus);
+        debug_assert!(access.is_none());
         a.unchecked_until = end + 3;
         self.out = self.state();
     }
@@ -806,9 +824,10 @@ impl Host {
         let mut n = periods;
         for (_, c) in &mut self.cpus {
             if c.apart.on {
-                let (now, per) = c.apart_period();
-                if per > 0 {
-                    n = n.min(c.apart.until.saturating_sub(now) / per); // (0: it came to its port access)
+                let (_, per) = c.apart_period();
+                // (0: it came to its port access; no cycles: its clock does not run)
+                if let Some(k) = c.apart_room(n.saturating_mul(per).saturating_add(per)).checked_div(per) {
+                    n = n.min(k);
                 }
             } else if let Some(room) = c.watch.room() {
                 n = n.min(room);
@@ -837,9 +856,9 @@ impl Host {
         }
         for (_, c) in &mut self.cpus {
             if c.apart.on {
-                let (now, per) = c.apart_period();
+                let (_, per) = c.apart_period();
                 let part = c.phases[phase - 1].cycle() - c.mark.as_ref().map_or(0, |m| m.cycle());
-                if now + periods * per + part > c.apart.until {
+                if c.apart_room(periods * per + part) < periods * per + part {
                     return false;
                 }
             }

@@ -16,6 +16,7 @@ pub mod lockstep;
 pub mod model;
 pub mod observed;
 mod replay;
+pub mod solo;
 pub mod strobes;
 pub mod waveform;
 

@@ -840,7 +840,10 @@ impl Cpu {
 
     /// As [`Cpu::run_with`], `stop` also seeing the core after each instruction (or call
     /// applied from a recording, or countdown finished): where a caller that runs a core on its
-    /// own looks for loops to skip.
+    /// own looks for loops to skip. The calls being recorded stay open: a caller that moves
+    /// the core along its own path between runs (whole trips of a loop, as simulating them
+    /// would leave it) goes on with them; one that changes it otherwise, or ticks it, first
+    /// calls [`Routines::interrupted`].
     pub fn run_watched<B: Bus>(
         &mut self,
         bus: &mut B,
@@ -849,7 +852,6 @@ impl Cpu {
         routines: &mut Routines,
     ) {
         self.run_inner(bus, until, stop, Some(routines));
-        routines.interrupted();
     }
 
     fn run_inner<B: Bus>(

@@ -1466,6 +1466,27 @@ inline __attribute__((always_inline)) uint64_t ff_step(Board* b, uint64_t t, uin
     return ff_compare(b, t, until_ps, buf, cap, n, s);
 }
 
+// The variable of the design to blame for member `i` (an index of the sorted members): itself,
+// or for one of Verilator's own (a case table's index, `__Vtableidx2 = cpu_dig0`) the first
+// variable inside the design it reads.
+long design_member(const Board* b, long i) {
+    const FastForward& f = b->ff;
+    const char* name = f.members[i].name;
+    if (std::strncmp(name, "__V", 3) != 0 || std::strncmp(name, "__Vdly__", 8) == 0 || !b->model.reads_at) return i;
+    const std::vector<BoardMember>& order = f.free.order;
+    for (size_t k = 0; k < order.size(); k++) {
+        if (order[k].off != f.members[i].off) continue;
+        for (uint32_t r = b->model.reads_at[k]; r < b->model.reads_at[k + 1]; r++) {
+            const BoardMember& read = order[b->model.reads[r]];
+            // (Not another of Verilator's, nor a port of the wrapper: a clock the block reads.)
+            if (std::strncmp(read.name, "__V", 3) == 0 || !std::strstr(read.name, "__DOT__")) continue;
+            const long j = member_at(f, read.off);
+            if (j >= 0) return j;
+        }
+    }
+    return i;
+}
+
 // Models active, no mark yet, or a mark that waited too long.
 __attribute__((noinline)) uint64_t ff_restart(Board* b, uint64_t t) {
     FastForward& f = b->ff;
@@ -1492,7 +1513,7 @@ __attribute__((noinline)) uint64_t ff_restart(Board* b, uint64_t t) {
         if (differ) {
             const unsigned byte = (unsigned)__builtin_ctzll(differ) / 8;
             busy = member_at(f, f.hint + byte);
-            if (busy >= 0) f.busy[busy]++;
+            if (busy >= 0) f.busy[design_member(b, busy)]++;
         }
         FF_TRACE("ff %.6f ms: no period (%s; %s differs)\n", t / 1e9, f.overflow ? "too much shown" : "patience",
                  busy >= 0 ? f.members[busy].name : "?");

@@ -67,6 +67,9 @@ pub struct Design {
     /// A second bot (a game's monster) beside the team's: its instance name, or `None` when
     /// the design instantiates it without one (botsim names it).
     pub monster: Option<Option<&'static str>>,
+    /// The programs of the design's other KCPSM6s (a second core's): each ROM's module name
+    /// (its source `<name>.psm`) and the source.
+    pub programs: Vec<(String, String)>,
 }
 
 impl Design {
@@ -74,6 +77,9 @@ impl Design {
     pub fn write(&self, dir: &std::path::Path) {
         std::fs::write(dir.join("nexys4fpga.v"), &self.top).unwrap();
         std::fs::write(dir.join("teampgm.psm"), &self.program).unwrap();
+        for (name, source) in &self.programs {
+            std::fs::write(dir.join(format!("{name}.psm")), source).unwrap();
+        }
         std::fs::write(dir.join("stimulus.txt"), &self.stimulus).unwrap();
         std::fs::write(dir.join("parts.txt"), self.parts.join("\n") + "\n").unwrap();
         let console = super::root().join("tests/board_designs/console");
@@ -183,6 +189,8 @@ struct Part {
     module: String,
     /// A debounced button it gives that may reset the bot (a team's debouncer), if any.
     resets: Option<String>,
+    /// A program of its own (a second KCPSM6's): its ROM's module name and its source.
+    program: Option<(String, String)>,
 }
 
 /// The design for `seed`.
@@ -276,6 +284,8 @@ pub fn generate(seed: u64) -> Design {
     // A watchdog in place of a part, sometimes (its own stream too); a free part likewise.
     let mut watchdog_stream = Rng::new(seed ^ 0x5744_4F47);
     let mut free_stream = Rng::new(seed ^ 0x4652_4545);
+    // A second KCPSM6 in nested delays likewise (a team's own BotSim 3.1 bot).
+    let mut own_stream = Rng::new(seed ^ 0x4F57_4E43);
     for i in 0..n {
         let clock = if clocks.len() > 1 && r.chance(40) { r.range(1, clocks.len() as u64 - 1) as usize } else { 0 };
         // Enabled by an earlier part's one-bit output (its tick, its toggle), sometimes.
@@ -299,6 +309,9 @@ pub fn generate(seed: u64) -> Design {
         }
         if style_stream.chance(12) {
             part = team_debouncer(&mut style_stream, i, clock, tame);
+        }
+        if own_stream.chance(8) {
+            part = own_core(&mut own_stream, i, clock);
         }
         parts_text.push(format!("part {i} on {}: {}", clocks[clock].net, part.text));
         parts.push(part);
@@ -720,7 +733,21 @@ endmodule
     } else {
         top
     };
-    Design { seed, top, program, simulate, stimulus, seconds, reach, parts: parts_text, uart, keyboard, monster }
+    let programs = parts.iter().filter_map(|p| p.program.clone()).collect();
+    Design {
+        seed,
+        top,
+        program,
+        simulate,
+        stimulus,
+        seconds,
+        reach,
+        parts: parts_text,
+        uart,
+        keyboard,
+        monster,
+        programs,
+    }
 }
 
 /// The team program's kind.
@@ -1331,7 +1358,7 @@ fn make_part(
         if reset { ", reset" } else { "" },
         enable.map_or(String::new(), |p| format!(", enabled by {}", p.bit))
     );
-    Part { verilog, bit, value, shape, clock, text, fast, module: String::new(), resets: None }
+    Part { verilog, bit, value, shape, clock, text, fast, module: String::new(), resets: None, program: None }
 }
 
 /// Part `i`: a debouncer of the team's own, shaped as the Nexys3 release's (board.md §2.1) and
@@ -1469,6 +1496,7 @@ endmodule
         fast: false,
         module,
         resets: (clock == 0).then(|| format!("tdb{i}_pb[0]")),
+        program: None,
     }
 }
 
@@ -1585,6 +1613,7 @@ fn watchdog(r: &mut Rng, i: usize, clock: usize) -> Part {
         fast: false,
         module: String::new(),
         resets: None,
+        program: None,
     }
 }
 
@@ -1659,6 +1688,115 @@ fn free_part(r: &mut Rng, i: usize, clock: usize) -> Part {
         fast: false,
         module: String::new(),
         resets: None,
+        program: None,
+    }
+}
+
+/// A second KCPSM6, as a team's own BotSim 3.1 bot has one beside the team's CPU: its program
+/// waits in nested delays called as subroutines (BotSim's shape, two to four levels of random
+/// counts), then reads a port and shows it and a toggle; its read mux registered as the
+/// course's world_if31 writes it (a `case` on port_id's low bits that leaves items out, no
+/// default) or with a default, on all of port_id or its low bits; its INPUT of a constant
+/// port, or sometimes of a register's port (`INPUT sX, (sY)`), with which a mux that leaves
+/// items out may keep a value the core then reads.
+fn own_core(r: &mut Rng, i: usize, clock: usize) -> Part {
+    let clk = format!("@CLK{clock}@");
+    let n = format!("oc{i}");
+    let module = format!("owncore{i}");
+    // The read mux: on port_id[3:0] or all of it, some items left out (never the port read).
+    let low = r.chance(60);
+    let port = r.range(0, 15);
+    let default = r.chance(35);
+    let mut items = String::new();
+    for v in 0..16u64 {
+        if v != port && r.chance(25) {
+            continue; // left out: keeps its value there
+        }
+        let value = match v % 4 {
+            0 => "db_sw[7:0]".to_string(),
+            1 => "db_sw[15:8]".to_string(),
+            2 => format!("{{3'd0, db_btns}} ^ 8'h{:02X}", r.range(0, 255)),
+            _ => format!("8'h{:02X}", r.range(0, 255)),
+        };
+        let item = if low { format!("4'h{v:X}") } else { format!("8'h{v:02X}") };
+        writeln!(items, "            {item}: {n}_in_port <= {value};").unwrap();
+    }
+    if default {
+        items.push_str(&format!("            default: {n}_in_port <= 8'h00;\n"));
+    }
+    let select = if low { format!("{n}_port_id[3:0]") } else { format!("{n}_port_id") };
+    let register_port = r.chance(20);
+    let levels = r.range(2, 4) as usize;
+    let counts: Vec<u64> = (0..levels).map(|_| r.range(2, 60)).collect();
+    // The program: main, then the delay levels (level 0 the innermost countdown).
+    let mut psm = format!(
+        "; {module}.psm: a second core's program (tests/common/random_design.rs).\n\
+         main:       LOAD    s1, 00\n\
+         loop:       CALL    wait{top}\n",
+        top = levels - 1
+    );
+    if register_port {
+        psm += &format!("            LOAD    s8, {port:02X}\n            INPUT   s0, (s8)\n");
+    } else {
+        psm += &format!("            INPUT   s0, {port:02X}\n");
+    }
+    psm += "            OUTPUT  s0, 01\n            XOR     s1, 01\n            OUTPUT  s1, 02\n            JUMP    loop\n";
+    for (l, c) in counts.iter().enumerate() {
+        let reg = 4 + l;
+        if l == 0 {
+            psm += &format!("wait0:      LOAD    s{reg:X}, {c:02X}\nspin0:      SUB     s{reg:X}, 01\n            JUMP    NZ, spin0\n            RETURN\n");
+        } else {
+            psm += &format!(
+                "wait{l}:      LOAD    s{reg:X}, {c:02X}\nspin{l}:      CALL    wait{}\n            SUB     s{reg:X}, 01\n            JUMP    NZ, spin{l}\n            RETURN\n",
+                l - 1
+            );
+        }
+    }
+    let verilog = format!(
+        "    // A second KCPSM6 in nested delays (its own program, {module}.psm).
+    wire [11:0] {n}_address;
+    wire [17:0] {n}_instruction;
+    wire        {n}_bram_enable, {n}_rdl, {n}_write_strobe, {n}_k_write_strobe, {n}_read_strobe;
+    wire [ 7:0] {n}_port_id, {n}_out_port;
+    reg  [ 7:0] {n}_in_port = 8'd0;
+    kcpsm6 #(.interrupt_vector(12'h3FF), .scratch_pad_memory_size(64), .hwbuild(8'h00)) {n}_cpu (
+        .address({n}_address), .instruction({n}_instruction), .bram_enable({n}_bram_enable),
+        .port_id({n}_port_id), .write_strobe({n}_write_strobe), .k_write_strobe({n}_k_write_strobe),
+        .out_port({n}_out_port), .read_strobe({n}_read_strobe), .in_port({n}_in_port),
+        .interrupt(1'b0), .interrupt_ack(), .sleep(1'b0), .reset(sysreset | {n}_rdl), .clk({clk}));
+    {module} {n}_pgm (.enable({n}_bram_enable), .address({n}_address), .instruction({n}_instruction),
+        .rdl({n}_rdl), .clk({clk}));
+    always @(posedge {clk}) begin
+        case ({select})
+{items}        endcase
+    end
+    reg [7:0] {n}_shown = 8'd0;
+    reg       {n}_toggle = 1'b0;
+    always @(posedge {clk}) begin
+        if ({n}_write_strobe) begin
+            if ({n}_port_id == 8'h01) {n}_shown <= {n}_out_port;
+            if ({n}_port_id == 8'h02) {n}_toggle <= {n}_out_port[0];
+        end
+    end
+"
+    );
+    let text = format!(
+        "a second KCPSM6 in {levels} nested delays ({counts:?}), reading port {port:02X}{} through a mux on {}{}",
+        if register_port { " by a register" } else { "" },
+        if low { "port_id[3:0]" } else { "port_id" },
+        if default { " with a default" } else { " without a default" }
+    );
+    Part {
+        verilog,
+        bit: format!("{n}_toggle"),
+        value: format!("{n}_shown"),
+        shape: Shape::Unknown("a second core"),
+        clock,
+        text,
+        fast: false,
+        module: String::new(),
+        resets: None,
+        program: Some((module, psm)),
     }
 }
 

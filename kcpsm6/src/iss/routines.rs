@@ -203,7 +203,7 @@ impl Routines {
     }
 
     /// The core left the steady state, or the run stopped: what is being recorded is dropped.
-    pub(super) fn interrupted(&mut self) {
+    pub fn interrupted(&mut self) {
         self.recording.clear();
     }
 

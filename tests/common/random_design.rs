@@ -301,16 +301,21 @@ pub fn generate(seed: u64) -> Design {
             (true, true) => Held::Alternating,
         };
         let mut part = make_part(&mut r, i, clock, enable.map(|j| &parts[j]), simulate, tame, held);
+        let mut plain = true;
         if watchdog_stream.chance(8) {
             part = watchdog(&mut watchdog_stream, i, clock);
+            plain = false;
         }
         if free_stream.chance(8) {
             part = free_part(&mut free_stream, i, clock);
+            plain = false;
         }
         if style_stream.chance(12) {
             part = team_debouncer(&mut style_stream, i, clock, tame);
+            plain = false;
         }
-        if own_stream.chance(8) {
+        // (In place of a plain part only: a seed's other classes are as they were.)
+        if own_stream.chance(8) && plain {
             part = own_core(&mut own_stream, i, clock);
         }
         parts_text.push(format!("part {i} on {}: {}", clocks[clock].net, part.text));

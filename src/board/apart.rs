@@ -715,6 +715,7 @@ impl Ctx<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
     const ROOT: &str = "class Vboard___024root final {\n  QData/*63:0*/ u__DOT__cpu__DOT__botsim_iss_q;\n  \
                         CData/*7:0*/ u__DOT__in_port;\n  IData/*17:0*/ u__DOT__instruction;\n  \
                         IData/*17:0*/ __Vdly__u__DOT__instruction;\n  CData/*7:0*/ u__DOT__led;\n  \

@@ -7,9 +7,9 @@
 //! design the generator knows to repeat within reach must skip at least 95 % of its run.
 //!
 //! `BOTSIM_RANDOM_DESIGNS` (default 2) designs from seed `BOTSIM_RANDOM_SEED` (default 1) on,
-//! and the seeds of `BOTSIM_RANDOM_ALSO` (default 28, 316, 3086, 88 and 22: a second bot and a
+//! and the seeds of `BOTSIM_RANDOM_ALSO` (default 28, 316, 3086, 88 and 123: a second bot and a
 //! watchdog, a nested delay, a team's VGA timing generator, a watchdog whose heartbeat clears
-//! it in the middle of a period, two free parts);
+//! it in the middle of a period, two free parts); seed 1 has a second KCPSM6 in nested delays;
 //! each design is kept in target/random-designs/<seed>/ (its parts listed in parts.txt), and
 //! its runs' outputs beside it when they differ (a design whose LEDs show an LFSR writes
 //! gigabytes of pin changes: kept only when there is something to look at).
@@ -184,13 +184,14 @@ fn check_one(seed: u64) -> f64 {
 /// 88 (a watchdog armed every 2^15 clocks whose heartbeat, every 1138, may first clear it in
 /// the middle of the first period after the arming: its records differed from every edge's
 /// at the second pin change when one period was taken for proof; so did 305's and, before
-/// the watchdog's heartbeats grew longer, 292's), 22 (two free parts: LFSRs stepped at baud
-/// ticks beside idle transmitters, whose contacts the random buttons change). A sprite
+/// the watchdog's heartbeats grew longer, 292's), 123 (two free parts: LFSRs stepped at baud
+/// ticks beside idle transmitters, whose contacts the random buttons change; 22 was, until a
+/// second KCPSM6 that reads a port its mux leaves out took one of its plain parts). A sprite
 /// on the raster whose pixel an LED shows (pdxrayw_p2video's icon) is checked edge for edge
 /// in 62, 67, 87, 102, 250 and 295 (each a variant: constant or moving, nested or one `if`,
 /// `?:`), locally; CI checks its shape in tests/boards/shapes.rs. `BOTSIM_RANDOM_ALSO`
 /// replaces them (empty: none).
-const ALSO: &str = "28,316,3086,88,22";
+const ALSO: &str = "28,316,3086,88,123";
 
 #[test]
 fn random_designs_record_what_every_edge_does_and_skip_what_repeats() {

@@ -1702,8 +1702,8 @@ fn free_part(r: &mut Rng, i: usize, clock: usize) -> Part {
 /// counts), then reads a port and shows it and a toggle; its read mux registered as the
 /// course's world_if31 writes it (a `case` on port_id's low bits that leaves items out, no
 /// default) or with a default, on all of port_id or its low bits; its INPUT of a constant
-/// port, or sometimes of a register's port (`INPUT sX, (sY)`), with which a mux that leaves
-/// items out may keep a value the core then reads.
+/// port, or sometimes of a register's port (`INPUT sX, (sY)`), or of a port the mux leaves
+/// out: then the core reads a value the mux kept, which a core apart must not have skipped.
 fn own_core(r: &mut Rng, i: usize, clock: usize) -> Part {
     let clk = format!("@CLK{clock}@");
     let n = format!("oc{i}");
@@ -1712,9 +1712,12 @@ fn own_core(r: &mut Rng, i: usize, clock: usize) -> Part {
     let low = r.chance(60);
     let port = r.range(0, 15);
     let default = r.chance(35);
+    // Sometimes the port read is one left out (world_if31's "shouldn't be read" ports): the
+    // core reads what the mux last took, which the run before the read decides.
+    let read_left_out = !default && r.chance(35);
     let mut items = String::new();
     for v in 0..16u64 {
-        if v != port && r.chance(25) {
+        if (v != port && r.chance(25)) || (v == port && read_left_out) {
             continue; // left out: keeps its value there
         }
         let value = match v % 4 {
@@ -1786,8 +1789,9 @@ fn own_core(r: &mut Rng, i: usize, clock: usize) -> Part {
 "
     );
     let text = format!(
-        "a second KCPSM6 in {levels} nested delays ({counts:?}), reading port {port:02X}{} through a mux on {}{}",
+        "a second KCPSM6 in {levels} nested delays ({counts:?}), reading port {port:02X}{}{} through a mux on {}{}",
         if register_port { " by a register" } else { "" },
+        if read_left_out { " (left out of the mux)" } else { "" },
         if low { "port_id[3:0]" } else { "port_id" },
         if default { " with a default" } else { " without a default" }
     );

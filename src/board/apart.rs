@@ -25,7 +25,9 @@
 //!             CData/*7:0*/ u__DOT__in_port;\n  CData/*7:0*/ u__DOT__led;\n};\n";
 //! let q = "vlSelf->u__DOT__cpu__DOT__botsim_iss_q";
 //! let code = format!(
-//!     "void f(Vboard___024root* vlSelf) {{\n    if ((1U & (IData)(({q} >> 0x15U)))) {{\n        \
+//!     "void Vboard___024root___eval_nba(Vboard___024root* vlSelf) {{\n    \
+//!      if (vlSelf->__VnbaTriggered.at(0U)) {{\n        Vboard___024root___nba_sequent__TOP__0(vlSelf);\n    }}\n}}\n\
+//!      void Vboard___024root___nba_sequent__TOP__0(Vboard___024root* vlSelf) {{\n    if ((1U & (IData)(({q} >> 0x15U)))) {{\n        \
 //!      vlSelf->u__DOT__in_port = 1U;\n    }} else {{\n        vlSelf->u__DOT__in_port = 2U;\n    }}\n    \
 //!      if ((1U & (IData)(({q} >> 0x1dU)))) {{\n        vlSelf->u__DOT__led = (0xffU & (IData)(({q} >> 0xdU)));\n    }}\n    \
 //!      botsim_iss_tick_TOP(vlSelf->u__DOT__cpu__DOT__botsim_iss_cpu, ((QData)((IData)(vlSelf->u__DOT__in_port)) << 0x12U), x);\n}}\n"
@@ -55,36 +57,46 @@ pub struct Apart {
     pub ports: Vec<Ports>,
 }
 
-/// The ports a follower is written at: those whose `(port_id >> shift) & mask` is one of
-/// `values`.
+/// The ports a follower is written at: a set of `port_id` values, a bit each.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Ports {
-    pub shift: u32,
-    pub mask: u64,
-    pub values: Vec<u64>,
+    pub values: Cover,
+}
+
+/// A set of `port_id` values (bit `p % 64` of word `p / 64`).
+pub type Cover = [u64; 4];
+const ALL: Cover = [u64::MAX; 4];
+const NONE: Cover = [0; 4];
+
+fn and(a: Cover, b: Cover) -> Cover {
+    [a[0] & b[0], a[1] & b[1], a[2] & b[2], a[3] & b[3]]
+}
+fn or(a: Cover, b: Cover) -> Cover {
+    [a[0] | b[0], a[1] | b[1], a[2] | b[2], a[3] | b[3]]
+}
+fn not(a: Cover) -> Cover {
+    [!a[0], !a[1], !a[2], !a[3]]
 }
 
 impl std::fmt::Display for Ports {
-    /// `shift:mask:v,v,..` (hexadecimal), as the harness hands it to the host.
+    /// Four words in hexadecimal, `:` between (the lowest ports first), as the harness hands
+    /// it to the host.
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let values: Vec<String> = self.values.iter().map(|v| format!("{v:x}")).collect();
-        write!(f, "{}:{:x}:{}", self.shift, self.mask, values.join(","))
+        let v = &self.values;
+        write!(f, "{:x}:{:x}:{:x}:{:x}", v[0], v[1], v[2], v[3])
     }
 }
 
 impl Ports {
     /// Parse [`Ports`]'s `Display`.
     pub fn parse(s: &str) -> Option<Ports> {
-        let mut parts = s.split(':');
-        let shift = parts.next()?.parse().ok()?;
-        let mask = u64::from_str_radix(parts.next()?, 16).ok()?;
-        let values = parts.next()?.split(',').map(|v| u64::from_str_radix(v, 16).ok()).collect::<Option<_>>()?;
-        Some(Ports { shift, mask, values })
+        let words: Vec<u64> = s.split(':').map(|w| u64::from_str_radix(w, 16).ok()).collect::<Option<_>>()?;
+        Some(Ports { values: words.try_into().ok()? })
     }
 
     /// Port `port` is one the follower is written at.
     pub fn has(&self, port: u8) -> bool {
-        self.values.contains(&((port as u64 >> self.shift) & self.mask))
+        self.values[port as usize / 64] >> (port % 64) & 1 == 1
     }
 }
 
@@ -292,6 +304,13 @@ fn statement_around(t: &[Tok], i: usize) -> Range<usize> {
     start..end
 }
 
+/// The statement counts a coverage point of a build with Verilator's coverage
+/// (`++(vlSymsp->__Vcoverage[3]);`): no state of the design.
+fn coverage_point(t: &[Tok], s: &Range<usize>) -> bool {
+    t.get(s.start) == Some(&Tok::P("++"))
+        && t[s.clone()].iter().any(|x| matches!(x, Tok::Id(n) if n.starts_with("__Vcoverage")))
+}
+
 /// The variable a statement assigns with `=` (a root variable, or a local), if it is one.
 fn target<'a>(t: &[Tok<'a>], s: &Range<usize>) -> Option<&'a str> {
     if let Some(n) = member(t, s.start) {
@@ -407,7 +426,11 @@ fn written_at_every_edge(
     if !runs {
         return Written::No;
     }
-    written(t, 0..t.len(), &[v, twin.as_str()], q)
+    match written(t, 0..t.len(), &[v, twin.as_str()], q) {
+        ALL => Written::Full,
+        NONE => Written::No,
+        values => Written::At(Ports { values }),
+    }
 }
 
 /// A compound assignment's target (`x |= ...`): a write that keeps part of the old value.
@@ -492,41 +515,91 @@ fn statements(t: &[Tok], range: Range<usize>) -> Option<Vec<Stmt>> {
     Some(out)
 }
 
-/// How a statement sequence writes one of `unit` (a hold of the delayed copy is no write):
-/// on every path, on every path for some ports (a chain of tests of `port_id` alone, at the
-/// top), or not. `q`: the core's outputs register (its `bram_enable` holds while it runs).
-fn written(t: &[Tok], range: Range<usize>, unit: &[&str], q: &str) -> Written {
-    let Some(stmts) = statements(t, range) else { return Written::No };
-    let mut best = Written::No;
+/// For which values of `port_id` a statement sequence writes one of `unit` on every path (a
+/// hold of the delayed copy is no write): all of them for an unconditional write, an
+/// `if`/`else` written in every branch, a `case` covering every value, the ROM's `if
+/// (bram_enable)`; some when a chain of tests of `port_id` alone (a `case` on it or its low
+/// bits, as `==` tests or as a tree of its bits) leaves values out. `q`: the core's outputs
+/// register.
+fn written(t: &[Tok], range: Range<usize>, unit: &[&str], q: &str) -> Cover {
+    let Some(stmts) = statements(t, range) else { return NONE };
+    let mut cover = NONE;
     for s in stmts {
         let w = match s {
-            Stmt::Simple(r) if target(t, &r).is_some_and(|n| unit.contains(&n)) && !is_hold(t, &r, unit[0]) => {
-                Written::Full
-            }
-            Stmt::Block(r) => match written(t, r, unit, q) {
-                Written::Full => Written::Full,
-                _ => Written::No,
-            },
-            Stmt::If(chain) => {
-                if !chain.iter().all(|(_, block)| written(t, block.clone(), unit, q) == Written::Full) {
-                    Written::No
-                } else if chain.last().is_some_and(|(c, _)| c.is_none())
-                    || (chain.len() == 1 && chain[0].0.as_ref().is_some_and(|c| bram_enable(t, c, q)))
-                {
-                    Written::Full
-                } else {
-                    covers(t, &chain, q)
-                }
-            }
-            _ => Written::No,
+            Stmt::Simple(r) if target(t, &r).is_some_and(|n| unit.contains(&n)) && !is_hold(t, &r, unit[0]) => ALL,
+            Stmt::Block(r) => written(t, r, unit, q),
+            Stmt::If(chain) => written_if(t, &chain, unit, q),
+            _ => NONE,
         };
-        match w {
-            Written::Full => return Written::Full,
-            Written::At(_) if best == Written::No => best = w,
-            _ => {}
+        cover = or(cover, w);
+    }
+    cover
+}
+
+/// [`written`] for an `if` chain.
+fn written_if(t: &[Tok], chain: &[(Option<Range<usize>>, Range<usize>)], unit: &[&str], q: &str) -> Cover {
+    let blocks: Vec<Cover> = chain.iter().map(|(_, b)| written(t, b.clone(), unit, q)).collect();
+    let final_else = chain.last().is_some_and(|(c, _)| c.is_none());
+    // Tests of port_id alone: each value follows the first test it passes.
+    let tests: Option<Vec<Cover>> =
+        chain.iter().filter_map(|(c, _)| c.as_ref()).map(|c| port_test(&t[c.clone()], q)).collect();
+    if let Some(tests) = tests {
+        let (mut left, mut cover) = (ALL, NONE);
+        for (i, b) in blocks.iter().enumerate() {
+            let taken = tests.get(i).map_or(left, |&p| and(left, p));
+            cover = or(cover, and(taken, *b));
+            left = and(left, not(taken));
+        }
+        return cover;
+    }
+    if blocks.iter().all(|b| *b == ALL)
+        && (final_else
+            || (chain.len() == 1 && chain[0].0.as_ref().is_some_and(|c| bram_enable(t, c, q)))
+            || covers(t, chain))
+    {
+        return ALL;
+    }
+    // Tests of anything else: written whichever branch is taken.
+    if final_else {
+        blocks.into_iter().fold(ALL, and)
+    } else {
+        NONE
+    }
+}
+
+/// The values of `port_id` for which a test of it alone holds, or none when it tests anything
+/// else.
+fn port_test(c: &[Tok], q: &str) -> Option<Cover> {
+    let cond = parse(c, q);
+    let mut cover = NONE;
+    for port in 0..256u64 {
+        if eval(&cond, port)? != 0 {
+            cover[port as usize / 64] |= 1 << (port % 64);
         }
     }
-    best
+    Some(cover)
+}
+
+/// A condition's value with `port_id` at `port`: only bits 21-28 of the outputs register
+/// (masked) may be read, and constants.
+fn eval(c: &Cond, port: u64) -> Option<u64> {
+    let q = port << 21;
+    Some(match c {
+        Cond::Const(k) => *k,
+        Cond::And(a, b) => match (&**a, &**b) {
+            (Cond::Const(m), Cond::Q(s)) | (Cond::Q(s), Cond::Const(m)) => {
+                if *s >= 64 || (m << s) >> s != *m || ((m << s) & !(0xFF << 21)) != 0 {
+                    return None;
+                }
+                (q >> s) & m
+            }
+            _ => eval(a, port)? & eval(b, port)?,
+        },
+        Cond::Or(a, b) => eval(a, port)? | eval(b, port)?,
+        Cond::Eq(a, b) => (eval(a, port)? == eval(b, port)?) as u64,
+        Cond::Ne(a, b) => (eval(a, port)? != eval(b, port)?) as u64,
+        _ => return None,
+    })
 }
 
 /// The test is the core's `bram_enable` (1 at every fetch while it runs).
@@ -539,36 +612,23 @@ fn bram_enable(t: &[Tok], c: &Range<usize>, q: &str) -> bool {
     }
 }
 
-/// The chain's tests are `k == (m & x)` (or `k == x`) with one `m` and `x`, each an `or` of
-/// such: written for every value of `m & x` (a `case` whose items cover them all), or, with
-/// `x` a part of `port_id` (`q >> s`), for the ports of the values tested.
-fn covers(t: &[Tok], chain: &[(Option<Range<usize>>, Range<usize>)], q: &str) -> Written {
+/// The chain's tests are `k == (m & x)` with one `m` and `x` (of anything), each an `or` of
+/// such, and together take every value of `m & x`: a `case` whose items cover them all.
+fn covers(t: &[Tok], chain: &[(Option<Range<usize>>, Range<usize>)]) -> bool {
     let mut what: Option<(u64, String)> = None;
     let mut seen = BTreeSet::new();
-    let mut shift = None;
     for (c, _) in chain {
-        let Some(c) = c else { return Written::No };
+        let Some(c) = c else { return false };
         let toks = uncast(&t[c.clone()]);
         for term in split_or(&toks) {
-            let Some((k, m, x, x_shift)) = compare(term, q) else { return Written::No };
+            let Some((k, m, x)) = compare(term) else { return false };
             if what.get_or_insert((m, x.clone())) != &(m, x) || k & !m != 0 {
-                return Written::No;
+                return false;
             }
-            shift = x_shift;
             seen.insert(k);
         }
     }
-    let Some((m, _)) = what else { return Written::No };
-    if m.count_ones() <= 12 && seen.len() as u64 == 1u64 << m.count_ones() {
-        return Written::Full;
-    }
-    // port_id is bits 21-28 of the outputs register.
-    match shift {
-        Some(s) if s >= 21 && (m << s) >> 29 == 0 => {
-            Written::At(Ports { shift: s - 21, mask: m, values: seen.into_iter().collect() })
-        }
-        _ => Written::No,
-    }
+    matches!(what, Some((m, _)) if m.count_ones() <= 12 && seen.len() as u64 == 1u64 << m.count_ones())
 }
 
 /// The tokens without casts (`(IData)`) and outer parentheses.
@@ -620,9 +680,8 @@ fn split_or<'a>(t: &[Tok<'a>]) -> Vec<Vec<Tok<'a>>> {
     out
 }
 
-/// `k == (m & x)`: (k, m, x's text, and the shift when `x` is the outputs register `q`
-/// shifted right).
-fn compare(t: Vec<Tok>, q: &str) -> Option<(u64, u64, String, Option<u32>)> {
+/// `k == (m & x)`: (k, m, x's text).
+fn compare(t: Vec<Tok>) -> Option<(u64, u64, String)> {
     let eq = t.iter().position(|x| *x == Tok::P("=="))?;
     let (l, r) = (strip_parens(t[..eq].to_vec()), strip_parens(t[eq + 1..].to_vec()));
     let (k, x) = match (l.as_slice(), r.as_slice()) {
@@ -637,11 +696,7 @@ fn compare(t: Vec<Tok>, q: &str) -> Option<(u64, u64, String, Option<u32>)> {
         _ => return None,
     };
     let text: String = rest.iter().filter(|t| !matches!(t, Tok::P("(" | ")"))).map(|t| format!("{t:?}")).collect();
-    let shift = match parse(&rest, q) {
-        Cond::Q(s) => Some(s),
-        _ => None,
-    };
-    Some((k, m, text, shift))
+    Some((k, m, text))
 }
 
 /// What the walk over a function knows: the core's outputs register, its guards, its
@@ -664,9 +719,11 @@ impl Ctx<'_> {
             Stmt::If(chain) => {
                 let only = into_followers || self.writes_only_followers(t, &chain);
                 chain.iter().all(|(c, block)| {
-                    let c_ok = c.as_ref().map_or(true, |c| strobed || only || !self.reads_q(t, c.clone()));
+                    // A test true only with a strobe (`write_strobe && port_id == 9`) is false
+                    // whatever else it reads while the core is quiet.
                     let gated =
                         c.as_ref().is_some_and(|c| strobe(&parse(&t[c.clone()], self.q), self.guards, ALL_STROBES));
+                    let c_ok = c.as_ref().map_or(true, |c| strobed || only || gated || !self.reads_q(t, c.clone()));
                     c_ok && self.quiet(t, block.clone(), strobed || gated, only)
                 })
             }
@@ -704,7 +761,7 @@ impl Ctx<'_> {
     fn only_followers(&self, t: &[Tok], range: Range<usize>) -> bool {
         let Some(stmts) = statements(t, range) else { return false };
         stmts.into_iter().all(|s| match s {
-            Stmt::Simple(r) => target(t, &r).is_some_and(|n| self.followers.contains(n)),
+            Stmt::Simple(r) => target(t, &r).is_some_and(|n| self.followers.contains(n)) || coverage_point(t, &r),
             Stmt::Block(r) => self.only_followers(t, r),
             Stmt::If(chain) => self.writes_only_followers(t, &chain),
             Stmt::Other(_) => false,
@@ -779,8 +836,8 @@ mod tests {
         let partial = mux(&[(0, "1U"), (1, "vlSelf->u__DOT__loc"), (2, "3U")], None);
         let all = apart_of(&format!("{ROM}\n{WRITES}\n{partial}")).unwrap();
         assert!(all.followers.contains(&"u__DOT__in_port".to_string()));
-        assert_eq!(all.ports, [Ports { shift: 0, mask: 3, values: vec![0, 1, 2] }]);
-        assert!(all.ports[0].has(0x41) && !all.ports[0].has(0x03));
+        assert_eq!(all.ports.len(), 1);
+        assert!((0..=255u8).all(|p| all.ports[0].has(p) == (p & 3 != 3)));
         assert_eq!(Ports::parse(&all.ports[0].to_string()).as_ref(), Some(&all.ports[0]));
         // Tested on something other than port_id: no follower (compared with the board).
         let other = partial.replace("(Q >> 0x15U)", "vlSelf->u__DOT__loc");

@@ -42,7 +42,7 @@ use std::ops::Range;
 
 use super::cpp::{closing, functions, tokens, Tok};
 use super::demand::{demands, number, Demand};
-use super::strobes::{guards, member, parse, strobe, Cond, ALL_STROBES, OUTPUTS};
+use super::strobes::{drop_casts, guards, member, parse, strobe, Cond, ALL_STROBES, OUTPUTS};
 
 /// A core that may run apart, by its instance's Verilator name, and its followers (root
 /// variables, with their delayed copies kept in the root).
@@ -633,19 +633,7 @@ fn covers(t: &[Tok], chain: &[(Option<Range<usize>>, Range<usize>)]) -> bool {
 
 /// The tokens without casts (`(IData)`) and outer parentheses.
 fn uncast<'a>(t: &[Tok<'a>]) -> Vec<Tok<'a>> {
-    let mut out = Vec::with_capacity(t.len());
-    let mut i = 0;
-    while i < t.len() {
-        if let (Tok::P("("), Some(Tok::Id("CData" | "SData" | "IData" | "QData")), Some(Tok::P(")"))) =
-            (t[i], t.get(i + 1), t.get(i + 2))
-        {
-            i += 3;
-            continue;
-        }
-        out.push(t[i]);
-        i += 1;
-    }
-    strip_parens(out)
+    strip_parens(drop_casts(t))
 }
 
 fn strip_parens(mut t: Vec<Tok>) -> Vec<Tok> {

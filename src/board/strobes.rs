@@ -224,8 +224,8 @@ pub(super) fn strobe(c: &Cond, guards: &BTreeSet<String>, strobes: u64) -> bool 
     }
 }
 
-/// Parse a condition's tokens (casts dropped).
-pub(super) fn parse(t: &[Tok], q: &str) -> Cond {
+/// The tokens without Verilator's casts (`(IData)`).
+pub(super) fn drop_casts<'a>(t: &[Tok<'a>]) -> Vec<Tok<'a>> {
     let mut toks: Vec<Tok> = Vec::with_capacity(t.len());
     let mut i = 0;
     while i < t.len() {
@@ -238,6 +238,12 @@ pub(super) fn parse(t: &[Tok], q: &str) -> Cond {
         toks.push(t[i]);
         i += 1;
     }
+    toks
+}
+
+/// Parse a condition's tokens (casts dropped).
+pub(super) fn parse(t: &[Tok], q: &str) -> Cond {
+    let toks = drop_casts(t);
     let mut p = Parser { t: &toks, i: 0, q };
     let c = p.or();
     if p.i == toks.len() {

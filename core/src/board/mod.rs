@@ -17,6 +17,7 @@ pub mod parts;
 pub mod pins;
 pub mod plan;
 pub mod project;
+pub mod random_stimulus;
 pub mod repo;
 pub mod resolve;
 pub mod scan;

@@ -2,6 +2,7 @@
 
 mod bench;
 mod breaks;
+mod check;
 mod devices;
 mod live;
 mod prepare;
@@ -79,6 +80,12 @@ pub struct Args {
     /// [DURATION]`, `TIME uart "TEXT"` or `TIME tilt X Y Z` per line
     #[arg(long, value_name = "FILE")]
     stimulus: Option<PathBuf>,
+    /// Add a random stimulus of the inputs the design has pins for: presses of its buttons,
+    /// one CPU reset in the middle of the run, switch changes, and text to its UART, keys
+    /// and tilts where it has those; the same SEED gives the same events (the run's first
+    /// lines list them)
+    #[arg(long, value_name = "SEED")]
+    random_stimulus: Option<u64>,
     /// The board's tilt from power-up, in g, as its accelerometer measures it [default: 0,0,1,
     /// lying flat]
     #[arg(long, value_name = "X,Y,Z", allow_hyphen_values = true)]
@@ -191,6 +198,14 @@ pub struct Args {
     /// same built design over --seconds [default: 0.05]
     #[arg(long)]
     bench: bool,
+    /// Check this run against the all-RTL board (--cpu rtl --bot rtl, every edge under
+    /// Verilator): after the run, the same run on both boards over the same time, every record
+    /// compared byte for byte (each bot's samples, the display, its pins, the peripherals'
+    /// lines, the UART, every 8th VGA frame or every --frame-every-th, what the design
+    /// printed); says the first that differs (which, when, both values) and exits 1, or that
+    /// all are equal
+    #[arg(long, conflicts_with_all = ["live", "bench", "build_only", "breaks"])]
+    check: bool,
     /// Write a source-level trace of every KCPSM6 (yours and the bot's) into this folder:
     /// `<instance>.trace.txt`, one line per instruction (cycle, time, PC, label+offset, your
     /// .psm file:line, the instruction, registers written, port accesses, flags), and
@@ -343,7 +358,11 @@ fn run_once(a: Args) -> Result<Stopped, String> {
         return live::run(&a, &p).map(|_| None);
     }
     let outcome = session::simulate(&a, &p)?;
-    report::report(&a, &p, outcome)
+    let stopped = report::report(&a, &p, outcome)?;
+    if a.check {
+        check::run(&a, &p)?;
+    }
+    Ok(stopped)
 }
 
 impl Args {

@@ -11,10 +11,11 @@ use botsim::files::check_writable;
 use botsim::firmware::{SOURCE, SOURCE_PATH};
 use botsim::kcpsm6::loader;
 use botsim::kcpsm6::source::SourceMap;
-use botsim::{Firmware, World};
+use botsim::{Firmware, World, PS_PER_CYCLE};
 use botsim_core::board::ip::ClockSpec;
 use botsim_core::board::pins::{peripherals, Peripheral, Role};
 use botsim_core::board::plan::{Plan, Request};
+use botsim_core::board::random_stimulus::{merge, random_stimulus};
 use botsim_core::board::resolve::{resolve, Design, Options};
 use botsim_core::board::stimulus::{parse_press, parse_tilt, parse_time, Stimulus};
 use botsim_core::debug::{BreakSpec, Breaks};
@@ -108,11 +109,34 @@ fn peripheral_options(a: &Args, s: &Stimulus, plan: &Plan) -> Result<(), String>
     Ok(())
 }
 
+/// `--random-stimulus SEED`: its events for the design's pins, within the run's time, added
+/// to the stimulus and listed.
+fn add_random_stimulus(a: &Args, seed: u64, plan: &Plan, inputs: &mut Inputs) -> Result<(), String> {
+    let roles: Vec<Role> = plan.pins.iter().map(|(_, r)| *r).collect();
+    let span_ps = match (a.seconds, a.samples) {
+        (Some(s), _) => (s * 1e12) as u64,
+        // Half the budget of a wait for a sample is about one sample's interval.
+        (None, Some(n)) => n.saturating_mul(inputs.fw.timing.update_budget() / 2).saturating_mul(PS_PER_CYCLE),
+        (None, None) => 1_000_000_000_000,
+    };
+    let r = random_stimulus(seed, &roles, span_ps);
+    let events = r.text(u64::MAX, "").lines().count() - 1;
+    a.say(format!("  random stimulus {seed}: {events} events on the design's inputs:"));
+    for l in r.text(span_ps, "").lines().skip(1) {
+        a.say(format!("    {l}"));
+    }
+    merge(&mut inputs.stimulus, r);
+    Ok(())
+}
+
 /// Check the arguments, find the design, plan it and build it.
 pub fn prepare(a: &Args) -> Result<Prepared, String> {
-    let inputs = checked_arguments(a)?;
+    let mut inputs = checked_arguments(a)?;
     let (design, plan) = find_design(a, &inputs)?;
     say_design(a, &design, &plan, &inputs.stimulus)?;
+    if let Some(seed) = a.random_stimulus {
+        add_random_stimulus(a, seed, &plan, &mut inputs)?;
+    }
     let models = choose_models(a, &plan, &inputs.fw)?;
     let (built, twin) = build_boards(a, &plan, &inputs.params, &models)?;
     let Inputs { stimulus, vcd_from, vcd_to, world, fw, .. } = inputs;

@@ -12,6 +12,7 @@
 mod common;
 
 mod board;
+mod differential;
 mod docs;
 mod final_projects;
 mod hostile;

@@ -8,6 +8,7 @@ pub mod audio;
 pub mod constraints;
 pub mod course;
 pub mod display;
+pub mod drivers;
 pub mod gtkw;
 pub mod ip;
 pub mod keyboard;

@@ -60,23 +60,23 @@ pub const PRIMITIVES: [(&str, &[&str]); 34] = [
 /// generates for a design (clock cores) instantiates.
 pub const HELPERS: [&str; 3] = ["botsim_clkgen", "botsim_lock", "botsim_mmcm"];
 
-/// The ports of botsim's own module `name` (one of [`OWN_MODULES`]), as its Verilog declares
-/// them (the bot's include `Loc_Y_reg`, the later course files' spelling).
-pub fn own_ports(name: &str) -> Vec<String> {
+/// botsim's own module `name` (one of [`OWN_MODULES`]), as its Verilog declares it.
+pub fn own_module(name: &str) -> Option<Module> {
     let text = match name {
         "kcpsm6" => include_str!("../../../rtl/kcpsm6.v"),
         "bot" => include_str!("../../../rtl/bot.v"),
         "world_if" => include_str!("../../../rtl/world_if.v"),
         "map" => include_str!("../../../rtl/map.v"),
         "world_map" => include_str!("../../../rtl/world_map.v"),
-        _ => return Vec::new(),
+        _ => return None,
     };
-    let modules = super::scan::scan(text);
-    modules
-        .iter()
-        .find(|m| m.name == name)
-        .map(|m| m.ports.iter().map(|p| p.name.clone()).collect())
-        .unwrap_or_default()
+    super::scan::scan(text).into_iter().find(|m| m.name == name)
+}
+
+/// The ports of botsim's own module `name` (one of [`OWN_MODULES`]), as its Verilog declares
+/// them (the bot's include `Loc_Y_reg`, the later course files' spelling).
+pub fn own_ports(name: &str) -> Vec<String> {
+    own_module(name).map(|m| m.ports.iter().map(|p| p.name.clone()).collect()).unwrap_or_default()
 }
 
 /// A team's module named like one of botsim's own ([`OWN_MODULES`]) is the course's when

@@ -12,12 +12,13 @@ use std::path::{Path, PathBuf};
 use kcpsm6::image::Image;
 
 use super::constraints::Board;
+use super::drivers;
 use super::parts::{
-    bot_locy_port, foreign_port, is_bot, is_program_rom, Replacement, HELPERS, OWN_MODULES, PRIMITIVES,
+    bot_locy_port, foreign_port, is_bot, is_program_rom, own_module, Replacement, HELPERS, OWN_MODULES, PRIMITIVES,
 };
 use super::pins::{self, Role};
 use super::resolve::Design;
-use super::scan::{Dir, Instance, Module};
+use super::scan::{scan, Dir, Instance, Module};
 pub use super::source::Source;
 use super::BoardError;
 
@@ -103,6 +104,34 @@ pub struct Plan {
     pub loc_y_reg: bool,
     /// Every KCPSM6 instance: the team's and, last, the bot's.
     pub cpus: Vec<CpuSite>,
+}
+
+/// The warning for a net of `m` (in `path`, whose text is `text`) with several drivers, at
+/// its first driver, naming every one and where.
+fn several_drivers(path: &Path, text: &str, m: &Module, n: &drivers::SharedNet) -> String {
+    let place = |at: usize| {
+        let before = &text[..at];
+        let line = before.matches('\n').count() + 1;
+        let col = before.len() - before.rfind('\n').map_or(0, |k| k + 1) + 1;
+        (line, col)
+    };
+    let (line, col) = place(n.drivers[0].at.start);
+    let places: Vec<String> = n
+        .drivers
+        .iter()
+        .map(|d| {
+            let (l, c) = place(d.at.start);
+            format!("{} ({}:{l}:{c})", d.what, path.display())
+        })
+        .collect();
+    format!(
+        "{}:{line}:{col}: `{}` in `{}` has {} drivers, {}: Vivado refuses it (DRC MDRV-1, Multiple Driver Nets); botsim gives each bit the value its drivers agree on and 0 where they differ (x in Verilog), on every board alike",
+        path.display(),
+        n.net,
+        m.name,
+        n.drivers.len(),
+        places.join(" and ")
+    )
 }
 
 /// The most bots a design may have (the board's wrapper taps each: src/board/wrapper.rs).
@@ -448,7 +477,39 @@ impl Plan {
             .chain(roms.iter().map(|r| r.module.clone()))
             .collect();
         let mut files = Vec::new();
+        let own_modules: BTreeMap<&str, Module> =
+            OWN_MODULES.iter().filter_map(|(n, _)| Some((*n, own_module(n)?))).collect();
+        let dir = |module: &str, port: &str| -> Option<Dir> {
+            let m = match own_name(module) {
+                true => own_modules.get(module)?,
+                false => defined.get(module)?.1,
+            };
+            m.port(port).map(|p| p.dir)
+        };
         for s in sources {
+            // Nets with several drivers: said, and resolved alike on every board.
+            let mut edits = Vec::new();
+            // (Scanned again: the text's positions after the leniencies' edits.)
+            let now = scan(&s.text);
+            for m in now.iter().filter(|m| used.contains(&m.name) && !replaced_names.contains(&m.name)) {
+                let shared = drivers::shared_nets(m, &dir);
+                for n in &shared {
+                    warnings.push(several_drivers(&s.path, &s.text, m, n));
+                }
+                edits.extend(drivers::rewrite(m, &shared));
+            }
+            let edited;
+            let s = if edits.is_empty() {
+                s
+            } else {
+                let mut e = s.clone();
+                edits.sort_by_key(|(at, _)| at.start);
+                for (at, with) in edits.into_iter().rev() {
+                    e.replace(at, &with);
+                }
+                edited = e;
+                &edited
+            };
             let drop: Vec<std::ops::Range<usize>> =
                 s.modules.iter().filter(|m| replaced_names.contains(&m.name)).map(|m| m.span.clone()).collect();
             if drop.is_empty() && s.dropped.is_empty() && !s.edited {

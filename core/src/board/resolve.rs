@@ -1595,6 +1595,7 @@ mod tests {
             line: 1,
             col: 1,
             connections: ports.iter().map(|p| (p.to_string(), "x".into())).collect(),
+            spans: vec![],
             params: vec![],
             unnamed_at: None,
         };

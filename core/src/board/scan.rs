@@ -51,6 +51,9 @@ pub struct Instance {
     pub col: u32,
     /// Named connections `(port, expression)`; positional ones are named `#0`, `#1`...
     pub connections: Vec<(String, String)>,
+    /// The bytes of each connection's expression in the source, in the order of
+    /// `connections` (empty where it is empty or implicit).
+    pub spans: Vec<Range<usize>>,
     /// Parameter overrides `(name, value)`; positional ones are named `#0`...
     pub params: Vec<(String, String)>,
     /// The instance has no name in the source (`bot (.clk(clk), ...);`, which Vivado
@@ -76,9 +79,37 @@ pub struct Module {
     /// It has no `endmodule`: the file ends, or another module begins, before it does (a
     /// file cut short). Its span and instances end there.
     pub unterminated: bool,
+    /// Its net and variable declarations (`wire [7:0] a, b;`), each name with its range.
+    pub nets: Vec<Net>,
+    /// Its continuous assignments to a whole net (`assign a = ...;`).
+    pub assigns: Vec<Assign>,
+    /// The byte just past the `;` that ends its header, where a declaration may go.
+    pub header_end: usize,
     /// Something the scanner cannot read as Verilog where it looked (a keyword where a
     /// port's name should be: a stray `endmodule` in the port list): line, column, what.
     pub unreadable: Option<(u32, u32, String)>,
+}
+
+/// A net or variable declared in a module's body.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Net {
+    pub name: String,
+    /// Its range as written (`[W-1:0]`), if any.
+    pub range: Option<String>,
+    /// The byte just past the `;` that ends its declaration.
+    pub end: usize,
+}
+
+/// `assign NAME = ...;`: a continuous assignment to a whole net.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Assign {
+    pub target: String,
+    /// The bytes of the target's name in the source.
+    pub at: Range<usize>,
+    pub line: u32,
+    pub col: u32,
+    /// The right-hand side has a `z` literal (a tri-state driver).
+    pub tristate: bool,
 }
 
 impl Module {
@@ -557,6 +588,13 @@ fn module(p: &mut Parser) -> Option<Module> {
         ansi_ports(p, p.i + 1, end - 1, &mut ports, &mut port_order);
         p.i = end;
     }
+    let header_end = match p.t.get(p.i) {
+        Some(t) if t.tok == Tok::Punct(';') => t.at + 1,
+        Some(t) => t.at,
+        None => p.src.len(),
+    };
+    let mut nets = Vec::new();
+    let mut assigns = Vec::new();
     // Body: up to endmodule.
     let mut instances = Vec::new();
     let body_start = p.i;
@@ -594,6 +632,10 @@ fn module(p: &mut Parser) -> Option<Module> {
                 continue;
             }
             Some(Tok::Ident(w)) if matches!(w.as_str(), "wire" | "reg" | "logic" | "tri") && stmt_start => {
+                let semi = (p.i..body_end).find(|&k| p.t[k].tok == Tok::Punct(';')).unwrap_or(body_end);
+                let (names, range) = declared_names(p, p.i + 1, semi);
+                let end = p.t.get(semi).map_or(p.src.len(), |t| t.at + 1);
+                nets.extend(names.into_iter().map(|name| Net { name, range: range.clone(), end }));
                 // A declaration: a name, then another where a `,`, `=` or `;` should be (a
                 // stray `wire` before an instance) is said here, before the instance is lost.
                 let mut k = p.i + 1;
@@ -672,6 +714,20 @@ fn module(p: &mut Parser) -> Option<Module> {
                 ) =>
             {
                 logic = true;
+                if let (true, Some(target), true) = (w == "assign", p.ident(1), p.is(2, '=')) {
+                    let semi = (p.i..body_end).find(|&k| p.t[k].tok == Tok::Punct(';')).unwrap_or(body_end);
+                    let tristate = p.t[p.i + 3..semi]
+                        .iter()
+                        .any(|t| matches!(&t.tok, Tok::Num(n) if n.split_once('\'').is_some_and(|(_, v)| v.contains(['z', 'Z', '?']))));
+                    let t = &p.t[p.i + 1];
+                    assigns.push(Assign {
+                        target: target.to_string(),
+                        at: t.at..t.at + target.len(),
+                        line: t.line,
+                        col: t.col,
+                        tristate,
+                    });
+                }
             }
             Some(Tok::Punct('=')) => logic = true,
             Some(Tok::Ident(w)) if matches!(w.as_str(), "if" | "for" | "case") => {
@@ -715,6 +771,9 @@ fn module(p: &mut Parser) -> Option<Module> {
         instances,
         empty,
         unterminated,
+        nets,
+        assigns,
+        header_end,
         unreadable,
     })
 }
@@ -868,6 +927,7 @@ fn instance_statement(p: &mut Parser, body_end: usize, out: &mut Vec<Instance>) 
             line: mtok.line,
             col: mtok.col,
             connections: connections(p, k + 1, end - 1),
+            spans: connection_spans(p, k + 1, end - 1),
             params,
             unnamed_at: Some(p.t[k].at),
         });
@@ -890,6 +950,7 @@ fn instance_statement(p: &mut Parser, body_end: usize, out: &mut Vec<Instance>) 
             line: mtok.line,
             col: mtok.col,
             connections: conns,
+            spans: connection_spans(p, k + 1, end - 1),
             params: params.clone(),
             unnamed_at: None,
         });
@@ -939,6 +1000,81 @@ fn connections(p: &Parser, from: usize, to: usize) -> Vec<(String, String)> {
         n += 1;
     }
     out
+}
+
+/// The bytes of each connection's expression between tokens `[from, to)`, as
+/// [`connections`] finds them.
+fn connection_spans(p: &Parser, from: usize, to: usize) -> Vec<Range<usize>> {
+    let span = |a: usize, b: usize| -> Range<usize> {
+        if a >= b {
+            let at = p.t.get(a).map_or(p.src.len(), |t| t.at);
+            return at..at;
+        }
+        p.t[a].at..p.t[b - 1].at + token_len(p.src, &p.t[b - 1])
+    };
+    let mut out = Vec::new();
+    let mut k = from;
+    while k < to {
+        if p.t[k].tok == Tok::Punct(',') {
+            k += 1;
+            continue;
+        }
+        if p.t[k].tok == Tok::Punct('.') && matches!(p.t.get(k + 1).map(|t| &t.tok), Some(Tok::Ident(_))) {
+            if p.t.get(k + 2).map(|t| &t.tok) == Some(&Tok::Punct('(')) {
+                let end = p.skip_group(k + 2);
+                out.push(span(k + 3, end - 1));
+                k = end;
+            } else {
+                let at = p.t[k + 1].at;
+                out.push(at..at);
+                k += 2;
+            }
+            continue;
+        }
+        let s = k;
+        while k < to && p.t[k].tok != Tok::Punct(',') {
+            k = if matches!(p.t[k].tok, Tok::Punct('(') | Tok::Punct('[') | Tok::Punct('{')) {
+                p.skip_group(k)
+            } else {
+                k + 1
+            };
+        }
+        out.push(span(s, k));
+    }
+    out
+}
+
+/// The names a declaration statement `[from, semi)` declares (after `wire`), with the text of
+/// its range.
+fn declared_names(p: &Parser, from: usize, semi: usize) -> (Vec<String>, Option<String>) {
+    let mut names = Vec::new();
+    let mut range = None;
+    let mut k = from;
+    let mut want_name = true;
+    while k < semi {
+        match &p.t[k].tok {
+            Tok::Ident(w) if NET_WORDS.contains(&w.as_str()) => k += 1,
+            Tok::Punct('[') => {
+                let end = p.skip_group(k);
+                if names.is_empty() && range.is_none() {
+                    range = Some(p.text(k, end));
+                }
+                k = end;
+            }
+            Tok::Punct('(') | Tok::Punct('{') => k = p.skip_group(k),
+            Tok::Punct(',') => {
+                want_name = true;
+                k += 1;
+            }
+            Tok::Ident(n) if want_name => {
+                names.push(n.clone());
+                want_name = false;
+                k += 1;
+            }
+            _ => k += 1,
+        }
+    }
+    (names, range)
 }
 
 /// The keywords SystemVerilog (IEEE 1800-2017) adds to Verilog-2005: in a `.v` file, which

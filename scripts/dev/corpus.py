@@ -13,13 +13,17 @@ corpus as its entry says and writes a table of what happened against what must h
     corpus.py table --json FILE [--table FILE]
         Writes the table again from a check's JSON record.
 
-    corpus.py check [--into DIR] [--only NAME,...] [--no-speed] [--table FILE] [--json FILE]
+    corpus.py check [--into DIR] [--only NAME,...] [--no-speed] [--seed N] [--table FILE] [--json FILE]
         Runs `botsim board` (target/release/botsim) on each restored clone: first as committed
         (with `--param SIMULATE=1` where the top has it), checked against `first`; then with
         `args`, checked against `expect`; then, for every design that runs, `--bench` at `hw`
         timing with SIMULATE 1 and 0 (where the top has it), and `--live --speed max` for
         15 s of wall time with no page attached (its pace against real time, and the VGA
-        frames it shows a second where it has VGA). Writes the table as Markdown (default docs/ECOSYSTEM.md's
+        frames it shows a second where it has VGA); and the differential check: the run of
+        `expect` again under a random stimulus of the design's inputs (`--random-stimulus`,
+        seeded by --seed and the repository's name) with `--check` (the default board beside
+        the all-RTL board, every record compared byte for byte), and with `--cpu lockstep`
+        (every KCPSM6's RTL and ISS compared every cycle). Writes the table as Markdown (default docs/ECOSYSTEM.md's
         table between its markers) and every run's words as JSON.
 
 The corpus's code is third-party of unknown licence: nothing of it enters this repository; the
@@ -36,6 +40,7 @@ import sys
 import tempfile
 import time
 import tomllib
+import zlib
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 CORPUS = os.path.join(os.path.dirname(ROOT), "shared", "corpus", "repos.toml")
@@ -250,6 +255,30 @@ def live(clone, repo, simulate):
     return {"ok": True, "real": float(m.group(1)), "frames": float(m.group(2)) if m.group(2) else None}
 
 
+def seed_of(seed, name):
+    """The random stimulus's seed for a repository: the check's seed and its name."""
+    return (seed * 1_000_003 + zlib.crc32(name.encode())) % (1 << 32)
+
+
+def differential(clone, repo, simulate, seed):
+    """`expect`'s run under a random stimulus, with `--check` and with `--cpu lockstep`:
+    ("ok" or "DIFFERS" or "FAIL", words) for each."""
+    trace = os.path.join(tempfile.gettempdir(), f"corpus-{repo['name']}-check.csv")
+    args = base_args(clone, repo, simulate) + repo.get("args", []) + expect_args(repo, trace)
+    args = [a for a in args if a != "--json"] + ["--random-stimulus", str(seed)]
+    code, out, err, secs = run_botsim(args + ["--check"])
+    said = next((l for l in err.splitlines() if re.match(r"^(\w+: )?check: ", l) and "the same run on" not in l), "")
+    if code == 0 and "check: equal" in said:
+        check = ["ok", said.split(", every record: ")[-1]]
+    elif said:
+        check = ["DIFFERS", said]
+    else:
+        check = ["FAIL", error_line(err)]
+    code, out, err, _ = run_botsim(args + ["--cpu", "lockstep", "-q"])
+    lockstep = ["ok", "every cycle equal"] if code == 0 else ["FAIL", error_line(err)]
+    return {"seed": seed, "check": check, "lockstep": lockstep, "seconds": round(secs, 1)}
+
+
 def check(args):
     repos = load_corpus(args.corpus)
     if args.only:
@@ -283,6 +312,8 @@ def check(args):
         if verdict == "ok" and repo["expect"] != "refused" and not args.no_speed:
             entry["speed"] = {str(s): bench(clone, repo, s) for s in ([1, 0] if simulate is not None else [None])}
             entry["live"] = live(clone, repo, simulate)
+        if verdict == "ok" and repo["expect"] != "refused":
+            entry["differential"] = differential(clone, repo, simulate, seed_of(args.seed, repo["name"]))
         record.append(entry)
         print(json.dumps(entry), flush=True)
     if args.merge:
@@ -305,6 +336,8 @@ def merged(path, record):
         if n is None:
             out.append(e)
             continue
+        if "differential" not in n and "differential" in e:
+            n["differential"] = e["differential"]
         if "speed" not in n and "speed" in e and n["expect"][0] == e["expect"][0] == "ok":
             n["speed"] = e["speed"]
             if "live" in e:
@@ -324,7 +357,7 @@ def fmt(v, unit=""):
 
 
 def write_table(path, record):
-    head = "| repository | first run | expect | x all-RTL (S=1 / S=0) | x real time | skipped | live `--speed max` | what kept it busy |\n|---|---|---|---|---|---|---|---|\n"
+    head = "| repository | first run | expect | = all-RTL | x all-RTL (S=1 / S=0) | x real time | skipped | live `--speed max` | what kept it busy |\n|---|---|---|---|---|---|---|---|---|\n"
     body = ""
     for e in record:
         sp = e.get("speed", {})
@@ -342,7 +375,14 @@ def write_table(path, record):
             live_cell = "did not run: " + here.sub("", lv.get("said", "")).replace("|", "/")[:60]
         else:
             live_cell = f"{lv['real']:g} x" + (f", {lv['frames']:g} VGA frames/s" if lv.get("frames") is not None else "")
-        body += f"| {e['name']} | {cell(e['first'])} | {cell(e['expect'])} | {cols[0]} | {cols[1]} | {cols[2]} | {live_cell} | {here.sub('', busy).replace('|', '/')[:120]} |\n"
+        df = e.get("differential")
+        if not df:
+            same = "-"
+        else:
+            same = "yes" if df["check"][0] == "ok" else f"**no**: {here.sub('', df['check'][1])}"
+            same += "; lock-step " + ("equal" if df["lockstep"][0] == "ok" else "**failed**: " + here.sub("", df["lockstep"][1]))
+            same = same.replace("|", "/")[:200]
+        body += f"| {e['name']} | {cell(e['first'])} | {cell(e['expect'])} | {same} | {cols[0]} | {cols[1]} | {cols[2]} | {live_cell} | {here.sub('', busy).replace('|', '/')[:120]} |\n"
     table = head + body
     if not os.path.exists(path):
         with open(path, "w") as f:
@@ -371,6 +411,7 @@ def main():
     c = sub.add_parser("check")
     c.add_argument("--only")
     c.add_argument("--no-speed", action="store_true")
+    c.add_argument("--seed", type=int, default=540, help="the random stimuli's seed (with each repository's name)")
     c.add_argument("--table", default=os.path.join(ROOT, "docs", "ECOSYSTEM.md"))
     c.add_argument("--json")
     c.add_argument("--merge", help="an earlier run's JSON: its entries for the repositories not run here are kept")

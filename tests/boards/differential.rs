@@ -39,6 +39,19 @@ fn the_example_boards_equal_the_all_rtl_board_under_random_stimuli() {
 }
 
 #[test]
+fn a_board_without_a_bot_equals_the_all_rtl_board_with_its_uart_and_keyboard() {
+    // The console design: text typed on the UART and keys of the keyboard, echoed; no bot,
+    // so neither a bot trace nor --bot on the all-RTL side.
+    let o =
+        board_in(&root(), &["tests/board_designs/console", "--seconds", "0.02", "--random-stimulus", "21", "--check"]);
+    let e = stderr(&o);
+    assert!(o.status.success(), "{e}");
+    assert!(e.contains(" uart \"") && e.contains(" key "), "the stimulus types on both: {e}");
+    let said = e.lines().find(|l| l.starts_with(EQUAL)).unwrap_or_else(|| panic!("{e}"));
+    assert!(said.contains("--uart (") && said.contains("--lines (") && !said.contains("--trace-csv"), "{said}");
+}
+
+#[test]
 fn the_same_seed_gives_the_same_random_stimulus_and_another_seed_another() {
     let said = |seed: &str| {
         let o = board_in(

@@ -10,7 +10,7 @@
 //! run's board (by default the ISS CPUs, the bot's model and the fast-forward) costs little
 //! beside the all-RTL board, so running it twice does too.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use botsim::board::build::{BotKind, CpuModel};
 use botsim_core::board::pins::Role;
@@ -54,7 +54,10 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
         a.say("check: this run is the all-RTL board (--cpu rtl --bot rtl): nothing to compare it with".into());
         return Ok(());
     }
-    let dir = TempDir::new()?;
+    let dir = tempfile::Builder::new()
+        .prefix("botsim-check-")
+        .tempdir()
+        .map_err(|e| format!("error: cannot create a temporary folder for the check: {e}"))?;
     let has = |r: Role| p.plan.pins.iter().any(|(_, x)| *x == r);
     let records = Records {
         bot: p.plan.bot_path.is_some(),
@@ -68,8 +71,8 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
         (None, None) => "1 s".into(),
     };
     a.say(format!("check: the same run on the all-RTL board (--cpu rtl --bot rtl) over {span}, every record compared"));
-    let this = records.args(a, &dir.0.join("this"), None)?;
-    let rtl = records.args(a, &dir.0.join("rtl"), Some((CpuArg::Rtl, BotArg::Rtl)))?;
+    let this = records.args(a, &dir.path().join("this"), None)?;
+    let rtl = records.args(a, &dir.path().join("rtl"), Some((CpuArg::Rtl, BotArg::Rtl)))?;
     for args in [&this, &rtl] {
         let p = prepare::prepare(args)?;
         let o = session::simulate(args, &p)?;
@@ -78,7 +81,7 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
         }
         report::report(args, &p, o)?;
     }
-    match compare(&dir.0.join("this"), &dir.0.join("rtl"))? {
+    match compare(&dir.path().join("this"), &dir.path().join("rtl"))? {
         Verdict::Equal(sizes) => {
             let sizes: Vec<String> = sizes.iter().map(|(r, n)| format!("{r} ({n})")).collect();
             a.say(format!("check: equal to the all-RTL board, every record: {}", sizes.join(", ")));
@@ -119,7 +122,8 @@ impl Records {
         r.frames = if self.vga { file(FRAMES) } else { None };
         r.frame_every = self.frame_every;
         if let Some((cpu, bot)) = on {
-            (r.cpu, r.bot, r.no_fast_forward) = (Some(cpu), Some(bot), false);
+            // A design without a bot takes no --bot.
+            (r.cpu, r.bot, r.no_fast_forward) = (Some(cpu), self.bot.then_some(bot), false);
         }
         Ok(r)
     }
@@ -285,31 +289,14 @@ fn read(f: &Path) -> Result<Vec<u8>, String> {
     std::fs::read(f).map_err(|e| format!("{}: error: cannot read: {e}", f.display()))
 }
 
-/// A folder of this process's, removed when dropped.
-struct TempDir(PathBuf);
-
-impl TempDir {
-    fn new() -> Result<TempDir, String> {
-        let nanos = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.subsec_nanos());
-        let d = std::env::temp_dir().join(format!("botsim-check-{}-{nanos}", std::process::id()));
-        std::fs::create_dir_all(&d).map_err(|e| format!("{}: error: cannot create the folder: {e}", d.display()))?;
-        Ok(TempDir(d))
-    }
-}
-
-impl Drop for TempDir {
-    fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(&self.0);
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::path::PathBuf;
 
-    fn folders(files: &[(&str, &str, &str)]) -> (TempDir, PathBuf, PathBuf) {
-        let t = TempDir::new().unwrap();
-        let (a, b) = (t.0.join("this"), t.0.join("rtl"));
+    fn folders(files: &[(&str, &str, &str)]) -> (tempfile::TempDir, PathBuf, PathBuf) {
+        let t = tempfile::tempdir().unwrap();
+        let (a, b) = (t.path().join("this"), t.path().join("rtl"));
         for (name, x, y) in files {
             for (d, text) in [(&a, x), (&b, y)] {
                 std::fs::create_dir_all(d).unwrap();

@@ -92,17 +92,16 @@ fn is_name(e: &str) -> bool {
 /// The edits that give each driver of each shared net of `m` a wire of its own and the net
 /// their AND, in the order of the text: (bytes, new text). Every edit stays on its line, so
 /// messages still point at the user's lines. The wires are declared right after the net's
-/// declaration (after the module's header for a port), of its range; a net the module does
-/// not declare (an implicit one) is left as it is.
+/// declaration (after the module's header for a port, or for a net the module does not
+/// declare: an implicit one, one bit), of its range.
 pub fn rewrite(m: &Module, shared: &[SharedNet]) -> Vec<(Range<usize>, String)> {
     let mut edits = Vec::new();
     for s in shared {
-        let range = match (m.nets.iter().find(|n| n.name == s.net), m.port(&s.net)) {
-            (Some(n), _) => Some((n.end, n.range.clone())),
-            (None, Some(p)) => Some((m.header_end, p.range.map(|(a, b)| format!("[{a}:{b}]")))),
-            (None, None) => None,
+        let (after, range) = match (m.nets.iter().find(|n| n.name == s.net), m.port(&s.net)) {
+            (Some(n), _) => (n.end, n.range.clone()),
+            (None, Some(p)) => (m.header_end, p.range.map(|(a, b)| format!("[{a}:{b}]"))),
+            (None, None) => (m.header_end, None),
         };
-        let Some((after, range)) = range else { continue };
         let wire = |k: usize| format!("{}{DRIVER_SUFFIX}{k}", s.net);
         for (k, d) in s.drivers.iter().enumerate() {
             edits.push((d.at.clone(), wire(k)));
@@ -161,6 +160,13 @@ mod tests {
             ),
             "{out}"
         );
+    }
+
+    #[test]
+    fn an_implicit_net_is_declared_as_one_bit_after_the_header() {
+        let out = edited("module g(input clk);\n  bot x (.upd(a));\n  bot y (.upd(a));\nendmodule\n");
+        assert!(out.starts_with("module g(input clk); wire a__botsim_driver0, a__botsim_driver1; assign a = a__botsim_driver0 & a__botsim_driver1;\n"), "{out}");
+        assert!(out.contains("bot y (.upd(a__botsim_driver1));"), "{out}");
     }
 
     #[test]

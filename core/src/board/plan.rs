@@ -18,7 +18,7 @@ use super::parts::{
 };
 use super::pins::{self, Role};
 use super::resolve::Design;
-use super::scan::{scan, Dir, Instance, Module};
+use super::scan::{Dir, Instance, Module};
 pub use super::source::Source;
 use super::BoardError;
 
@@ -106,32 +106,44 @@ pub struct Plan {
     pub cpus: Vec<CpuSite>,
 }
 
-/// The warning for a net of `m` (in `path`, whose text is `text`) with several drivers, at
-/// its first driver, naming every one and where.
-fn several_drivers(path: &Path, text: &str, m: &Module, n: &drivers::SharedNet) -> String {
-    let place = |at: usize| {
-        let before = &text[..at];
-        let line = before.matches('\n').count() + 1;
-        let col = before.len() - before.rfind('\n').map_or(0, |k| k + 1) + 1;
-        (line, col)
-    };
-    let (line, col) = place(n.drivers[0].at.start);
-    let places: Vec<String> = n
-        .drivers
-        .iter()
-        .map(|d| {
-            let (l, c) = place(d.at.start);
-            format!("{} ({}:{l}:{c})", d.what, path.display())
-        })
-        .collect();
-    format!(
-        "{}:{line}:{col}: `{}` in `{}` has {} drivers, {}: Vivado refuses it (DRC MDRV-1, Multiple Driver Nets); botsim gives each bit the value its drivers agree on and 0 where they differ (x in Verilog), on every board alike",
-        path.display(),
-        n.net,
-        m.name,
-        n.drivers.len(),
-        places.join(" and ")
-    )
+/// `s` with the nets of its modules that `compiled` names resolved where they have several
+/// drivers ([`drivers`]), each said in `warnings` at its first driver, naming every one and
+/// where; `None` when it has none.
+fn resolve_shared_nets(
+    s: &Source,
+    compiled: &dyn Fn(&str) -> bool,
+    dir: &dyn Fn(&str, &str) -> Option<Dir>,
+    warnings: &mut Vec<String>,
+) -> Option<Source> {
+    let mut edits = Vec::new();
+    for m in s.modules.iter().filter(|m| compiled(&m.name)) {
+        let shared = drivers::shared_nets(m, dir);
+        for n in &shared {
+            let place = |d: &drivers::Driver| {
+                let (line, col) = s.line_col(d.at.start);
+                format!("{}:{line}:{col}", s.path.display())
+            };
+            let places: Vec<String> = n.drivers.iter().map(|d| format!("{} ({})", d.what, place(d))).collect();
+            warnings.push(format!(
+                "{}: `{}` in `{}` has {} drivers, {}: Vivado refuses it (DRC MDRV-1, Multiple Driver Nets); botsim gives each bit the value its drivers agree on and 0 where they differ (x in Verilog), on every board alike",
+                place(&n.drivers[0]),
+                n.net,
+                m.name,
+                n.drivers.len(),
+                places.join(" and ")
+            ));
+        }
+        edits.extend(drivers::rewrite(m, &shared));
+    }
+    if edits.is_empty() {
+        return None;
+    }
+    let mut e = s.clone();
+    edits.sort_by_key(|(at, _)| at.start);
+    for (at, with) in edits.into_iter().rev() {
+        e.replace(at, &with);
+    }
+    Some(e)
 }
 
 /// The most bots a design may have (the board's wrapper taps each: src/board/wrapper.rs).
@@ -487,29 +499,9 @@ impl Plan {
             m.port(port).map(|p| p.dir)
         };
         for s in sources {
-            // Nets with several drivers: said, and resolved alike on every board.
-            let mut edits = Vec::new();
-            // (Scanned again: the text's positions after the leniencies' edits.)
-            let now = scan(&s.text);
-            for m in now.iter().filter(|m| used.contains(&m.name) && !replaced_names.contains(&m.name)) {
-                let shared = drivers::shared_nets(m, &dir);
-                for n in &shared {
-                    warnings.push(several_drivers(&s.path, &s.text, m, n));
-                }
-                edits.extend(drivers::rewrite(m, &shared));
-            }
-            let edited;
-            let s = if edits.is_empty() {
-                s
-            } else {
-                let mut e = s.clone();
-                edits.sort_by_key(|(at, _)| at.start);
-                for (at, with) in edits.into_iter().rev() {
-                    e.replace(at, &with);
-                }
-                edited = e;
-                &edited
-            };
+            let resolved =
+                resolve_shared_nets(s, &|m| used.contains(m) && !replaced_names.contains(m), &dir, &mut warnings);
+            let s = resolved.as_ref().unwrap_or(s);
             let drop: Vec<std::ops::Range<usize>> =
                 s.modules.iter().filter(|m| replaced_names.contains(&m.name)).map(|m| m.span.clone()).collect();
             if drop.is_empty() && s.dropped.is_empty() && !s.edited {

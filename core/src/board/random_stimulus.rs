@@ -132,24 +132,27 @@ pub fn random_stimulus(seed: u64, roles: &[Role], span_ps: u64) -> Stimulus {
             }
         }
     }
+    in_time_order(&mut s);
+    s
+}
+
+/// Each kind of event of `s` in time order.
+fn in_time_order(s: &mut Stimulus) {
     s.presses.sort_by_key(|p| p.from);
     s.keys.sort_by_key(|k| k.from);
     s.switches.sort_by_key(|&(t, _)| t);
     s.uart.sort_by_key(|&(t, _)| t);
     s.tilts.sort_by_key(|&(t, _)| t);
-    s
 }
 
-/// `other`'s events added to `s` (the order of each kind kept by time).
+/// `other`'s events added to `s`, each kind in time order.
 pub fn merge(s: &mut Stimulus, other: Stimulus) {
     s.presses.extend(other.presses);
     s.keys.extend(other.keys);
     s.switches.extend(other.switches);
     s.uart.extend(other.uart);
     s.tilts.extend(other.tilts);
-    s.switches.sort_by_key(|&(t, _)| t);
-    s.uart.sort_by_key(|&(t, _)| t);
-    s.tilts.sort_by_key(|&(t, _)| t);
+    in_time_order(s);
 }
 
 #[cfg(test)]

@@ -113,6 +113,19 @@ pub struct Assign {
 }
 
 impl Module {
+    /// Every byte position the module holds moved by `f` (the text was edited before them).
+    pub fn shift(&mut self, f: &dyn Fn(usize) -> usize) {
+        let range = |r: &mut Range<usize>| *r = f(r.start)..f(r.end);
+        range(&mut self.span);
+        self.header_end = f(self.header_end);
+        for i in &mut self.instances {
+            i.spans.iter_mut().for_each(range);
+            i.unnamed_at = i.unnamed_at.map(f);
+        }
+        self.nets.iter_mut().for_each(|n| n.end = f(n.end));
+        self.assigns.iter_mut().for_each(|a| range(&mut a.at));
+    }
+
     /// The port named `name`, if any.
     pub fn port(&self, name: &str) -> Option<&Port> {
         self.ports.iter().find(|p| p.name == name)
@@ -911,7 +924,7 @@ fn instance_statement(p: &mut Parser, body_end: usize, out: &mut Vec<Instance>) 
         if p.t.get(k + 1).map(|t| &t.tok) == Some(&Tok::Punct('(')) {
             let end = p.skip_group(k + 1);
             p.unclosed(&mtok, &module, k + 1, end);
-            params = connections(p, k + 2, end - 1);
+            params = connections(p, k + 2, end - 1).0;
             k = end;
         } else {
             k += 2; // #5 delay or #N
@@ -921,13 +934,14 @@ fn instance_statement(p: &mut Parser, body_end: usize, out: &mut Vec<Instance>) 
     if p.t.get(k).map(|t| &t.tok) == Some(&Tok::Punct('(')) {
         let end = p.skip_group(k);
         p.unclosed(&mtok, &module, k, end);
+        let (connections, spans) = connections(p, k + 1, end - 1);
         out.push(Instance {
             module: module.clone(),
             name: format!("{module}_{}", mtok.line),
             line: mtok.line,
             col: mtok.col,
-            connections: connections(p, k + 1, end - 1),
-            spans: connection_spans(p, k + 1, end - 1),
+            connections,
+            spans,
             params,
             unnamed_at: Some(p.t[k].at),
         });
@@ -943,14 +957,14 @@ fn instance_statement(p: &mut Parser, body_end: usize, out: &mut Vec<Instance>) 
         }
         let end = p.skip_group(k);
         p.unclosed(&mtok, &module, k, end);
-        let conns = connections(p, k + 1, end - 1);
+        let (connections, spans) = connections(p, k + 1, end - 1);
         out.push(Instance {
             module: module.clone(),
             name,
             line: mtok.line,
             col: mtok.col,
-            connections: conns,
-            spans: connection_spans(p, k + 1, end - 1),
+            connections,
+            spans,
             params: params.clone(),
             unnamed_at: None,
         });
@@ -964,9 +978,18 @@ fn instance_statement(p: &mut Parser, body_end: usize, out: &mut Vec<Instance>) 
     (k..body_end).find(|&j| p.t[j].tok == Tok::Punct(';')).unwrap_or(body_end)
 }
 
-/// `.name(expr), ...` or `expr, expr, ...` between tokens `[from, to)`.
-fn connections(p: &Parser, from: usize, to: usize) -> Vec<(String, String)> {
-    let mut out = Vec::new();
+/// `.name(expr), ...` or `expr, expr, ...` between tokens `[from, to)`: `(port, expression)`
+/// each, positional ones named `#0`, `#1`..., and the bytes of each expression in the source
+/// (empty where it is empty or implicit).
+fn connections(p: &Parser, from: usize, to: usize) -> (Vec<(String, String)>, Vec<Range<usize>>) {
+    let span = |a: usize, b: usize| -> Range<usize> {
+        if a >= b {
+            let at = p.t.get(a).map_or(p.src.len(), |t| t.at);
+            return at..at;
+        }
+        p.t[a].at..p.t[b - 1].at + token_len(p.src, &p.t[b - 1])
+    };
+    let (mut out, mut spans) = (Vec::new(), Vec::new());
     let mut k = from;
     let mut n = 0;
     while k < to {
@@ -979,10 +1002,12 @@ fn connections(p: &Parser, from: usize, to: usize) -> Vec<(String, String)> {
                 if p.t.get(k + 2).map(|t| &t.tok) == Some(&Tok::Punct('(')) {
                     let end = p.skip_group(k + 2);
                     out.push((name, p.text(k + 3, end - 1)));
+                    spans.push(span(k + 3, end - 1));
                     k = end;
                 } else {
                     // `.name` (implicit) connection
                     out.push((name.clone(), name));
+                    spans.push(p.t[k + 1].at..p.t[k + 1].at);
                     k += 2;
                 }
                 continue;
@@ -997,51 +1022,10 @@ fn connections(p: &Parser, from: usize, to: usize) -> Vec<(String, String)> {
             };
         }
         out.push((format!("#{n}"), p.text(s, k)));
+        spans.push(span(s, k));
         n += 1;
     }
-    out
-}
-
-/// The bytes of each connection's expression between tokens `[from, to)`, as
-/// [`connections`] finds them.
-fn connection_spans(p: &Parser, from: usize, to: usize) -> Vec<Range<usize>> {
-    let span = |a: usize, b: usize| -> Range<usize> {
-        if a >= b {
-            let at = p.t.get(a).map_or(p.src.len(), |t| t.at);
-            return at..at;
-        }
-        p.t[a].at..p.t[b - 1].at + token_len(p.src, &p.t[b - 1])
-    };
-    let mut out = Vec::new();
-    let mut k = from;
-    while k < to {
-        if p.t[k].tok == Tok::Punct(',') {
-            k += 1;
-            continue;
-        }
-        if p.t[k].tok == Tok::Punct('.') && matches!(p.t.get(k + 1).map(|t| &t.tok), Some(Tok::Ident(_))) {
-            if p.t.get(k + 2).map(|t| &t.tok) == Some(&Tok::Punct('(')) {
-                let end = p.skip_group(k + 2);
-                out.push(span(k + 3, end - 1));
-                k = end;
-            } else {
-                let at = p.t[k + 1].at;
-                out.push(at..at);
-                k += 2;
-            }
-            continue;
-        }
-        let s = k;
-        while k < to && p.t[k].tok != Tok::Punct(',') {
-            k = if matches!(p.t[k].tok, Tok::Punct('(') | Tok::Punct('[') | Tok::Punct('{')) {
-                p.skip_group(k)
-            } else {
-                k + 1
-            };
-        }
-        out.push(span(s, k));
-    }
-    out
+    (out, spans)
 }
 
 /// The names a declaration statement `[from, semi)` declares (after `wire`), with the text of

@@ -65,12 +65,23 @@ impl Source {
         self.modules.iter().find(|m| m.name == name)
     }
 
-    /// Replace the bytes `at` of the text with `with` (no newline in either), keeping the
-    /// modules' and the dropped parts' spans on the text; marks the source edited.
+    /// The 1-based line and column of byte `at` of the text.
+    pub fn line_col(&self, at: usize) -> (u32, u32) {
+        let before = &self.text[..at];
+        let line = before.matches('\n').count() + 1;
+        let col = before.len() - before.rfind('\n').map_or(0, |k| k + 1) + 1;
+        (line as u32, col as u32)
+    }
+
+    /// Replace the bytes `at` of the text with `with` (no newline in either), keeping every
+    /// position of the modules and the dropped parts on the text; marks the source edited.
     pub fn replace(&mut self, at: Range<usize>, with: &str) {
         let delta = with.len() as isize - at.len() as isize;
         let shift = |x: usize| if x >= at.end { (x as isize + delta) as usize } else { x };
-        for span in self.modules.iter_mut().map(|m| &mut m.span).chain(self.dropped.iter_mut()) {
+        for m in &mut self.modules {
+            m.shift(&shift);
+        }
+        for span in &mut self.dropped {
             *span = shift(span.start)..shift(span.end);
         }
         self.text.replace_range(at, with);

@@ -55,7 +55,8 @@ pub const DRIVER_SUFFIX: &str = "__botsim_driver";
 pub fn shared_nets(m: &Module, dir: &dyn Fn(&str, &str) -> Option<Dir>) -> Vec<SharedNet> {
     let mut by_net: BTreeMap<&str, Vec<Driver>> = BTreeMap::new();
     let mut tristate: Vec<&str> = Vec::new();
-    for inst in &m.instances {
+    // Items of generate branches are alternatives, not drivers side by side.
+    for inst in m.instances.iter().filter(|i| !i.guarded) {
         for ((port, expr), at) in inst.connections.iter().zip(&inst.spans) {
             if port.starts_with('#') || !is_name(expr) || dir(&inst.module, port) != Some(Dir::Output) {
                 continue;
@@ -177,6 +178,10 @@ mod tests {
             "module g(input clk); bot x (.clk(clk)); bot31 y (.clk(clk)); endmodule",
             "module g(input clk); wire [7:0] a; bot x (.LMDist_reg(a)); assign a = en ? 8'd1 : 8'bz; endmodule",
             "module g(input clk); wire [7:0] a; bot x (.LMDist_reg(a)); assign a = en ? 8'd1 : 8'hZZ; endmodule",
+            // Generate branches: one of them is built.
+            "module g #(parameter P = 0) (input clk); wire [7:0] a; if (P) assign a = 8'd1; else assign a = 8'd2; endmodule",
+            "module g #(parameter P = 0) (input clk); wire [7:0] a; generate if (P) begin : one bot x (.LMDist_reg(a)); end else begin : two bot31 y (.LMDist_reg(a)); end endgenerate endmodule",
+            "module g #(parameter P = 0) (input clk); wire [7:0] a; generate case (P) 0: assign a = 8'd1; default: assign a = 8'd2; endcase endgenerate endmodule",
         ] {
             assert!(shared_nets(&scan(text)[0], &dir).is_empty(), "{text}");
         }

@@ -1598,6 +1598,7 @@ mod tests {
             spans: vec![],
             params: vec![],
             unnamed_at: None,
+            guarded: false,
         };
         assert_eq!(
             clock_options(&inst(&["clk_in1", "CLK_75MHZ", "CLK_25MHZ", "reset", "locked"])),

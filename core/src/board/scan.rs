@@ -56,6 +56,9 @@ pub struct Instance {
     pub spans: Vec<Range<usize>>,
     /// Parameter overrides `(name, value)`; positional ones are named `#0`...
     pub params: Vec<(String, String)>,
+    /// It stands inside a `begin`/`end`, a generate region or after an `if`, `else`, `for`
+    /// or `case`: one of several alternatives (a generate branch), or repeated.
+    pub guarded: bool,
     /// The instance has no name in the source (`bot (.clk(clk), ...);`, which Vivado
     /// accepts and names itself): `name` is botsim's, to be written at this byte of the text.
     pub unnamed_at: Option<usize>,
@@ -100,7 +103,8 @@ pub struct Net {
     pub end: usize,
 }
 
-/// `assign NAME = ...;`: a continuous assignment to a whole net.
+/// `assign NAME = ...;`: a continuous assignment to a whole net, outside any generate branch
+/// or loop.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Assign {
     pub target: String,
@@ -630,11 +634,16 @@ fn module(p: &mut Parser) -> Option<Module> {
     p.i = body_start;
     let mut stmt_start = true;
     let mut logic = false;
+    // Inside `begin`/`end`, `generate` or `case` (`nest`), or in a statement after `if`,
+    // `else` or `for` (`guarded`): an item there is one alternative of several, or repeated.
+    let mut nest = 0i32;
+    let mut guarded = false;
     while p.i < body_end {
         match p.peek(0) {
             Some(Tok::Punct(';')) => {
                 p.i += 1;
                 stmt_start = true;
+                guarded &= nest > 0;
                 continue;
             }
             Some(Tok::Ident(w)) if matches!(w.as_str(), "input" | "output" | "inout") && stmt_start => {
@@ -694,7 +703,11 @@ fn module(p: &mut Parser) -> Option<Module> {
                     && !w.starts_with('`')
                     && (p.is(1, '#') || p.is(1, '(') || (p.ident(1).is_some() && (p.is(2, '(') || p.is(2, '[')))) =>
             {
+                let before = instances.len();
                 let semi = instance_statement(p, body_end, &mut instances);
+                for i in &mut instances[before..] {
+                    i.guarded = nest > 0 || guarded;
+                }
                 p.i = semi;
                 continue;
             }
@@ -704,6 +717,12 @@ fn module(p: &mut Parser) -> Option<Module> {
                     "begin" | "else" | "generate" | "end" | "endgenerate" | "endcase" | "endfunction" | "endtask"
                 ) =>
             {
+                match w.as_str() {
+                    "begin" | "generate" => nest += 1,
+                    "end" | "endgenerate" | "endcase" => nest = (nest - 1).max(0),
+                    "else" => guarded = true,
+                    _ => {}
+                }
                 // `begin : label` — skip the label.
                 p.i += 1;
                 if p.is(0, ':') && p.ident(1).is_some() {
@@ -727,7 +746,8 @@ fn module(p: &mut Parser) -> Option<Module> {
                 ) =>
             {
                 logic = true;
-                if let (true, Some(target), true) = (w == "assign", p.ident(1), p.is(2, '=')) {
+                let alone = nest == 0 && !guarded;
+                if let (true, Some(target), true) = (w == "assign" && alone, p.ident(1), p.is(2, '=')) {
                     let semi = (p.i..body_end).find(|&k| p.t[k].tok == Tok::Punct(';')).unwrap_or(body_end);
                     let tristate = p.t[p.i + 3..semi]
                         .iter()
@@ -744,6 +764,8 @@ fn module(p: &mut Parser) -> Option<Module> {
             }
             Some(Tok::Punct('=')) => logic = true,
             Some(Tok::Ident(w)) if matches!(w.as_str(), "if" | "for" | "case") => {
+                guarded = true;
+                nest += i32::from(w == "case");
                 // generate if/for headers: skip the condition.
                 p.i += 1;
                 if p.is(0, '(') {
@@ -944,6 +966,7 @@ fn instance_statement(p: &mut Parser, body_end: usize, out: &mut Vec<Instance>) 
             spans,
             params,
             unnamed_at: Some(p.t[k].at),
+            guarded: false,
         });
         return (end..body_end).find(|&j| p.t[j].tok == Tok::Punct(';')).unwrap_or(body_end);
     }
@@ -967,6 +990,7 @@ fn instance_statement(p: &mut Parser, body_end: usize, out: &mut Vec<Instance>) 
             spans,
             params: params.clone(),
             unnamed_at: None,
+            guarded: false,
         });
         k = end;
         if p.t.get(k).map(|t| &t.tok) == Some(&Tok::Punct(',')) {

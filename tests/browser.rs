@@ -149,10 +149,17 @@ fn the_page_in_headless_chromium_plays_the_vga_example() {
             rm_dist: byte("rmdist"),
         },
     };
-    let want = common::rgb(&botsim::render::display::frame(&botsim::World::builtin(), Some(&snapshot)));
+    let want_png = botsim::render::display::frame(&botsim::World::builtin(), Some(&snapshot));
+    let want = common::rgb(&want_png);
     let got = common::rgb(&png);
     assert_eq!((got.0, got.1), (640, 480));
-    assert!(got == want, "the page's frame of sample {sample} is not botsim's frame of that sample ({entry})");
+    if got != want {
+        // Both pictures kept for a look at what differs.
+        let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("target");
+        std::fs::write(dir.join("live-frame-page.png"), &png).unwrap();
+        std::fs::write(dir.join("live-frame-botsim.png"), &want_png).unwrap();
+        panic!("the page's frame of sample {sample} is not botsim's frame of that sample ({entry}): target/live-frame-page.png, target/live-frame-botsim.png");
+    }
 
     // A look at it (kept as an artefact of the test run).
     tab.click("#run");

@@ -68,6 +68,8 @@ struct Board {
     display: Display,
     leds: u16,
     samples: u64,
+    /// When the bot's last sample came.
+    sample_ps: u64,
     bot: Option<BotView>,
     /// The design's other bots: path and last sample.
     others: Vec<(String, Option<BotView>)>,
@@ -257,8 +259,11 @@ pub fn run(a: &Args, p: &Prepared) -> Result<(), String> {
                 lag.frames.push((began, frame_cost));
                 if let Some(frame) = made {
                     // The bot's last sample when the frame began and when it ended: equal,
-                    // the frame shows the bot as that sample left it.
+                    // the frame shows the bot as that sample left it, unless the CPU reset
+                    // was held since that sample (the bot's registers reset, no sample yet
+                    // of the bot after it): then the frame shows no sample's bot.
                     let s1 = b.bot.as_ref().map(|v| v.sample);
+                    let s0 = s0.filter(|_| !b.reset_since_sample());
                     server.frame(
                         frame,
                         json!({"from_ps": t0, "time_ps": b.model.time_ps(), "sample_from": s0, "sample": s1}),
@@ -347,6 +352,7 @@ fn new_board(a: &Args, p: &Prepared, model: BoardModel) -> Result<Board, String>
         display: Display::default(),
         leds: 0,
         samples: 0,
+        sample_ps: 0,
         bot: None,
         others: p.plan.other_bots.iter().map(|b| (format!("{}.{}", p.plan.top, b.path), None)).collect(),
         vga: Capture::default(),
@@ -433,12 +439,19 @@ impl Board {
         }
     }
 
+    /// Whether the CPU reset was held at some time from the bot's last sample to now.
+    fn reset_since_sample(&self) -> bool {
+        let now = self.model.time_ps();
+        self.inputs.presses.iter().any(|p| p.button.is_none() && p.to > self.sample_ps && p.from <= now)
+    }
+
     fn take(&mut self, e: Event) {
         match e {
             Event::Display { time_ps, an, seg, dp } => self.display.pins(time_ps, an, seg, dp),
             Event::Leds { leds, .. } => self.leds = leds,
             Event::Sample { time_ps, snapshot, motctl } => {
                 self.samples += 1;
+                self.sample_ps = time_ps;
                 let view = bot_view(&snapshot, motctl.0);
                 self.fresh.push(sample_entry(time_ps, &snapshot, &view));
                 // What a design draws of the bot: where it is and where it heads.

@@ -125,3 +125,57 @@ fn two_bots_driving_the_same_wires_are_warned_and_resolved_alike_on_every_board(
     assert!(o.status.success(), "{e}");
     assert!(e.contains(EQUAL), "{e}");
 }
+
+/// Random designs (tests/common/random_design.rs) against the all-RTL board under a random
+/// stimulus of their seed: one of each way the generator gives a net several drivers (the
+/// second bot's distances on the team bot's wires, an `assign` to the bot's output, two
+/// `assign`s to one wire), the first of each from `BOTSIM_DIFFERENTIAL_SEED` (default 1) on,
+/// and `BOTSIM_DIFFERENTIAL_DESIGNS` (default 0) designs of any kind from there. Each is kept
+/// in target/random-differential/<seed>/.
+#[test]
+fn random_designs_with_shared_nets_equal_the_all_rtl_board() {
+    use common::random_design::generate;
+    let env = |name: &str, default: u64| std::env::var(name).ok().and_then(|v| v.parse().ok()).unwrap_or(default);
+    let first = env("BOTSIM_DIFFERENTIAL_SEED", 1);
+    let mut seeds: Vec<u64> = (first..first + env("BOTSIM_DIFFERENTIAL_DESIGNS", 0)).collect();
+    for kind in ["the second bot's distances", "the team bot's RMDist and", "(`assign shared ="] {
+        let shaped = |s: &u64| generate(*s).parts.iter().any(|p| p.contains("two drivers") && p.contains(kind));
+        let seed = (first..first + 5_000).find(shaped).unwrap_or_else(|| panic!("no design with {kind}"));
+        if !seeds.contains(&seed) {
+            seeds.push(seed);
+        }
+    }
+    let check = |seed: u64| -> Result<(), String> {
+        let d = generate(seed);
+        let dir = root().join("target/random-differential").join(seed.to_string());
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        d.write(&dir);
+        let (simulate, seconds, stimulus) =
+            (format!("SIMULATE={}", d.simulate as u8), d.seconds.to_string(), seed.to_string());
+        let o = board_in(
+            &dir,
+            &[".", "--param", &simulate, "--seconds", &seconds, "--random-stimulus", &stimulus, "--check"],
+        );
+        let e = stderr(&o);
+        let about = || format!("seed {seed} ({}):\n{}\n{e}", dir.display(), d.parts.join("\n"));
+        if !o.status.success() || !e.contains(EQUAL) {
+            return Err(about());
+        }
+        if let Some(net) = &d.shared {
+            if !e.contains(&format!("`{net}` in `nexys4fpga` has 2 drivers")) {
+                return Err(format!("no warning for `{net}`: {}", about()));
+            }
+        }
+        Ok(())
+    };
+    // Two at a time (each run is one thread).
+    let failed: Vec<String> = std::thread::scope(|s| {
+        let runs: Vec<_> = seeds
+            .chunks(seeds.len().div_ceil(2))
+            .map(|c| s.spawn(move || c.iter().map(|&seed| check(seed)).collect::<Vec<_>>()))
+            .collect();
+        runs.into_iter().flat_map(|r| r.join().unwrap()).filter_map(Result::err).collect()
+    });
+    assert!(failed.is_empty(), "{} of {} designs differ:\n\n{}", failed.len(), seeds.len(), failed.join("\n\n"));
+}

@@ -4,7 +4,10 @@
 //! that simulates every edge records (every pin change of the display and the LEDs, the bot's
 //! samples, the display as read, every change of the peripherals' lines), with the pins asked
 //! for and without them (the display decoder then takes the skipped periods whole); and a
-//! design the generator knows to repeat within reach must skip at least 95 % of its run.
+//! design the generator knows to repeat within reach must skip at least 95 % of its run. A
+//! design with a net of several drivers is warned of once (Vivado's DRC MDRV-1) and records
+//! what the same design with the net's resolution written out by hand records (seed 1 has one:
+//! two `assign`s to one wire).
 //!
 //! `BOTSIM_RANDOM_DESIGNS` (default 2) designs from seed `BOTSIM_RANDOM_SEED` (default 1) on,
 //! and the seeds of `BOTSIM_RANDOM_ALSO` (default 28, 316, 3086, 88 and 123: a second bot and a
@@ -34,6 +37,8 @@ struct Run {
     trace: String,
     display: String,
     summary: serde_json::Value,
+    /// What botsim said on the way (its warnings).
+    said: String,
 }
 
 fn run(d: &Design, dir: &Path, name: &str, fast_forward: bool, pins: bool) -> Run {
@@ -78,6 +83,7 @@ fn run(d: &Design, dir: &Path, name: &str, fast_forward: bool, pins: bool) -> Ru
         trace: read(&trace),
         display: read(&display),
         summary: serde_json::from_slice(&o.stdout).unwrap(),
+        said: String::from_utf8_lossy(&o.stderr).into_owned(),
     }
 }
 
@@ -110,6 +116,20 @@ fn check_one(seed: u64) -> f64 {
     let fast = run(&d, &dir, "fast", true, false);
     let fast_pins = run(&d, &dir, "fast_pins", true, true);
     assert_eq!(every.summary["fast_forward"]["skips"], 0, "{}", about());
+    // A net with several drivers is warned of, as Vivado's DRC names it (the second bot's
+    // distances on the team bot's wires: both nets); no other net is.
+    for (name, r) in [("every", &every), ("fast", &fast)] {
+        let warned = r.said.matches("DRC MDRV-1").count();
+        match &d.shared {
+            Some(net) => assert!(
+                r.said.contains(&format!("`{net}` in `nexys4fpga` has 2 drivers")) && warned <= 2,
+                "{name}: {}\n{}",
+                r.said,
+                about()
+            ),
+            None => assert_eq!(warned, 0, "{name}: {}\n{}", r.said, about()),
+        }
+    }
     assert!(every.trace.lines().count() >= 2, "no bot sample: {}", about());
     let every_pins = every.pins.as_deref().unwrap();
     for (what, a, b) in [
@@ -121,6 +141,25 @@ fn check_one(seed: u64) -> f64 {
         ("--lines", &every.lines, &fast.lines),
     ] {
         assert!(a == b, "{what}: {}\n{}", first_difference(a, b), about());
+    }
+    // A net with several drivers records what the same design with the net's resolution
+    // written out records (each driver on a wire of its own, the net their AND).
+    if let Some(top) = &d.resolved {
+        let by_hand = dir.join("resolved");
+        std::fs::create_dir_all(&by_hand).unwrap();
+        d.write(&by_hand);
+        std::fs::write(by_hand.join("nexys4fpga.v"), top).unwrap();
+        let r = run(&d, &by_hand, "fast_pins", true, true);
+        assert!(!r.said.contains("DRC MDRV-1"), "resolved by hand: {}\n{}", r.said, about());
+        for (what, a, b) in [
+            ("--pins", every_pins, r.pins.as_deref().unwrap()),
+            ("--trace-csv", &every.trace, &r.trace),
+            ("--display", &every.display, &r.display),
+            ("--lines", &every.lines, &r.lines),
+        ] {
+            assert!(a == b, "resolved by hand: {what}: {}\n{}", first_difference(a, b), about());
+        }
+        let _ = std::fs::remove_dir_all(&by_hand);
     }
     // Every other bot's trace, beside the first's (named by its instance path).
     let others = |name: &str| -> Vec<(String, String)> {

@@ -70,6 +70,11 @@ pub struct Design {
     /// The programs of the design's other KCPSM6s (a second core's): each ROM's module name
     /// (its source `<name>.psm`) and the source.
     pub programs: Vec<(String, String)>,
+    /// A net with several drivers (Vivado's DRC MDRV-1), whose value an LED shows: its name.
+    pub shared: Option<String>,
+    /// Then the same top with the net's resolution written out (each driver on a wire of its
+    /// own, the net their AND: the bits they agree on, as botsim resolves it).
+    pub resolved: Option<String>,
 }
 
 impl Design {
@@ -442,6 +447,70 @@ pub fn generate(seed: u64) -> Design {
             shown.map_or(String::new(), |k| format!(", its LocX bit 0 on LED {k}"))
         ));
     }
+    // Sometimes a net with several drivers, as games have them (its own stream): the second
+    // bot's distances on the team bot's wires, an `assign` to a bot's output, or two
+    // `assign`s to one wire; an LED shows it (the bits the drivers agree on, botsim says).
+    let mut shared_stream = Rng::new(seed ^ 0x4D44_5256);
+    let mut shared = None;
+    let mut shared_verilog = String::new();
+    // The same net resolved by hand: edits of the top (each driver on a wire of its own) and
+    // the lines that AND them, in place of `shared_verilog`.
+    let mut by_hand: Vec<(&str, &str)> = Vec::new();
+    let mut by_hand_verilog = String::new();
+    let free: Vec<usize> = (0..14).filter(|&k| leds[k] != "out_zero" && leds[k] != "m_locx[0]").collect();
+    if shared_stream.chance(15) && !free.is_empty() {
+        let k = *shared_stream.pick(&free);
+        let bit = shared_stream.range(0, 3);
+        let (a, b) = (shared_stream.pick(&sources).clone(), shared_stream.pick(&sources).clone());
+        let variant = if monster.is_some() { shared_stream.range(0, 2) } else { shared_stream.range(1, 2) };
+        shared_verilog.push_str("    // A net with two drivers.\n");
+        by_hand_verilog.push_str("    // A net with two drivers.\n");
+        // The team bot's distances on wires of their own.
+        let hero = [
+            ("lmdist, rmdist;", "lmdist, rmdist, h_lmdist, h_rmdist;"),
+            (
+                "(botinfo), .LMDist_reg(lmdist), .RMDist_reg(rmdist)",
+                "(botinfo), .LMDist_reg(h_lmdist), .RMDist_reg(h_rmdist)",
+            ),
+        ];
+        let (net, text) = match variant {
+            0 => {
+                monster_verilog = monster_verilog.replace(
+                    ".LMDist_reg(m_lmdist), .RMDist_reg(m_rmdist)",
+                    ".LMDist_reg(lmdist), .RMDist_reg(rmdist)",
+                );
+                by_hand.extend(hero);
+                by_hand.push((
+                    "(m_info), .LMDist_reg(lmdist), .RMDist_reg(rmdist)",
+                    "(m_info), .LMDist_reg(m_lmdist), .RMDist_reg(m_rmdist)",
+                ));
+                by_hand_verilog
+                    .push_str("    assign lmdist = h_lmdist & m_lmdist;\n    assign rmdist = h_rmdist & m_rmdist;\n");
+                leds[k] = format!("lmdist[{bit}]");
+                ("lmdist".to_string(), "the second bot's distances on the team bot's wires".to_string())
+            }
+            1 => {
+                writeln!(shared_verilog, "    assign rmdist = {{8{{{a}}}}};").unwrap();
+                by_hand.extend(hero);
+                writeln!(
+                    by_hand_verilog,
+                    "    assign lmdist = h_lmdist;\n    assign rmdist = h_rmdist & {{8{{{a}}}}};"
+                )
+                .unwrap();
+                leds[k] = format!("rmdist[{bit}]");
+                ("rmdist".to_string(), format!("the team bot's RMDist and `assign rmdist = {{8{{{a}}}}}`"))
+            }
+            _ => {
+                writeln!(shared_verilog, "    wire shared;\n    assign shared = {a};\n    assign shared = {b};")
+                    .unwrap();
+                writeln!(by_hand_verilog, "    wire shared;\n    assign shared = {a} & {b};").unwrap();
+                leds[k] = "shared".into();
+                ("shared".to_string(), format!("`assign shared = {a}` and `assign shared = {b}`"))
+            }
+        };
+        parts_text.push(format!("a net with two drivers, {net} ({text}), on LED {k}"));
+        shared = Some(net);
+    }
     leds.reverse();
     let mut digits = Vec::new();
     for k in 0..8 {
@@ -624,7 +693,7 @@ module nexys4fpga #(
     bot ROJOBOT (.MotCtl_in(motctl), .LocX_reg(locx), .LocY_reg(locy), .Sensors_reg(sensors),
         .BotInfo_reg(botinfo), .LMDist_reg(lmdist), .RMDist_reg(rmdist),
         .vid_row(7'd0), .vid_col(7'd0), .vid_pixel_out(), .clk(clk), .reset({bot_reset}), .upd_sysregs(upd_sysregs));
-{monster_verilog}{interrupt}
+{monster_verilog}{shared_verilog}{interrupt}
     // The parts.
 {verilog_parts}
     // The port interface (the course's demo port numbers).
@@ -738,6 +807,14 @@ endmodule
     } else {
         top
     };
+    let resolved = shared.is_some().then(|| {
+        let mut t = top.replacen(&shared_verilog, &by_hand_verilog, 1);
+        for (from, to) in &by_hand {
+            assert!(t.contains(from), "{from}");
+            t = t.replacen(from, to, 1);
+        }
+        t
+    });
     let programs = parts.iter().filter_map(|p| p.program.clone()).collect();
     Design {
         seed,
@@ -752,6 +829,8 @@ endmodule
         keyboard,
         monster,
         programs,
+        shared,
+        resolved,
     }
 }
 

@@ -372,4 +372,12 @@ impl Args {
             eprintln!("{s}");
         }
     }
+
+    /// Say a warning about the design on standard error: also with --json (whose summary
+    /// goes to standard output), not with --quiet.
+    fn warn(&self, w: &str) {
+        if !self.quiet {
+            eprintln!("warning: {w}");
+        }
+    }
 }

@@ -365,7 +365,7 @@ fn say_design(a: &Args, design: &Design, plan: &Plan, stimulus: &Stimulus) -> Re
         a.say(format!("  replaced {}{from} with {}", r.module, r.with));
     }
     for w in &plan.warnings {
-        a.say(format!("warning: {w}"));
+        a.warn(w);
     }
     let reached = peripherals(&plan.pins);
     for (device, names) in &reached {
@@ -492,7 +492,7 @@ fn build_boards(
         ));
     }
     for w in &built.widths {
-        a.say(format!("warning: {w}"));
+        a.warn(w);
     }
     for (code, n, first) in &built.warnings {
         match leniency(code) {

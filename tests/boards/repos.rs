@@ -594,3 +594,22 @@ fn of_several_projects_one_that_does_not_build_says_why() {
     assert!(e.starts_with("proj2/hdl/nexys4fpga.v:"), "{e}");
     assert!(e.trim_end().ends_with("(of the projects here: proj1/proj1.xpr, proj2/proj2.xpr)"), "{e}");
 }
+
+#[test]
+fn a_read_mux_of_blocking_assignments_in_a_clocked_block_is_read_as_the_flip_flop_vivado_builds() {
+    // The course's BotSim 3.1 world interface writes its read mux `DataOut = ...` in an
+    // `always @(posedge clk)`: a flip-flop in Vivado, which the KCPSM6 reads as it was before
+    // the edge; in Verilog a race with the CPU's own edge. botsim simulates the flip-flop, so
+    // the ISS board and the RTL board read the same value at every cycle.
+    let team = clone_of("botsim31");
+    let file = team.path().join("bot31/world_if31.v");
+    let text = std::fs::read_to_string(&file).unwrap();
+    let blocking = text.replace("DataOut <= ", "DataOut = ");
+    assert!(blocking.matches("DataOut = ").count() >= 8, "{blocking}");
+    std::fs::write(&file, blocking).unwrap();
+    let args = [".", "--param", "SIMULATE=1", "--seconds", "0.002", "--cpu", "lockstep"];
+    let (s, said) = run(team.path(), &args);
+    let note = said.lines().find(|l| l.contains("`DataOut`")).unwrap_or_else(|| panic!("{said}"));
+    assert!(note.starts_with("note: bot31/world_if31.v:"), "{note}");
+    assert!(s["samples"].as_u64().is_some(), "{s}");
+}

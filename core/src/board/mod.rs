@@ -9,6 +9,7 @@ pub mod constraints;
 pub mod course;
 pub mod display;
 pub mod drivers;
+pub mod flops;
 pub mod gtkw;
 pub mod ip;
 pub mod keyboard;

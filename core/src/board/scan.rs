@@ -137,7 +137,7 @@ impl Module {
 }
 
 #[derive(Clone, Debug, PartialEq)]
-enum Tok {
+pub(crate) enum Tok {
     Ident(String),
     Num(String),
     Str,
@@ -145,11 +145,11 @@ enum Tok {
 }
 
 #[derive(Clone, Debug)]
-struct Token {
-    tok: Tok,
-    at: usize,
-    line: u32,
-    col: u32,
+pub(crate) struct Token {
+    pub(crate) tok: Tok,
+    pub(crate) at: usize,
+    pub(crate) line: u32,
+    pub(crate) col: u32,
 }
 
 /// Words that start something other than an instance.
@@ -301,7 +301,7 @@ pub fn file_references(src: &str) -> Vec<FileRef> {
     refs
 }
 
-fn tokenize(src: &str) -> (Vec<Token>, Vec<FileRef>) {
+pub(crate) fn tokenize(src: &str) -> (Vec<Token>, Vec<FileRef>) {
     let b = src.as_bytes();
     let (mut i, mut line, mut line_start) = (0usize, 1u32, 0usize);
     let mut out = Vec::new();

@@ -263,6 +263,10 @@ struct Phase {
 // counts shows its count on out_port).
 struct IssShim {
     size_t q, cpu;
+    // Verilator's delayed copy of `q` (`__Vdly__...botsim_iss_q`, made when other
+    // non-blocking logic reads the outputs at the same edge), or SIZE_MAX: the outputs again,
+    // so neither compared nor left stale after a skip.
+    size_t q_dly;
 };
 
 // A KCPSM6 model that may run apart from the board (src/board/apart.rs: what it shows between
@@ -643,7 +647,10 @@ void find_shims(Board* b, const std::vector<BoardMember>& ms) {
         const std::string core = name.substr(0, name.size() - (sizeof kQ - 1));
         for (const BoardMember& c : ms) {
             if (c.name != core + kCpu) continue;
-            f.shims.push_back({m.off, c.off});
+            size_t dly = SIZE_MAX;
+            for (const BoardMember& d : ms)
+                if (d.name == "__Vdly__" + name && d.len == m.len) dly = d.off;
+            f.shims.push_back({m.off, c.off, dly});
             void* cpu = *(void* const*)(b->model.root + c.off);
             bool free = false;
             for (const char* const* p = b->model.out_port_free; p && *p; p++) free |= core == *p;
@@ -671,7 +678,10 @@ void find_shims(Board* b, const std::vector<BoardMember>& ms) {
 inline void refresh_shims(Board* b) {
     for (const IssShim& x : b->ff.shims) {
         void* cpu = *(void* const*)(b->model.root + x.cpu);
-        if (cpu) *(uint64_t*)(b->model.root + x.q) = (*(const BoardCpuFns* const*)cpu)->state(cpu);
+        if (!cpu) continue;
+        const uint64_t q = (*(const BoardCpuFns* const*)cpu)->state(cpu);
+        *(uint64_t*)(b->model.root + x.q) = q;
+        if (x.q_dly != SIZE_MAX) *(uint64_t*)(b->model.root + x.q_dly) = q;
     }
 }
 
@@ -714,7 +724,7 @@ int board_fast_forward(Board* b, int mode) {
         find_shims(b, ms);
         auto shim_at = [&](size_t off) {
             for (const IssShim& x : f.shims)
-                if (x.q == off) return true;
+                if (x.q == off || x.q_dly == off) return true;
             return false;
         };
         // Observed variables, neighbours merged across padding (no variable between them); the

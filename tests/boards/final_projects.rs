@@ -269,3 +269,37 @@ fn a_counter_compared_with_a_register_that_changes_keeps_every_edge() {
     }
     assert!(toggles.len() > 100 && toggles.windows(2).all(|w| w[1] - w[0] == 30_002), "{toggles:?}");
 }
+
+#[test]
+fn trailing_commas_in_a_games_lists_under_a_folder_named_with_a_space_are_read_as_vivado_reads_them() {
+    // `.gameover(gameover),` then `);`, a parameter override and a module's port list ending
+    // in a comma, in `Verilog files/`: Verilator alone stops (`Duplicate pin connection`);
+    // botsim reads each list without its comma, one note a file at the user's path.
+    let dir = tempfile::tempdir().unwrap();
+    let src = dir.path().join("Verilog files");
+    std::fs::create_dir_all(&src).unwrap();
+    std::fs::write(
+        src.join("top.v"),
+        "module top(input clk, input [15:0] sw, output [15:0] led,);\n  wire gameover;\n  scorer #(.W(4),) s (\n    .clk(clk),\n    .sw(sw[3:0]),\n    .gameover(gameover),\n  );\n  assign led = {15'd0, gameover};\nendmodule\n",
+    )
+    .unwrap();
+    std::fs::write(
+        src.join("scorer.v"),
+        "module scorer #(parameter W = 2) (input clk, input [W-1:0] sw, output reg gameover = 1'b0);\n  always @(posedge clk) gameover <= &sw;\nendmodule\n",
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("s.txt"), "0.2ms switches 000F\n").unwrap();
+    let o = board_in(dir.path(), &[".", "--seconds", "0.001", "--stimulus", "s.txt", "--json"]);
+    let e = stderr(&o);
+    assert!(o.status.success(), "{e}");
+    let s: Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(s["leds"], 1, "the four switches reach `gameover` through the override's width: {s}");
+    let o = board_in(dir.path(), &[".", "--seconds", "0.001"]);
+    let e = stderr(&o);
+    let note = e.lines().find(|l| l.contains("a comma before the `)`")).unwrap_or_else(|| panic!("{e}"));
+    assert_eq!(
+        note,
+        "note: Verilog files/top.v:1:57: a comma before the `)` that ends the ports of module `top` (Verilog has no empty item there; Vivado reads the list without it): botsim reads it so (2 more in the file)"
+    );
+    assert!(!e.contains("pinNumber") && !e.contains("%Error"), "{e}");
+}

@@ -1,7 +1,8 @@
 //! The metamorphic test of botsim's reading of Verilog (tests/common/variants.rs): a design
 //! re-emitted with the white space Verilog allows removed (`bot(`, `#(`, `a<=b;`) or added
-//! (line breaks inside statements, block comments between tokens, `(* keep *)` before items)
-//! must run exactly as the original: the same bot samples, the same display and pins, the
+//! (line breaks inside statements, block comments between tokens, `(* keep *)` before items),
+//! or with a trailing comma in every list Vivado reads one in (`.over(over),` then `);`, a
+//! module's ports, an instance's parameter overrides), must run exactly as the original: the same bot samples, the same display and pins, the
 //! same summary.
 //!
 //! Designs: a team's repository with an unnamed bot, the example VGA design, and
@@ -102,7 +103,7 @@ fn variants_run_as_the_original(name: &str, dir: &Path, inputs: &[&str], args: &
     // target/ it would be botsim's own), kept for a failure's message.
     let designs = std::env::temp_dir().join("botsim-syntax-variants").join(name);
     let _ = std::fs::remove_dir_all(&designs);
-    for style in [Style::Tight, Style::Loose] {
+    for style in [Style::Tight, Style::Loose, Style::Commas] {
         let copy = designs.join(format!("{style:?}").to_lowercase()).join("design");
         copy_tree(dir, &copy);
         let files = rewrite_tree(&copy, style);
@@ -155,6 +156,16 @@ fn the_tight_variant_writes_what_students_write_and_both_keep_every_token() {
         }
         assert_eq!(got, tokens(src), "{style:?}:\n{v}");
     }
+    // A trailing comma in the named lists and the module's ports, none in a positional list
+    // or a call.
+    let commas = variant(src, Style::Commas, 1);
+    assert!(
+        commas.contains("module m # ( parameter N = 8'h0A ) ( input clk , output reg [ 3 : 0 ] q , ) ;"),
+        "{commas}"
+    );
+    assert!(commas.contains("bot ( . clk ( clk ) , ) ;"), "{commas}");
+    assert!(commas.contains("sub # ( . W ( 2 ) , ) u ( . a ( b ) , ) ;"), "{commas}");
+    assert!(commas.contains("? 1'b0 : q + 1'b1 ;"), "{commas}");
     // Operators that would merge are kept apart.
     assert_eq!(variant("a <= - b;", Style::Tight, 1), "a<=-b;\n");
     assert_eq!(variant("x = y / /* c */ z;", Style::Tight, 1), "x=y/ /* c */z;\n");

@@ -142,6 +142,40 @@ pub enum Style {
     /// White space around every token, line breaks inside statements, block comments
     /// between tokens and an attribute before each `always` and `assign`.
     Loose,
+    /// One space between tokens and a trailing comma before the `)` of every list Vivado
+    /// accepts one in: named port connections and parameter overrides (`.x(y),)`), and a
+    /// module's port declarations.
+    Commas,
+}
+
+/// The `)` tokens of `toks` a trailing comma goes before, in [`Style::Commas`].
+fn trailing_comma_places(toks: &[Tok]) -> std::collections::BTreeSet<usize> {
+    let code: Vec<usize> = (0..toks.len()).filter(|&i| !matches!(toks[i], Tok::Comment(_))).collect();
+    let is = |k: Option<&usize>, p: &str| k.is_some_and(|&i| matches!(&toks[i], Tok::Punct(x) if x == p));
+    let word = |k: Option<&usize>, w: &str| k.is_some_and(|&i| matches!(&toks[i], Tok::Word(x) if x == w));
+    let (mut open, mut matched) = (Vec::new(), std::collections::BTreeMap::new());
+    let mut places = std::collections::BTreeSet::new();
+    for (c, &i) in code.iter().enumerate() {
+        match &toks[i] {
+            Tok::Punct(p) if p == "(" => open.push(c),
+            Tok::Punct(p) if p == ")" => {
+                let Some(o) = open.pop() else { continue };
+                matched.insert(c, o);
+                let named = is(code.get(o + 1), ".") && is(code.get(c.wrapping_sub(1)), ")");
+                // `module m (` or `module m #(...) (`, with ports.
+                let name = match o.checked_sub(1) {
+                    Some(b) if is(code.get(b), ")") => matched.get(&b).and_then(|&p| p.checked_sub(2)),
+                    b => b,
+                };
+                let header = name.is_some_and(|n| n > 0 && word(code.get(n - 1), "module")) && o + 1 != c;
+                if named || header {
+                    places.insert(i);
+                }
+            }
+            _ => {}
+        }
+    }
+    places
 }
 
 /// Whether `a` then `b` with nothing between would read as other tokens.
@@ -180,7 +214,8 @@ pub fn variant(src: &str, style: Style, seed: u64) -> String {
     let mut out = String::new();
     let mut r = Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1);
     let mut prev: Option<&Tok> = None;
-    for t in &toks {
+    let commas = if style == Style::Commas { trailing_comma_places(&toks) } else { Default::default() };
+    for (i, t) in toks.iter().enumerate() {
         // What must stand alone on its line.
         let own_line = matches!(t, Tok::Directive(_));
         let after_line =
@@ -195,6 +230,7 @@ pub fn variant(src: &str, style: Style, seed: u64) -> String {
                             out.push(' ');
                         }
                     }
+                    Style::Commas => out.push(' '),
                     Style::Loose => {
                         out.push_str(if r.chance(12) { "\n    " } else { " " });
                         if r.chance(4) && !matches!(t, Tok::Comment(_)) && !matches!(p, Tok::Punct(x) if x == "/") {
@@ -206,6 +242,9 @@ pub fn variant(src: &str, style: Style, seed: u64) -> String {
         }
         if style == Style::Loose && matches!(t, Tok::Word(w) if w == "always" || w == "assign") {
             out.push_str("(* keep = \"true\" *) ");
+        }
+        if commas.contains(&i) {
+            out.push_str(", ");
         }
         match t {
             Tok::Word(s) | Tok::Escaped(s) | Tok::Str(s) | Tok::Punct(s) | Tok::Comment(s) | Tok::Directive(s) => {

@@ -5,6 +5,7 @@
 //! and runs the plan (`botsim::board`).
 
 pub mod audio;
+pub mod commas;
 pub mod constraints;
 pub mod course;
 pub mod display;

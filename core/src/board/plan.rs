@@ -13,7 +13,6 @@ use kcpsm6::image::Image;
 
 use super::constraints::Board;
 use super::drivers;
-use super::flops;
 use super::parts::{
     bot_locy_port, foreign_port, is_bot, is_program_rom, own_module, Replacement, HELPERS, OWN_MODULES, PRIMITIVES,
 };
@@ -78,8 +77,6 @@ pub struct Plan {
     pub used_outputs: BTreeMap<String, u8>,
     pub replaced: Vec<Replacement>,
     pub warnings: Vec<String>,
-    /// What botsim reads otherwise than the text says, as Vivado does (one line each).
-    pub notes: Vec<String>,
     pub pins: Vec<(String, Role)>,
     pub unknown_pins: Vec<String>,
     /// The board a constraint file places the top's pins on, if one does.
@@ -109,42 +106,16 @@ pub struct Plan {
     pub cpus: Vec<CpuSite>,
 }
 
-/// `s` as Vivado builds it, for the modules that `compiled` names: nets with several
-/// drivers resolved ([`drivers`]), each said in `warnings` at its first driver, naming every
-/// one and where; flip-flops written with blocking assignments made non-blocking
-/// ([`flops`]), said in `notes` once a file. `None` when nothing changes.
-fn resolve_source(
+/// `s` with the nets of its modules that `compiled` names resolved where they have several
+/// drivers ([`drivers`]), each said in `warnings` at its first driver, naming every one and
+/// where; `None` when it has none.
+fn resolve_shared_nets(
     s: &Source,
     compiled: &dyn Fn(&str) -> bool,
     dir: &dyn Fn(&str, &str) -> Option<Dir>,
     warnings: &mut Vec<String>,
-    notes: &mut Vec<String>,
 ) -> Option<Source> {
     let mut edits = Vec::new();
-    let mut flops: Vec<(String, flops::BlockingFlop)> = Vec::new();
-    for m in s.modules.iter().filter(|m| compiled(&m.name)) {
-        for f in flops::blocking_flops(&s.text, m.span.clone()) {
-            edits.extend(f.writes.iter().map(|&at| (at..at, "<".to_string())));
-            flops.push((m.name.clone(), f));
-        }
-    }
-    if let Some((module, f)) = flops.first() {
-        let more = match flops.len() {
-            1 => String::new(),
-            n => format!(
-                " ({} more in this file: {})",
-                n - 1,
-                flops[1..].iter().map(|(_, f)| format!("`{}`", f.name)).collect::<Vec<_>>().join(", ")
-            ),
-        };
-        notes.push(format!(
-            "{}:{}:{}: `{}` in `{module}` is given blocking assignments (=) in a clocked always block that does not read it after: Vivado builds a flip-flop, which the other blocks read as it was before the clock edge; botsim simulates that flip-flop (<=), on every board alike{more}",
-            s.path.display(),
-            f.line,
-            f.col,
-            f.name
-        ));
-    }
     for m in s.modules.iter().filter(|m| compiled(&m.name)) {
         let shared = drivers::shared_nets(m, dir);
         for n in &shared {
@@ -393,7 +364,6 @@ impl Plan {
         // Substitutions.
         let mut replaced = Vec::new();
         let mut warnings = Vec::new();
-        let mut notes = Vec::new();
         // botsim's own modules are always in the build (a bot has them all); the user's
         // copies are reported, those of a design without a bot where it uses them.
         for &(name, _) in OWN_MODULES.iter().filter(|(n, _)| !kept.contains(*n)) {
@@ -529,13 +499,8 @@ impl Plan {
             m.port(port).map(|p| p.dir)
         };
         for s in sources {
-            let resolved = resolve_source(
-                s,
-                &|m| used.contains(m) && !replaced_names.contains(m),
-                &dir,
-                &mut warnings,
-                &mut notes,
-            );
+            let resolved =
+                resolve_shared_nets(s, &|m| used.contains(m) && !replaced_names.contains(m), &dir, &mut warnings);
             let s = resolved.as_ref().unwrap_or(s);
             let drop: Vec<std::ops::Range<usize>> =
                 s.modules.iter().filter(|m| replaced_names.contains(&m.name)).map(|m| m.span.clone()).collect();
@@ -575,7 +540,6 @@ impl Plan {
             used_outputs,
             replaced,
             warnings,
-            notes,
             pins,
             unknown_pins,
             board: design.placed.as_ref().map(|p| p.board),

@@ -22,8 +22,10 @@
 use std::collections::{BTreeMap, BTreeSet, VecDeque};
 use std::path::{Path, PathBuf};
 
+use super::commas;
 use super::constraints::{self, ConstraintFile, Placed};
 use super::course;
+use super::flops;
 use super::ip::{ClockCore, ClockSpec, IpConfig, CLOCK_CORES};
 use super::memcore::{library_model, MemCore, MEMORY_CORES};
 use super::parts::{self, foreign_port, is_program_rom, Replacement, HELPERS, OWN_MODULES, PRIMITIVES};
@@ -951,8 +953,9 @@ impl<'a> Walk<'a> {
             format!("only a black box declares it ({}); add its file, or tie it off with --stub {name}", pool.at(*d))
         } else if looks_like_clock_core(inst) {
             let clocks = clock_options(inst);
+            let read = clock_nets_read(inst).map_or(String::new(), |r| format!(", the frequencies read from {r}"));
             let hint = format!(
-                "a clock core with no configuration (ports {}): give its frequencies with {} (one --clock per output), or add its .xci",
+                "a clock core with no configuration (ports {}): give its frequencies with {} (one --clock per output{read}), or add its .xci",
                 inst.connections.iter().map(|(p, _)| p.as_str()).collect::<Vec<_>>().join(", "),
                 clocks
             );
@@ -1328,6 +1331,26 @@ impl<'a> Walk<'a> {
             s.text.replace_range(o.at.clone(), &padded);
             s.edited = true;
         }
+        // A trailing comma before a list's `)` (Vivado reads the list without it): a space.
+        let commas: Vec<commas::TrailingComma> =
+            commas::trailing_commas(&s.text).into_iter().filter(|c| kept(&(c.at..c.at + 1))).collect();
+        for c in &commas {
+            s.text.replace_range(c.at..c.at + 1, " ");
+            s.edited = true;
+        }
+        if let Some(c) = commas.first() {
+            self.notes.push(format!(
+                "{}:{}:{}: a comma before the `)` that ends {} (Verilog has no empty item there; Vivado reads the list without it): botsim reads it so{}",
+                s.path.display(),
+                c.line,
+                c.col,
+                c.list,
+                match commas.len() {
+                    1 => String::new(),
+                    n => format!(" ({} more in the file)", n - 1),
+                }
+            ));
+        }
         // SystemVerilog's keywords are names in a Verilog file (Vivado reads `.v` as
         // Verilog-2005): escaped, they stay names for Verilator, which reads SystemVerilog.
         let verilog = s.path.extension().is_some_and(|e| e.eq_ignore_ascii_case("v"));
@@ -1343,6 +1366,34 @@ impl<'a> Walk<'a> {
             for (at, _, _, word) in names.into_iter().rev() {
                 s.replace(at, &format!("\\{word} "));
             }
+        }
+        // Flip-flops written with blocking assignments: non-blocking, as Vivado builds them.
+        let flops: Vec<(String, flops::BlockingFlop)> = s
+            .modules
+            .iter()
+            .flat_map(|m| flops::blocking_flops(&s.text, m.span.clone()).into_iter().map(|f| (m.name.clone(), f)))
+            .collect();
+        let mut writes: Vec<usize> = flops.iter().flat_map(|(_, f)| f.writes.iter().copied()).collect();
+        writes.sort_unstable();
+        for at in writes.into_iter().rev() {
+            s.replace(at..at, "<");
+        }
+        if let Some((module, f)) = flops.first() {
+            let more = match flops.len() {
+                1 => String::new(),
+                n => format!(
+                    " ({} more in the file: {})",
+                    n - 1,
+                    flops[1..].iter().map(|(_, f)| format!("`{}`", f.name)).collect::<Vec<_>>().join(", ")
+                ),
+            };
+            self.notes.push(format!(
+                "{}:{}:{}: `{}` in `{module}` is given blocking assignments (=) in a clocked always block that does not read it after: Vivado builds a flip-flop, which the other blocks read as it was before the clock edge; botsim simulates that flip-flop (<=), on every board alike{more}",
+                s.path.display(),
+                f.line,
+                f.col,
+                f.name
+            ));
         }
         // One line a file: the first, and how many more (an icon table has dozens).
         if let Some(o) = fixes.first() {
@@ -1432,13 +1483,27 @@ fn is_rojobot31_ip(inst: &Instance) -> bool {
 
 /// The `--clock` options for a clock core's instance: one per output port it connects (a port
 /// not an input, reset or status by its name), each at the frequency its name gives
-/// (`CLK_75MHZ`: 75 MHz), else 25 MHz as an example.
+/// (`CLK_75MHZ`: 75 MHz) or the name of the net it drives does (`clk75mhz`), else 25 MHz as
+/// an example.
 fn clock_options(inst: &Instance) -> String {
-    let outputs: Vec<&str> = inst
+    clock_outputs(inst)
+        .iter()
+        .map(|(p, net)| {
+            let f = frequency_in_name(p).or_else(|| frequency_in_net(net)).unwrap_or_else(|| "25MHz".into());
+            format!("--clock {}.{p}={f}", inst.module)
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// A clock core's outputs by their names (`clk_out1` when none looks like one), each with the
+/// net it drives.
+fn clock_outputs(inst: &Instance) -> Vec<(&str, &str)> {
+    let outputs: Vec<(&str, &str)> = inst
         .connections
         .iter()
-        .map(|(p, _)| p.as_str())
-        .filter(|p| {
+        .map(|(p, n)| (p.as_str(), n.as_str()))
+        .filter(|(p, _)| {
             let l = p.to_ascii_lowercase();
             !p.starts_with('#')
                 && ![
@@ -1451,12 +1516,55 @@ fn clock_options(inst: &Instance) -> String {
                 && !l.contains("clkfb")
         })
         .collect();
-    let outputs = if outputs.is_empty() { vec!["clk_out1"] } else { outputs };
-    outputs
-        .iter()
-        .map(|p| format!("--clock {}.{p}={}", inst.module, frequency_in_name(p).unwrap_or_else(|| "25MHz".into())))
-        .collect::<Vec<_>>()
-        .join(" ")
+    if outputs.is_empty() {
+        vec![("clk_out1", "")]
+    } else {
+        outputs
+    }
+}
+
+/// Where [`clock_options`] read frequencies from the nets a core's outputs drive (the ports'
+/// own names giving none): `the nets' names: clk25mhz, clk75mhz`; `None` when it read none.
+fn clock_nets_read(inst: &Instance) -> Option<String> {
+    let read: Vec<&str> = clock_outputs(inst)
+        .into_iter()
+        .filter(|(p, n)| frequency_in_name(p).is_none() && frequency_in_net(n).is_some())
+        .map(|(_, n)| n)
+        .collect();
+    match read.len() {
+        0 => None,
+        1 => Some(format!("the net's name: {}", read[0])),
+        _ => Some(format!("the nets' names: {}", read.join(", "))),
+    }
+}
+
+/// The frequency a net's name gives: as [`frequency_in_name`] (`clk75mhz`), or a number with
+/// `M` after it (`clk_50M`, `clk50m`), or a clock's name ending in a number of 5 or more
+/// (`pixclk25`, `clk_65`: MHz, as clocks are named); `None` otherwise (`clk1`, `clk_out2`).
+fn frequency_in_net(net: &str) -> Option<String> {
+    let name = net.trim().rsplit('.').next().unwrap_or("");
+    if !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
+        return None; // a select or an expression
+    }
+    if let Some(f) = frequency_in_name(name) {
+        return Some(f);
+    }
+    let l = name.to_ascii_lowercase();
+    if !l.contains("clk") && !l.contains("clock") {
+        return None;
+    }
+    let body = l.strip_suffix('m').unwrap_or(&l);
+    let mega = body.len() < l.len();
+    let digits: String = body.chars().rev().take_while(|c| c.is_ascii_digit() || *c == '_' || *c == 'p').collect();
+    let digits: String = digits.chars().rev().collect::<String>().trim_matches('_').to_string();
+    if !digits.starts_with(|c: char| c.is_ascii_digit())
+        || body[..body.len() - digits.len()].ends_with(|c: char| c.is_ascii_digit())
+    {
+        return None;
+    }
+    let value = digits.replacen(['_', 'p'], ".", 1).replace(['_', 'p'], "");
+    let v: f64 = value.parse().ok()?;
+    (v >= 5.0 || (mega && v > 0.0)).then(|| format!("{value}MHz"))
 }
 
 /// The frequency a port's name gives, as `--clock` takes it: `CLK_75MHZ` 75MHz,
@@ -1609,6 +1717,29 @@ mod tests {
             clock_options(&inst(&["clk_in1", "clk_6_25MHz", "clk100mhz"])),
             "--clock cw.clk_6_25MHz=6.25MHz --clock cw.clk100mhz=100MHz"
         );
+        // The nets a core's outputs drive, where its ports' names give no frequency.
+        let wired = |pairs: &[(&str, &str)]| Instance {
+            connections: pairs.iter().map(|(p, n)| (p.to_string(), n.to_string())).collect(),
+            ..inst(&[])
+        };
+        let game =
+            wired(&[("clk_in1", "clk"), ("clk_out1", "clk25mhz"), ("clk_out2", "clk75mhz"), ("clk_out3", "clk50mhz")]);
+        assert_eq!(
+            clock_options(&game),
+            "--clock cw.clk_out1=25MHz --clock cw.clk_out2=75MHz --clock cw.clk_out3=50MHz"
+        );
+        assert_eq!(clock_nets_read(&game).as_deref(), Some("the nets' names: clk25mhz, clk75mhz, clk50mhz"));
+        let named =
+            wired(&[("clk_in1", "clk"), ("clk_out1", "clk_50M"), ("clk_out2", "pixclk25"), ("clk_out3", "clk2")]);
+        assert_eq!(
+            clock_options(&named),
+            "--clock cw.clk_out1=50MHz --clock cw.clk_out2=25MHz --clock cw.clk_out3=25MHz"
+        );
+        assert_eq!(clock_nets_read(&named).as_deref(), Some("the nets' names: clk_50M, pixclk25"));
+        for net in ["clk_out2", "clk1", "c25", "count25", "clk[1]", "video_clk_12_5"] {
+            assert_eq!(frequency_in_net(net).is_some(), net == "video_clk_12_5", "{net}");
+        }
+        assert_eq!(frequency_in_net("video_clk_12_5").as_deref(), Some("12.5MHz"));
         assert_eq!(frequency_in_name("clk_out1"), None);
         assert_eq!(frequency_in_name("pix_clk_65MHz"), Some("65MHz".into()));
         for o in

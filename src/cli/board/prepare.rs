@@ -367,9 +367,6 @@ fn say_design(a: &Args, design: &Design, plan: &Plan, stimulus: &Stimulus) -> Re
     for w in &plan.warnings {
         a.warn(w);
     }
-    for n in &plan.notes {
-        a.say(format!("note: {n}"));
-    }
     let reached = peripherals(&plan.pins);
     for (device, names) in &reached {
         a.say(format!("  the board's {}: {}", device.name(), names.join(", ")));

@@ -228,10 +228,25 @@ fn files(plan: &Plan, params: &[(String, String)], cpu: CpuModel, bot: BotKind) 
     let made = plan.files.iter().map(|f| f.generated).collect();
     let converted = plan.files.iter().map(|f| f.converted_from.clone()).collect();
     for (k, f) in plan.files.iter().enumerate() {
-        match &f.filtered {
+        // Verilator 5.006 cuts a file's name at a space in its messages (`Verilog files/top.v`
+        // is `Verilog:2:37`): a file whose path has anything but letters, digits and `_-./`
+        // goes to it as a copy in the build folder, named plainly, as an edited one does.
+        let plain = |p: &Path| {
+            absolute(p).to_str().is_some_and(|s| s.bytes().all(|b| b.is_ascii_alphanumeric() || b"_-./".contains(&b)))
+        };
+        let text = match &f.filtered {
+            Some(text) => Some(text.clone()),
+            None if !plain(&f.path) => std::fs::read(&f.path).ok().map(|b| String::from_utf8_lossy(&b).into_owned()),
+            None => None,
+        };
+        match text {
             Some(text) => {
                 let base = f.path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-                user.push((format!("user{k}_{base}"), Some(text.clone()), f.path.clone()));
+                let base: String = base
+                    .chars()
+                    .map(|c| if c.is_ascii_alphanumeric() || "_-.".contains(c) { c } else { '_' })
+                    .collect();
+                user.push((format!("user{k}_{base}"), Some(text), f.path.clone()));
             }
             None => user.push((f.path.display().to_string(), None, f.path.clone())),
         }

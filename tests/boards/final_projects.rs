@@ -303,3 +303,35 @@ fn trailing_commas_in_a_games_lists_under_a_folder_named_with_a_space_are_read_a
     );
     assert!(!e.contains("pinNumber") && !e.contains("%Error"), "{e}");
 }
+
+#[test]
+fn verilators_findings_in_folders_named_with_spaces_commas_and_accents_are_said_at_the_users_path() {
+    // Verilator 5.006 cuts a file's name at its first space in what it prints; botsim gives
+    // it such files by plain names and says its findings at the user's own path.
+    let dir = tempfile::tempdir().unwrap();
+    let folder = "Verilog files, v2 & (jeu é)";
+    let src = dir.path().join(folder);
+    std::fs::create_dir_all(&src).unwrap();
+    std::fs::write(
+        src.join("top.v"),
+        "module top(input clk, input [15:0] sw, output [15:0] led);\n  lamp u (.a(sw[0]), .b(led[0]), .c(led[1]));\n  assign led[15:2] = 0;\nendmodule\n",
+    )
+    .unwrap();
+    std::fs::write(src.join("lamp.v"), "module lamp(input a, output b);\n  assign b = a;\nendmodule\n").unwrap();
+    let o = board_in(dir.path(), &[".", "--seconds", "0.001"]);
+    let e = stderr(&o);
+    assert!(!o.status.success(), "{e}");
+    assert_eq!(
+        e.lines().last(),
+        Some(format!("{folder}/top.v:2:35: `lamp` has no port `c` (its ports: a, b)").as_str()),
+        "{e}"
+    );
+    // Fixed, it runs from there.
+    std::fs::write(
+        src.join("top.v"),
+        "module top(input clk, input [15:0] sw, output [15:0] led);\n  lamp u (.a(sw[0]), .b(led[0]));\n  assign led[15:1] = 0;\nendmodule\n",
+    )
+    .unwrap();
+    let o = board_in(dir.path(), &[".", "--seconds", "0.001"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+}

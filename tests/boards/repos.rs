@@ -84,14 +84,15 @@ fn a_repository_with_the_release_folder_stale_copies_and_a_testbench_runs_as_com
 /// The rules go by what files hold and by their history, not by folder names: the same
 /// repository with every folder named otherwise (the design in `hdl/`, the stale copies in
 /// `backup_final/`, the release folder, Project 1 and the testbench elsewhere) makes the same
-/// choices for the same reasons and runs the same.
+/// choices for the same reasons and runs the same; names as users write them (spaces, commas,
+/// `&`, parentheses, accents) too.
 #[test]
 fn the_same_repository_with_its_folders_named_otherwise_makes_the_same_choices() {
     let renames = [
-        ("src", "hdl"),
-        ("old", "backup_final"),
-        ("KCPSM6_Release9", "picoblaze"),
-        ("proj1", "lab1"),
+        ("src", "Verilog files"),
+        ("old", "backup, final & (old)"),
+        ("KCPSM6_Release9", "PicoBlaze é"),
+        ("proj1", "lab 1"),
         ("sim", "verification"),
     ];
     let args = [".", "--param", "SIMULATE=1", "--timing", "fast", "--seconds", "0.03"];

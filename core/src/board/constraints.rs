@@ -22,8 +22,8 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use super::pins::Role;
 use super::repo::common_depth;
+use super::role::Role;
 use super::scan::Module;
 
 /// One port (or one bit of it) placed on a package pin, and the line that says so.

@@ -23,6 +23,7 @@ pub mod project;
 pub mod random_stimulus;
 pub mod repo;
 pub mod resolve;
+pub mod role;
 pub mod scan;
 pub mod source;
 pub mod stimulus;

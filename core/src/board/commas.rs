@@ -14,7 +14,7 @@
 //! assert!(found.iter().all(|c| &text[c.at..c.at + 1] == ","));
 //! ```
 
-use super::scan::{tokenize, Tok, Token};
+use super::scan::{group_open, tokenize, Tok, Token};
 
 /// A comma just before the `)` that ends a list.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -40,7 +40,7 @@ pub fn trailing_commas(src: &str) -> Vec<TrailingComma> {
         if !punct(Some(k), ',') || !punct(Some(k + 1), ')') {
             continue;
         }
-        let Some(open) = opening(&t, k + 1) else { continue };
+        let Some(open) = group_open(&t, k + 1) else { continue };
         let before = open.checked_sub(1);
         let list = if punct(before, '#') {
             // `#(` of a module's parameters or of an instance's overrides.
@@ -69,29 +69,11 @@ pub fn trailing_commas(src: &str) -> Vec<TrailingComma> {
     found
 }
 
-/// With `close` on a `)`, the index of its `(`.
-fn opening(t: &[Token], close: usize) -> Option<usize> {
-    let mut depth = 0i32;
-    for j in (0..=close).rev() {
-        match t[j].tok {
-            Tok::Punct(')' | ']' | '}') => depth += 1,
-            Tok::Punct('(' | '[' | '{') => {
-                depth -= 1;
-                if depth == 0 {
-                    return Some(j);
-                }
-            }
-            _ => {}
-        }
-    }
-    None
-}
-
 /// The module whose port list opens at `open`: `module m (` or `module m #(...) (`.
 fn module_of_ports(t: &[Token], open: usize) -> Option<String> {
     let mut k = open.checked_sub(1)?;
     if t[k].tok == Tok::Punct(')') {
-        let params = opening(t, k)?;
+        let params = group_open(t, k)?;
         if params == 0 || t[params - 1].tok != Tok::Punct('#') {
             return None;
         }
@@ -107,7 +89,7 @@ fn module_of_ports(t: &[Token], open: usize) -> Option<String> {
 fn instance_type(t: &[Token], name: Option<usize>) -> Option<String> {
     let k = name?.checked_sub(1)?;
     let ty = match t[k].tok {
-        Tok::Punct(')') => opening(t, k)?.checked_sub(2)?,
+        Tok::Punct(')') => group_open(t, k)?.checked_sub(2)?,
         _ => k,
     };
     match &t[ty].tok {

@@ -27,7 +27,7 @@
 use std::collections::BTreeMap;
 use std::ops::Range;
 
-use super::scan::{tokenize, Tok, Token};
+use super::scan::{group_close, group_open, tokenize, Tok, Token};
 
 /// A variable of a clocked block whose blocking assignments Vivado builds as a flip-flop.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -49,7 +49,10 @@ const UNORDERED: &[&str] = &["for", "while", "repeat", "forever", "fork", "disab
 /// The variables of the module at `span` of `text` whose blocking assignments are flip-flops.
 pub fn blocking_flops(text: &str, span: Range<usize>) -> Vec<BlockingFlop> {
     let (all, _) = tokenize(text);
-    let t: Vec<&Token> = all.iter().filter(|t| span.contains(&t.at)).collect();
+    // The module's tokens (in the order of the text: a run of them).
+    let from = all.partition_point(|t| t.at < span.start);
+    let to = all.partition_point(|t| t.at < span.end);
+    let t: &[Token] = &all[from..to];
     let ident = |k: usize| match t.get(k).map(|t| &t.tok) {
         Some(Tok::Ident(w)) => Some(w.as_str()),
         _ => None,
@@ -63,11 +66,11 @@ pub fn blocking_flops(text: &str, span: Range<usize>) -> Vec<BlockingFlop> {
     while k < t.len() {
         match ident(k) {
             Some("always" | "always_ff") if punct(k + 1, '@') && punct(k + 2, '(') => {
-                let close = group_end(&t, k + 2);
+                let close = group_close(t, k + 2);
                 let edge = (k + 3..close).any(|j| matches!(ident(j), Some("posedge" | "negedge")));
                 let body = close + 1;
                 if ident(body) == Some("begin") {
-                    let end = begin_end(&t, body);
+                    let end = begin_end(t, body);
                     if edge {
                         clocked.push(body..end);
                     }
@@ -76,7 +79,7 @@ pub fn blocking_flops(text: &str, span: Range<usize>) -> Vec<BlockingFlop> {
                 }
             }
             Some("initial") => {
-                let end = if ident(k + 1) == Some("begin") { begin_end(&t, k + 1) } else { statement_end(&t, k + 1) };
+                let end = if ident(k + 1) == Some("begin") { begin_end(t, k + 1) } else { statement_end(t, k + 1) };
                 initial.push(k..end);
                 k = end;
                 continue;
@@ -105,7 +108,7 @@ pub fn blocking_flops(text: &str, span: Range<usize>) -> Vec<BlockingFlop> {
         // Back over the target's selects: `x[3:0]`, `mem[a][b]`.
         let mut j = if blocking { k } else { k - 1 };
         while j > 0 && punct(j - 1, ']') {
-            j = group_start(&t, j - 1);
+            j = group_open(t, j - 1).unwrap_or(0);
         }
         let Some(name) = j.checked_sub(1).and_then(ident) else { continue };
         let starts = j < 2
@@ -144,13 +147,13 @@ pub fn blocking_flops(text: &str, span: Range<usize>) -> Vec<BlockingFlop> {
             if elsewhere {
                 continue;
             }
-            let first_end = statement_end(&t, w[0].1);
+            let first_end = statement_end(t, w[0].1);
             let read_late = (body.start..body.end)
                 .any(|j| ident(j) == Some(name) && j >= first_end && !w.iter().any(|&(at, _)| at == j));
             if read_late {
                 continue;
             }
-            let first = t[w[0].0];
+            let first = &t[w[0].0];
             found.push(BlockingFlop {
                 name: name.to_string(),
                 line: first.line,
@@ -163,44 +166,8 @@ pub fn blocking_flops(text: &str, span: Range<usize>) -> Vec<BlockingFlop> {
     found
 }
 
-/// With `open` on a `(` or `[`, the index of its match.
-fn group_end(t: &[&Token], open: usize) -> usize {
-    let mut depth = 0i32;
-    for (j, tok) in t.iter().enumerate().skip(open) {
-        match tok.tok {
-            Tok::Punct('(' | '[' | '{') => depth += 1,
-            Tok::Punct(')' | ']' | '}') => {
-                depth -= 1;
-                if depth == 0 {
-                    return j;
-                }
-            }
-            _ => {}
-        }
-    }
-    t.len()
-}
-
-/// With `close` on a `]`, the index of its `[`.
-fn group_start(t: &[&Token], close: usize) -> usize {
-    let mut depth = 0i32;
-    for j in (0..=close).rev() {
-        match t[j].tok {
-            Tok::Punct(')' | ']' | '}') => depth += 1,
-            Tok::Punct('(' | '[' | '{') => {
-                depth -= 1;
-                if depth == 0 {
-                    return j;
-                }
-            }
-            _ => {}
-        }
-    }
-    0
-}
-
 /// With `begin` at `k`, the index just past its `end`.
-fn begin_end(t: &[&Token], k: usize) -> usize {
+fn begin_end(t: &[Token], k: usize) -> usize {
     let mut depth = 0i32;
     for (j, tok) in t.iter().enumerate().skip(k) {
         match &tok.tok {
@@ -218,7 +185,7 @@ fn begin_end(t: &[&Token], k: usize) -> usize {
 }
 
 /// The index just past the `;` that ends the statement at `k` (outside brackets).
-fn statement_end(t: &[&Token], k: usize) -> usize {
+fn statement_end(t: &[Token], k: usize) -> usize {
     let mut depth = 0i32;
     for (j, tok) in t.iter().enumerate().skip(k) {
         match tok.tok {

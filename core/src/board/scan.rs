@@ -301,6 +301,42 @@ pub fn file_references(src: &str) -> Vec<FileRef> {
     refs
 }
 
+/// With `open` on a `(`, `[` or `{` of `t`, the index of its match (`t.len()` if none).
+pub(crate) fn group_close(t: &[Token], open: usize) -> usize {
+    let mut depth = 0i32;
+    for (j, tok) in t.iter().enumerate().skip(open) {
+        match tok.tok {
+            Tok::Punct('(' | '[' | '{') => depth += 1,
+            Tok::Punct(')' | ']' | '}') => {
+                depth -= 1;
+                if depth == 0 {
+                    return j;
+                }
+            }
+            _ => {}
+        }
+    }
+    t.len()
+}
+
+/// With `close` on a `)`, `]` or `}` of `t`, the index of its match, if it has one.
+pub(crate) fn group_open(t: &[Token], close: usize) -> Option<usize> {
+    let mut depth = 0i32;
+    for j in (0..=close).rev() {
+        match t[j].tok {
+            Tok::Punct(')' | ']' | '}') => depth += 1,
+            Tok::Punct('(' | '[' | '{') => {
+                depth -= 1;
+                if depth == 0 {
+                    return Some(j);
+                }
+            }
+            _ => {}
+        }
+    }
+    None
+}
+
 pub(crate) fn tokenize(src: &str) -> (Vec<Token>, Vec<FileRef>) {
     let b = src.as_bytes();
     let (mut i, mut line, mut line_start) = (0usize, 1u32, 0usize);

@@ -1216,12 +1216,13 @@ fn memory_cores_committed_as_a_coe_alone_are_memories_of_its_words() {
         "memory_initialization_radix = 2;\nmemory_initialization_vector = 0001 0010 0100 1000;\n",
     )
     .unwrap();
-    // Without --memory: `knitg` is missing, offered the option with the files found.
+    // Without --memory: `knitg` is missing, offered the file that fits (not `sprite.coe`,
+    // `sprite`'s own), whose name resembles the module's too little to be taken.
     let o = common::board_in(d, &[".", "--seconds", "0.0001"]);
     let e = common::stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{e}");
     assert!(
-        e.contains("`knitg` (instance `SPRITE_A` in `top`): a memory core with no configuration and no knitg.coe: name its contents with --memory knitg=FILE (the repository's .coe files: frt.coe, sprite.coe)"),
+        e.contains("`knitg` (instance `SPRITE_A` in `top`): a memory core with no configuration and no knitg.coe, and no .coe's name resembles the module's; those that fit its 2-bit address and 12-bit data, closest first: frt.coe; --memory knitg=frt.coe names the first (or another FILE), or tie it off with --stub knitg"),
         "{e}"
     );
     let o = common::board_in(d, &[".", "--memory", "knitg=art/frt.coe", "--seconds", "0.0001"]);

@@ -335,3 +335,128 @@ fn verilators_findings_in_folders_named_with_spaces_commas_and_accents_are_said_
     let o = board_in(dir.path(), &[".", "--seconds", "0.001"]);
     assert!(o.status.success(), "{}", stderr(&o));
 }
+
+/// `words` 12-bit words of a screen, different for each `seed`.
+fn screen_words(seed: u64, words: usize) -> Vec<u64> {
+    let mut x = seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1;
+    (0..words)
+        .map(|_| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x & 0xFFF
+        })
+        .collect()
+}
+
+#[test]
+fn memory_cores_without_configuration_take_the_coe_that_fits_and_resembles_their_name() {
+    // A game's screens committed as cores without configuration (`player1wins`, `tie`...)
+    // beside `.coe` files named otherwise (`Player1_wins_final.coe`), a frame buffer with a
+    // write port and no `.coe`, in folders named as users name them.
+    let dir = tempfile::tempdir().unwrap();
+    let (src, art) = (dir.path().join("Verilog files"), dir.path().join("IP & art (v2)"));
+    std::fs::create_dir_all(&src).unwrap();
+    std::fs::create_dir_all(&art).unwrap();
+    std::fs::write(
+        src.join("top.v"),
+        "module top(input clk, input btnCpuReset, input [15:0] sw, output [15:0] led);\n\
+         \x20 wire [9:0] addr = sw[9:0];\n\
+         \x20 wire [11:0] p1, p2, t, g;\n\
+         \x20 wire [7:0] fbq;\n\
+         \x20 player1wins P1 (.clka(clk), .addra(addr), .douta(p1));\n\
+         \x20 player2wins P2 (.clka(clk), .addra(addr), .douta(p2));\n\
+         \x20 tie T (.clka(clk), .addra(addr), .douta(t));\n\
+         \x20 game_init G (.clka(clk), .addra(addr), .douta(g));\n\
+         \x20 frame_buffer FB (.clka(clk), .wea(sw[15]), .addra(addr), .dina({sw[14:10], 3'b101}), .douta(fbq));\n\
+         \x20 assign led = sw[14] ? {fbq, 8'd0} : {4'd0, p1 ^ p2 ^ t ^ g};\n\
+         endmodule\n",
+    )
+    .unwrap();
+    let files = ["Player1_wins_final", "Player2_wins_final", "tie_final", "start_screen_key"];
+    let mut screens = Vec::new();
+    for (k, name) in files.iter().enumerate() {
+        let words = screen_words(k as u64 + 1, 1000);
+        let vector: Vec<String> = words.iter().map(|w| format!("{w:03X}")).collect();
+        let text = format!("memory_initialization_radix=16;\nmemory_initialization_vector=\n{};\n", vector.join(",\n"));
+        std::fs::write(art.join(format!("{name}.coe")), text).unwrap();
+        screens.push(words);
+    }
+    // A file too deep for the 10-bit address is never offered.
+    std::fs::write(
+        art.join("game_init_big.coe"),
+        format!("memory_initialization_radix=16;\nmemory_initialization_vector=\n{};\n", vec!["0"; 2000].join(",")),
+    )
+    .unwrap();
+
+    // `game_init`'s name resembles no file's: one line at the instance, the files that fit
+    // closest first (those closer to another core's name last), ready to paste.
+    let o = board_in(dir.path(), &[".", "--seconds", "0.0001"]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert_eq!(
+        e.lines().nth(1).map(str::trim),
+        Some(
+            "Verilog files/top.v:8:3: `game_init` (instance `G` in `top`): a memory core with no configuration and no game_init.coe, and no .coe's name resembles the module's; those that fit its 10-bit address and 12-bit data, closest first: start_screen_key.coe, tie_final.coe (closer to `tie`), Player1_wins_final.coe (closer to `player1wins`), Player2_wins_final.coe (closer to `player2wins`); --memory game_init=start_screen_key.coe names the first (or another FILE), or tie it off with --stub game_init"
+        ),
+        "{e}"
+    );
+    assert!(!e.contains("game_init_big"), "{e}");
+
+    let run = |sw: u32| {
+        let sw = format!("{sw:04X}");
+        let args =
+            [".", "--memory", "game_init=start_screen_key.coe", "--switches", &sw, "--seconds", "0.0001", "--json"];
+        let o = board_in(dir.path(), &args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        serde_json::from_slice::<Value>(&o.stdout).unwrap()
+    };
+    let o = board_in(dir.path(), &[".", "--memory", "game_init=start_screen_key.coe", "--seconds", "0.0001"]);
+    let said = stderr(&o);
+    assert!(o.status.success(), "{said}");
+    for (module, file) in
+        [("player1wins", "Player1_wins_final"), ("player2wins", "Player2_wins_final"), ("tie", "tie_final")]
+    {
+        let note = format!(
+            "note: `{module}` (instance `{}` in `top`) is a memory core with no configuration and no {module}.coe: its contents are {file}.coe, whose 1000 words fit its 10-bit address and 12-bit data and whose name is the closest to the module's (name another with --memory {module}=FILE)",
+            match module { "player1wins" => "P1", "player2wins" => "P2", _ => "T" }
+        );
+        assert!(said.lines().any(|l| l == note), "{note}\n{said}");
+    }
+    assert!(
+        said.lines().any(|l| l
+            == "note: `frame_buffer` (instance `FB` in `top`) is a memory core with no configuration and no frame_buffer.coe, with a write port: a RAM of 1024 x 8 bits (what its 10-bit address and 8-bit data reach) starting at zero, as the Block Memory Generator makes one without a .coe"),
+        "{said}"
+    );
+    // Each screen reads its own file: the LEDs show the four words at the address XORed.
+    for addr in [0u32, 1, 517, 999] {
+        let want = screens.iter().fold(0, |x, s| x ^ s[addr as usize]);
+        let s = run(addr);
+        assert_eq!(s["leds"].as_u64(), Some(want), "address {addr}: {s}");
+    }
+    // The frame buffer reads 0 where nothing was written, and what is written (write-first).
+    assert_eq!(run(0x4000 | 3)["leds"].as_u64(), Some(0), "a RAM starting at zero");
+    assert_eq!(run(0x8000 | 0x7C00 | 3)["leds"].as_u64(), Some(0xFD00), "written {{11111, 101}}");
+}
+
+#[test]
+fn includes_and_memory_files_in_folders_named_with_spaces_and_accents_are_found() {
+    // `include` of a file in a folder of its own, `$readmemh` of a file whose name has a
+    // space and an accent: as Vivado finds them.
+    let dir = tempfile::tempdir().unwrap();
+    let src = dir.path().join("Verilog files");
+    std::fs::create_dir_all(src.join("incl (v2)")).unwrap();
+    std::fs::write(
+        src.join("top.v"),
+        "`include \"defs.vh\"\nmodule top(input clk, input [15:0] sw, output [15:0] led);\n  reg [15:0] rom [0:3];\n  initial $readmemh(\"pic data é.mem\", rom);\n  assign led = rom[sw[1:0]] ^ `MASK;\nendmodule\n",
+    )
+    .unwrap();
+    std::fs::write(src.join("incl (v2)/defs.vh"), "`define MASK 16'h00F0\n").unwrap();
+    std::fs::write(src.join("pic data é.mem"), "1234\n5678\n9abc\ndef0\n").unwrap();
+    for (sw, want) in [("0001", 0x5688), ("0003", 0xDE00)] {
+        let o = board_in(dir.path(), &[".", "--switches", sw, "--seconds", "0.0001", "--json"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let s: Value = serde_json::from_slice(&o.stdout).unwrap();
+        assert_eq!(s["leds"], want, "switches {sw}: {s}");
+    }
+}

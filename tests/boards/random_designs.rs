@@ -148,7 +148,7 @@ fn check_one(seed: u64) -> f64 {
         let by_hand = dir.join("resolved");
         std::fs::create_dir_all(&by_hand).unwrap();
         d.write(&by_hand);
-        std::fs::write(by_hand.join("nexys4fpga.v"), top).unwrap();
+        std::fs::write(d.top_file(&by_hand), top).unwrap();
         let r = run(&d, &by_hand, "fast_pins", true, true);
         assert!(!r.said.contains("DRC MDRV-1"), "resolved by hand: {}\n{}", r.said, about());
         for (what, a, b) in [

@@ -75,25 +75,62 @@ pub struct Design {
     /// Then the same top with the net's resolution written out (each driver on a wire of its
     /// own, the net their AND: the bits they agree on, as botsim resolves it).
     pub resolved: Option<String>,
+    /// The folder its sources are in, under the run's: often none, else named as users
+    /// name folders (spaces, commas, `&`, parentheses, accents; [`folder`]).
+    pub folder: String,
 }
 
 impl Design {
-    /// Write the design's files into `dir`.
+    /// Write the design's files into `dir`: its sources in its [`Design::folder`], the
+    /// stimulus and the parts at the top.
     pub fn write(&self, dir: &std::path::Path) {
-        std::fs::write(dir.join("nexys4fpga.v"), &self.top).unwrap();
-        std::fs::write(dir.join("teampgm.psm"), &self.program).unwrap();
+        let src = dir.join(&self.folder);
+        std::fs::create_dir_all(&src).unwrap();
+        std::fs::write(self.top_file(dir), &self.top).unwrap();
+        std::fs::write(src.join("teampgm.psm"), &self.program).unwrap();
         for (name, source) in &self.programs {
-            std::fs::write(dir.join(format!("{name}.psm")), source).unwrap();
+            std::fs::write(src.join(format!("{name}.psm")), source).unwrap();
         }
         std::fs::write(dir.join("stimulus.txt"), &self.stimulus).unwrap();
         std::fs::write(dir.join("parts.txt"), self.parts.join("\n") + "\n").unwrap();
         let console = super::root().join("tests/board_designs/console");
         for (on, file) in [(self.uart, "uart_rx.v"), (self.keyboard, "ps2_rx.v")] {
             if on {
-                std::fs::copy(console.join(file), dir.join(file)).unwrap();
+                std::fs::copy(console.join(file), src.join(file)).unwrap();
             }
         }
     }
+
+    /// The top's file, as [`Design::write`] places it in `dir`.
+    pub fn top_file(&self, dir: &std::path::Path) -> std::path::PathBuf {
+        dir.join(&self.folder).join("nexys4fpga.v")
+    }
+}
+
+/// The folder a design's sources are in: none for 2 seeds in 5, else one or two levels of
+/// words joined as users join them (drawn from a stream of its own, so the design a seed
+/// draws is the same whatever its folder).
+pub fn folder(seed: u64) -> String {
+    let mut r = Rng::new(seed ^ 0x00f0_1de2_5eed);
+    if r.chance(40) {
+        return String::new();
+    }
+    let words: [&str; 10] = ["Verilog", "files", "Projet", "final", "jeu", "équipe", "v2", "Lab 4", "Größe", "src"];
+    let joins: [&str; 9] = [" ", ", ", " & ", " (", ") ", "-", "_", "+", "'"];
+    let level = |r: &mut Rng| {
+        let mut name = r.pick(&words).to_string();
+        for _ in 0..r.range(1, 4) {
+            let (join, word) = (*r.pick(&joins), *r.pick(&words));
+            name.push_str(join);
+            name.push_str(word);
+        }
+        name
+    };
+    let mut path = level(&mut r);
+    if r.chance(30) {
+        path = format!("{path}/{}", level(&mut r));
+    }
+    path
 }
 
 /// A time as a fraction of a picosecond: num / den.
@@ -816,7 +853,12 @@ endmodule
         t
     });
     let programs = parts.iter().filter_map(|p| p.program.clone()).collect();
+    let folder = folder(seed);
+    if !folder.is_empty() {
+        parts_text.push(format!("its sources in the folder {folder:?}"));
+    }
     Design {
+        folder,
         seed,
         top,
         program,

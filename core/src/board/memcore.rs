@@ -174,15 +174,6 @@ impl MemCore {
         let text = std::fs::read(path)
             .map_err(|e| BoardError::at(path, 0, 0, format!("cannot read the memory's initial contents: {e}")))?;
         let coe = parse_coe(&String::from_utf8_lossy(&text)).map_err(|(line, m)| BoardError::at(path, line, 0, m))?;
-        let has = |p: &str| connected.iter().any(|c| c.eq_ignore_ascii_case(p));
-        let port = |x: &str| PortCfg {
-            enable: has(&format!("en{x}")),
-            write: has(&format!("we{x}")) || has(&format!("din{x}")),
-            read: true,
-            latency: 1,
-            mode: WriteMode::WriteFirst,
-        };
-        let b = (has("clkb") || has("addrb") || has("doutb")).then(|| port("b"));
         let needed = coe.words.iter().map(|w| 64 - w.leading_zeros()).max().unwrap_or(0);
         let width = coe.written_bits.max(needed).clamp(1, 64);
         let mut notes = Vec::new();
@@ -194,7 +185,7 @@ impl MemCore {
         }
         Ok(MemCore {
             name: name.to_string(),
-            kind: Kind::Block { a: port("a"), b },
+            kind: block_ports(connected),
             width,
             depth: (coe.words.len() as u32).max(1),
             init: coe.words,
@@ -202,6 +193,29 @@ impl MemCore {
             origin: format!("{} alone (no configuration)", path.display()),
             notes,
         })
+    }
+
+    /// A Block Memory Generator RAM committed with neither configuration nor contents (a
+    /// frame buffer): `depth` x `width` starting at zero, as the generator makes one with
+    /// no initial file, with the ports the instance connects (as [`MemCore::from_coe`]).
+    ///
+    /// ```
+    /// use botsim_core::board::memcore::MemCore;
+    /// let ram = MemCore::zeroed("fb", &["clka", "wea", "addra", "dina", "douta"], 1 << 15, 8);
+    /// assert!(ram.init.is_empty());
+    /// assert!(ram.verilog().contains("if ((|wea)) mem[addra] <= dina;"));
+    /// ```
+    pub fn zeroed(name: &str, connected: &[&str], depth: u32, width: u32) -> MemCore {
+        MemCore {
+            name: name.to_string(),
+            kind: block_ports(connected),
+            width: width.clamp(1, 64),
+            depth: depth.max(1),
+            init: Vec::new(),
+            ports: None,
+            origin: "the connected widths (no configuration, no .coe)".into(),
+            notes: Vec::new(),
+        }
     }
 
     /// The core a generated wrapper (`wrapper`, in `file`) describes through the `C_*`
@@ -456,6 +470,22 @@ impl MemCore {
             dm = d - 1,
         )
     }
+}
+
+/// The ports of a Block Memory Generator core without configuration, from those the
+/// instance connects: port A always, port B where any of its pins is connected; enables and
+/// writes where connected; read latency 1 and write-first, the generator's defaults.
+fn block_ports(connected: &[&str]) -> Kind {
+    let has = |p: &str| connected.iter().any(|c| c.eq_ignore_ascii_case(p));
+    let port = |x: &str| PortCfg {
+        enable: has(&format!("en{x}")),
+        write: has(&format!("we{x}")) || has(&format!("din{x}")),
+        read: true,
+        latency: 1,
+        mode: WriteMode::WriteFirst,
+    };
+    let b = (has("clkb") || has("addrb") || has("doutb")).then(|| port("b"));
+    Kind::Block { a: port("a"), b }
 }
 
 fn addr_width(depth: u32) -> u32 {

@@ -5,6 +5,7 @@
 //! and runs the plan (`botsim::board`).
 
 pub mod audio;
+pub mod coe_match;
 pub mod commas;
 pub mod constraints;
 pub mod course;

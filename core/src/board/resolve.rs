@@ -22,12 +22,13 @@
 use std::collections::{BTreeMap, BTreeSet, VecDeque};
 use std::path::{Path, PathBuf};
 
+use super::coe_match::{self, Offer, Shape};
 use super::commas;
 use super::constraints::{self, ConstraintFile, Placed};
 use super::course;
 use super::flops;
 use super::ip::{ClockCore, ClockSpec, IpConfig, CLOCK_CORES};
-use super::memcore::{library_model, MemCore, MEMORY_CORES};
+use super::memcore::{library_model, parse_coe, Coe, MemCore, MEMORY_CORES};
 use super::parts::{self, foreign_port, is_program_rom, Replacement, HELPERS, OWN_MODULES, PRIMITIVES};
 use super::pins::{self, Role};
 use super::project::Project;
@@ -75,10 +76,11 @@ pub struct Design {
     pub placed: Option<Placed>,
 }
 
-/// Does an instance connect a block memory core's ports (`clka`, `addra`, `douta`, as the
-/// Block Memory Generator names them)?
+/// Does an instance connect a block memory core's ports as the Block Memory Generator names
+/// them (`clka`, `addra`, and `douta` or `dina`: a simple dual-port RAM reads on port B)?
 fn looks_like_memory_core(connected: &[&str]) -> bool {
-    ["clka", "addra", "douta"].iter().all(|p| connected.iter().any(|c| c.eq_ignore_ascii_case(p)))
+    let has = |p: &str| connected.iter().any(|c| c.eq_ignore_ascii_case(p));
+    has("clka") && has("addra") && (has("douta") || has("dina"))
 }
 
 /// The ports of BotSim 2.0's `bot` (rtl/bot.v): a `bot` instance that connects another is
@@ -661,6 +663,8 @@ struct Walk<'a> {
     instances: BTreeMap<String, Vec<Instance>>,
     /// A choice that cannot be made (two definitions nothing orders): ends the walk.
     error: Option<BoardError>,
+    /// The repository's `.coe` files that read, once a core needs them.
+    coes: Option<Vec<(PathBuf, Coe)>>,
 }
 
 impl<'a> Walk<'a> {
@@ -676,6 +680,7 @@ impl<'a> Walk<'a> {
             notes: Vec::new(),
             instances: BTreeMap::new(),
             error: None,
+            coes: None,
         }
     }
 
@@ -738,7 +743,7 @@ impl<'a> Walk<'a> {
                 if self.chosen.contains_key(&inst.module) {
                     continue;
                 }
-                let chosen = self.choose_for(inst, &m.name, &file);
+                let chosen = self.choose_for(inst, &m, &file);
                 if let Some(e) = self.error.take() {
                     return Err(e);
                 }
@@ -793,10 +798,11 @@ impl<'a> Walk<'a> {
         (!v.is_empty()).then_some(v)
     }
 
-    /// What stands for the module `inst` instantiates (first met in `parent`, in `file`);
+    /// What stands for the module `inst` instantiates (first met in `scope`, in `file`);
     /// `None` when it is missing (recorded) or made at the end (stubs, `--clock`).
-    fn choose_for(&mut self, inst: &Instance, parent: &str, file: &Path) -> Option<Choice> {
+    fn choose_for(&mut self, inst: &Instance, scope: &Module, file: &Path) -> Option<Choice> {
         let name = inst.module.as_str();
+        let parent = scope.name.as_str();
         let pool = self.pool;
         if OWN_MODULES.iter().any(|(m, _)| *m == name) {
             // The user's copy is reported as replaced (and blanked by the plan).
@@ -834,7 +840,7 @@ impl<'a> Walk<'a> {
             return Some(self.user(name, &defs, file));
         }
         // A memory core committed as its contents alone (`<name>.coe`, or --memory's file).
-        if let Some(c) = self.coe_core(inst, parent, file) {
+        if let Some(c) = self.coe_core(inst, scope, file) {
             return c;
         }
         // A program ROM whose Verilog was never committed, only its program: assembled here.
@@ -964,21 +970,6 @@ impl<'a> Walk<'a> {
                 m.step = Some(clocks);
             }
             return None;
-        } else if looks_like_memory_core(&inst.connections.iter().map(|(p, _)| p.as_str()).collect::<Vec<_>>()) {
-            let coes: Vec<String> = self
-                .repo
-                .files_with_extension("coe")
-                .iter()
-                .map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default())
-                .collect();
-            if coes.is_empty() {
-                format!("a memory core with no configuration and no {name}.coe: add its .xci or .coe, or tie it off with --stub {name}")
-            } else {
-                format!(
-                    "a memory core with no configuration and no {name}.coe: name its contents with --memory {name}=FILE (the repository's .coe files: {}), or tie it off with --stub {name}",
-                    coes.join(", ")
-                )
-            }
         } else {
             format!("add its file, or tie it off with --stub {name}")
         };
@@ -988,16 +979,21 @@ impl<'a> Walk<'a> {
 
     /// A memory core whose configuration was never committed, from its `.coe`: the file
     /// `--memory` names for the module, else `<module>.coe` in the repository (nearest to
-    /// the instance). `None` when the instance has no memory core's ports or no file is
-    /// found; `Some(None)` when the file does not read (recorded as missing).
-    fn coe_core(&mut self, inst: &Instance, parent: &str, file: &Path) -> Option<Option<Choice>> {
+    /// the instance), else the one `.coe` that fits the connected widths and whose name is
+    /// the closest to the module's ([`coe_match`]); with none of those, a core with a write
+    /// port is a RAM starting at zero, and any other is missing, its candidates listed.
+    /// `None` when the instance has no memory core's ports; `Some(None)` when it is
+    /// recorded as missing.
+    fn coe_core(&mut self, inst: &Instance, scope: &Module, file: &Path) -> Option<Option<Choice>> {
         let name = inst.module.as_str();
+        let parent = scope.name.as_str();
         let connected: Vec<&str> = inst.connections.iter().map(|(p, _)| p.as_str()).collect();
         let named = self.opts.memories.iter().find(|(m, _)| m == name).map(|(_, f)| f.clone());
         if named.is_none() && !looks_like_memory_core(&connected) {
             return None;
         }
         let dir = file.parent().unwrap_or(Path::new("."));
+        let shape = Shape::connected(inst, scope);
         let coe = match named {
             Some(f) if f.is_file() => f,
             Some(f) => {
@@ -1011,7 +1007,10 @@ impl<'a> Walk<'a> {
                     }
                 }
             }
-            None => self.repo.find_near(&format!("{name}.coe"), dir)?,
+            None => match self.repo.find_near(&format!("{name}.coe"), dir) {
+                Some(own) => own,
+                None => return Some(self.unnamed_core(inst, parent, file, &shape)),
+            },
         };
         match MemCore::from_coe(name, &connected, &coe) {
             // Said in the substitution report, with the file.
@@ -1021,6 +1020,124 @@ impl<'a> Walk<'a> {
                 Some(None)
             }
         }
+    }
+
+    /// A memory core with no configuration and no `.coe` of its name: the repository's
+    /// `.coe` files offered to it ([`coe_match::offer`]).
+    fn unnamed_core(&mut self, inst: &Instance, parent: &str, file: &Path, shape: &Shape) -> Option<Choice> {
+        let name = inst.module.as_str();
+        let connected: Vec<&str> = inst.connections.iter().map(|(p, _)| p.as_str()).collect();
+        let repo = self.repo;
+        let coes = self.coes.get_or_insert_with(|| {
+            repo.files_with_extension("coe")
+                .into_iter()
+                .filter_map(|p| {
+                    let text = std::fs::read(&p).ok()?;
+                    parse_coe(&String::from_utf8_lossy(&text)).ok().map(|c| (p, c))
+                })
+                .collect()
+        });
+        let shown = |p: &Path| memory_arg(repo, p);
+        let fitting = shape.describe();
+        let lead = format!("a memory core with no configuration and no {name}.coe");
+        let writes = ["wea", "web", "dina", "dinb"].iter().any(|p| connected.iter().any(|c| c.eq_ignore_ascii_case(p)));
+        // A file named after another module the repository instantiates is that module's.
+        let others: BTreeSet<String> = self
+            .pool
+            .sources
+            .iter()
+            .flat_map(|s| s.modules.iter().flat_map(|m| m.instances.iter().map(|i| i.module.to_ascii_lowercase())))
+            .chain(self.opts.memories.iter().map(|(m, _)| m.to_ascii_lowercase()))
+            .filter(|m| !m.eq_ignore_ascii_case(name))
+            .collect();
+        let stem = |p: &Path| p.file_stem().map(|s| s.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+        let coes: &Vec<(PathBuf, Coe)> = coes;
+        let offered = coes.iter().filter(|(p, _)| !others.contains(&stem(p)));
+        let candidates = match coe_match::offer(name, shape, offered) {
+            Offer::Taken(c) => {
+                let words = coes.iter().find(|(p, _)| *p == c.path).map_or(0, |(_, coe)| coe.words.len());
+                return match MemCore::from_coe(name, &connected, &c.path) {
+                    Ok(core) => {
+                        self.notes.push(format!(
+                            "`{name}` (instance `{}` in `{parent}`) is {lead}: its contents are {}, whose {words} words fit {fitting} and whose name is the closest to the module's (name another with --memory {name}=FILE)",
+                            inst.name,
+                            shown(&c.path),
+                        ));
+                        Some(self.core(core, String::new()))
+                    }
+                    Err(e) => {
+                        self.missing(inst, parent, file, format!("its contents {} do not read: {e}", c.path.display()));
+                        None
+                    }
+                };
+            }
+            Offer::Choose(c) => c,
+        };
+        // Those whose names resemble another module's more than this one's last, said.
+        let claimed = |c: &coe_match::Candidate| {
+            let stem = stem(&c.path);
+            others
+                .iter()
+                .map(|m| (m, coe_match::resemblance(m, &stem)))
+                .filter(|&(_, r)| r >= coe_match::RESEMBLES && r > c.resemblance)
+                .max_by(|x, y| x.1.total_cmp(&y.1))
+                .map(|(m, _)| m)
+        };
+        let mut candidates: Vec<(coe_match::Candidate, Option<&String>)> =
+            candidates.into_iter().map(|c| (c.clone(), claimed(&c))).collect();
+        candidates.sort_by_key(|(_, by)| by.is_some());
+        let listed: Vec<String> = candidates
+            .iter()
+            .map(|(c, by)| match by {
+                Some(m) => format!("{} (closer to `{m}`)", shown(&c.path)),
+                None => shown(&c.path),
+            })
+            .collect();
+        let candidates: Vec<coe_match::Candidate> = candidates.into_iter().map(|(c, _)| c).collect();
+        if writes {
+            if let (Some(depth), Some(width)) = (shape.depth(), shape.data) {
+                let core = MemCore::zeroed(name, &connected, depth, width);
+                let others = if listed.is_empty() {
+                    String::new()
+                } else {
+                    format!("; the .coe files that fit: {} (name one with --memory {name}=FILE)", listed.join(", "))
+                };
+                self.notes.push(format!(
+                    "`{name}` (instance `{}` in `{parent}`) is {lead}, with a write port: a RAM of {depth} x {width} bits (what {fitting} reach) starting at zero, as the Block Memory Generator makes one without a .coe{others}",
+                    inst.name,
+                ));
+                return Some(self.core(core, String::new()));
+            }
+        }
+        let all = repo.files_with_extension("coe");
+        let (hint, step) = match candidates.first() {
+            Some(best) => (
+                format!(
+                    "{lead}, and {}, closest first: {}; --memory {name}={} names the first (or another FILE), or tie it off with --stub {name}",
+                    if best.resemblance >= coe_match::RESEMBLES {
+                        format!("the names of the .coe files that fit {fitting} resemble the module's as closely as each other")
+                    } else {
+                        format!("no .coe's name resembles the module's; those that fit {fitting}")
+                    },
+                    listed.join(", "),
+                    memory_arg(repo, &best.path)
+                ),
+                format!("--memory {name}={}", memory_arg(repo, &best.path)),
+            ),
+            None if all.is_empty() => (format!("{lead}: add its .xci or .coe, or tie it off with --stub {name}"), format!("--stub {name}")),
+            None => (
+                format!(
+                    "{lead}, and none of the repository's .coe files fits {fitting} ({}): name its contents with --memory {name}=FILE, or tie it off with --stub {name}",
+                    all.iter().map(|p| shown(p)).collect::<Vec<_>>().join(", ")
+                ),
+                format!("--stub {name}"),
+            ),
+        };
+        self.missing(inst, parent, file, hint);
+        if let Some(m) = self.missing.last_mut() {
+            m.step = Some(step);
+        }
+        None
     }
 
     fn user(&mut self, name: &str, defs: &[Def], file: &Path) -> Choice {
@@ -1263,6 +1380,7 @@ impl<'a> Walk<'a> {
         }
         let groups: Vec<(&str, usize)> = held.iter().filter(|(p, _)| stubbed(p)).map(|(p, k)| (*p, *k)).collect();
         match groups.as_slice() {
+            [] if n > 1 => format!("\n  {} gets past all {n}", steps.join(" ")),
             [] => String::new(),
             [(parent, k)] if *k == n => format!(
                 "\n  all {n} are instantiated in `{parent}` ({}): --stub {parent} ties off that module (its outputs 0) instead",
@@ -1476,6 +1594,15 @@ const MIPS_CORE: &str = "m14k_top";
 
 /// An instance of the Rojobot 3.1 IP (board.md §8): the bot's motor input beside a world-map
 /// port (its map is outside it), whatever the component's name.
+/// How `--memory` names `path`: its file name where no other file of the repository has it,
+/// else its path.
+fn memory_arg(repo: &Repo, path: &Path) -> String {
+    match path.file_name() {
+        Some(n) if repo.find(&n.to_string_lossy()).as_deref() == Some(path) => n.to_string_lossy().into_owned(),
+        _ => path.display().to_string(),
+    }
+}
+
 fn is_rojobot31_ip(inst: &Instance) -> bool {
     let connects = |p: &str| inst.connections.iter().any(|(c, _)| c == p);
     connects("MotCtl_in") && connects("worldmap_addr") && connects("worldmap_data")
@@ -1685,6 +1812,7 @@ mod tests {
             "{e}"
         );
         assert!(lines[3].contains("top.v:5:3: `spi`"), "{e}");
+        assert_eq!(lines[4], "  --clock clk_wiz_0.clk_out1=25MHz --stub uart --stub spi gets past all 3", "{e}");
         let opts = Options {
             stubs: vec!["uart".into(), "spi".into()],
             clocks: vec![ClockSpec::parse("clk_wiz_0.clk_out1=25MHz").unwrap()],

@@ -22,6 +22,7 @@ pub use botsim_core::{
 };
 
 pub mod board;
+pub mod fastforward;
 pub mod interrupt;
 pub mod sim;
 

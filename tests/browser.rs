@@ -96,7 +96,7 @@ fn the_page_in_headless_chromium_plays_the_vga_example() {
 
     // The digits as drawn, segment by segment: LocX and LocY in hex, as the registers say.
     let glyphs = |p: &Value| -> String {
-        (4..8).rev().map(|d| botsim::board::display::glyph(p["lit"][d].as_u64().unwrap() as u8)).collect()
+        (4..8).rev().map(|d| botsim_core::board::display::glyph(p["lit"][d].as_u64().unwrap() as u8)).collect()
     };
     let reg = |p: &Value, k: &str| p[k].as_str().unwrap().parse::<u64>().unwrap_or(999);
     until(&tab, "LocX and LocY on the digits", |p| {

@@ -10,7 +10,8 @@
 //! | [`script`] | motor scripts |
 //! | [`firmware`] | the BotSim firmware (`rtl/bot_pgm.psm`) and its assembly-time constants |
 //! | [`golden`] | the golden behavioural model of the spec (no CPU, no firmware) |
-//! | [`board`] | a student's board design: scanning, the substitution plan, pins, the display |
+//! | [`frontend`] | a team's repository to a design plan: scanning, resolving, IP, pins, the substitution plan |
+//! | [`board`] | what the board shows and takes: the display, VGA frames, UART, keyboard, audio, stimuli |
 //! | [`driver`] | closed-loop drivers: the motor script, the line follower |
 //! | [`render`] | pictures: the path on the world, the course's 640 x 480 display |
 //! | [`files`] | output files that are never half-written |
@@ -30,6 +31,7 @@ pub mod debug;
 pub mod driver;
 pub mod files;
 pub mod firmware;
+pub mod frontend;
 pub mod golden;
 mod picture;
 pub mod ports;

@@ -4,7 +4,7 @@
 # with it and runs the core RTL tests (the CPU against the spec and the ISS, the bot against
 # the spec and the golden model), one board test per example (their results against the
 # ISS's and botsim's own frames) and two shapes of real designs (the fast-forward's
-# analyses read this Verilator's C++ through src/board/dialect.rs: over 95 % skipped, every
+# analyses read this Verilator's C++ through src/fastforward/dialect.rs: over 95 % skipped, every
 # edge equal). A design's build says which Verilator made it. Then the gate's xinit check
 # (random power-up values, scripts/lib/tests.sh) on these models: .ci/run runs it here, where
 # the models carry no coverage points (a coverage build spends most of the lock-step test in

@@ -49,9 +49,9 @@ typedef struct BoardCpuFns {
      * bank | zero << 1 | carry << 2 | ie << 3 | reset << 4 | sleep << 5 | entry << 6. */
     void (*debug)(void* cpu, uint32_t* regs, uint32_t* flags);
     /* The design reads this instance's out_port only under a write strobe (the analysis of
-     * src/board/strobes.rs): a count shown there between OUTPUTs cannot change the board. */
+     * src/fastforward/strobes.rs): a count shown there between OUTPUTs cannot change the board. */
     void (*out_port_free)(void* cpu);
-    /* The design lets this instance run apart from the board (src/board/apart.rs), as its
+    /* The design lets this instance run apart from the board (src/fastforward/apart.rs), as its
      * entry in botsim_observed.h's `botsim_apart` says; or no longer (null: a run that
      * compares all of the board). */
     void (*apart_capable)(void* cpu, const char* entry);
@@ -94,7 +94,7 @@ typedef struct BoardHost {
      * the bot's firmware and change of the bot's inputs; mark every model's state; take a
      * phase snapshot of every model's state (the snapshots since the mark are numbered from
      * 1); are the KCPSM6 models as marked (their cycle counts aside: 1), or as marked but for
-     * a count their firmware keeps (2, src/board/counts.rs; 0: neither); how many periods (each
+     * a count their firmware keeps (2, src/fastforward/counts.rs; 0: neither); how many periods (each
      * as long as the time since the mark) the bot's outputs stay as they are with its inputs
      * held, at most `periods`; do they stay so for `periods` periods and then up to phase
      * snapshot `phase`; run every model `periods` periods on and then to phase snapshot

@@ -16,7 +16,7 @@
 void Vboard___024root___eval(Vboard___024root* vlSelf);
 // Its trigger computation alone: at a falling edge of a board whose only trigger is the
 // clock's rising edge, it notes the clock's level and nothing else happens (the build checks
-// the design for this: src/board/checks.rs). Its name is the Verilator version's
+// the design for this: src/fastforward/checks.rs). Its name is the Verilator version's
 // (BOTSIM_EVAL_TRIGGERS, from botsim_observed.h); without one, every edge is evaluated.
 #ifdef BOTSIM_EVAL_TRIGGERS
 void BOTSIM_EVAL_TRIGGERS(Vboard___024root* vlSelf);

@@ -1,7 +1,7 @@
 // board_model.h: what the harness knows of a design's Verilated model. harness.cpp is compiled
 // once (for every design of a Verilator and its flags) and sees the model only through this;
 // board_model.cpp, compiled with each design, fills it in. The ports are the wrapper's
-// (botsim_board, src/board/wrapper.rs), the same for every design.
+// (botsim_board, core/src/frontend/wrapper.rs), the same for every design.
 #ifndef BOTSIM_BOARD_MODEL_H
 #define BOTSIM_BOARD_MODEL_H
 
@@ -13,7 +13,7 @@
 #include <vector>
 
 // One variable of the root object: its bytes, and whether a run without a waveform or VGA
-// frames observes it (src/board/observed.rs decides; botsim_observed.h lists them).
+// frames observes it (src/fastforward/observed.rs decides; botsim_observed.h lists them).
 struct BoardMember {
     size_t off, len;
     bool observed;
@@ -38,7 +38,7 @@ struct BoardGuarded {
     uint32_t lo;
     std::vector<BoardGuard> guards;
 };
-// A counter the fast-forward moves on by arithmetic (src/board/counters.rs): its bytes, its
+// A counter the fast-forward moves on by arithmetic (src/fastforward/counters.rs): its bytes, its
 // width in bits, whether it counts down, its largest step, the lowest bit a shifted read sees
 // (64: none), the constants it is compared with, the bit below which only masks read it
 // (64: none; the low part then repeats while the rest counts), the lowest bit a read
@@ -84,7 +84,7 @@ struct BoardPorts {
 // A design's model.
 struct DesignModel {
     void* top;        // the Vboard
-    uint8_t* root;    // its root object: all of its state (src/board/checks.rs)
+    uint8_t* root;    // its root object: all of its state (src/fastforward/checks.rs)
     size_t root_size;
     BoardPorts io;
     // The analyses' results (botsim_observed.h): whether the observed variables are known,
@@ -97,9 +97,9 @@ struct DesignModel {
     const uint32_t* reads;
     const uint8_t* external;
     // The KCPSM6 models (by the Verilator name of their instance) whose out_port the design
-    // reads only under a write strobe (src/board/strobes.rs); null-terminated.
+    // reads only under a write strobe (src/fastforward/strobes.rs); null-terminated.
     const char* const* out_port_free;
-    // The KCPSM6 models that may run apart from the board (src/board/apart.rs): each entry
+    // The KCPSM6 models that may run apart from the board (src/fastforward/apart.rs): each entry
     // the instance's Verilator name and its followers, separated by spaces; null-terminated.
     const char* const* apart;
     void (*counters)(const uint8_t* root, std::vector<BoardCounter>& out);

@@ -10,10 +10,10 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-use botsim_core::board::parts::{OWN_MODULES, PRIMITIVES, STUB};
-use botsim_core::board::plan::Plan;
-use botsim_core::board::wrapper;
-use botsim_core::board::BoardError;
+use botsim_core::frontend::parts::{OWN_MODULES, PRIMITIVES, STUB};
+use botsim_core::frontend::plan::Plan;
+use botsim_core::frontend::wrapper;
+use botsim_core::frontend::BoardError;
 
 use super::explain;
 
@@ -321,7 +321,7 @@ pub fn build(
         .and_then(|_| std::fs::write(tmp.join("warnings.txt"), &stderr))
         .and_then(|_| checked.verdicts.save(&tmp))
         .and_then(|_| std::fs::write(tmp.join(DELAYS_FILE), delays.as_deref().unwrap_or("")))
-        .and_then(|_| super::checks::save_unshown(&tmp, &checked.unshown))
+        .and_then(|_| crate::fastforward::checks::save_unshown(&tmp, &checked.unshown))
         .map_err(|e| BoardError::at(&tmp, 0, 0, format!("cannot keep the build: {e}")))?;
     keep_generated(&tmp);
     let _ = std::fs::remove_dir_all(tmp.join("obj"));
@@ -352,19 +352,20 @@ fn build_key(plan: &Plan, f: &Files, v: &verilator::Verilator) -> Result<String,
     VERILATOR_FLAGS.hash(&mut h);
     MAKE_VARS.hash(&mut h);
     // The analyses whose results the harness is compiled with.
-    include_str!("observed.rs").hash(&mut h);
-    include_str!("counters.rs").hash(&mut h);
-    include_str!("demand.rs").hash(&mut h);
-    include_str!("strobes.rs").hash(&mut h);
-    include_str!("cpp.rs").hash(&mut h);
-    include_str!("dialect.rs").hash(&mut h);
+    include_str!("../fastforward/observed.rs").hash(&mut h);
+    include_str!("../fastforward/counters.rs").hash(&mut h);
+    include_str!("../fastforward/demand.rs").hash(&mut h);
+    include_str!("../fastforward/strobes.rs").hash(&mut h);
+    include_str!("../fastforward/cpp.rs").hash(&mut h);
+    include_str!("../fastforward/dialect.rs").hash(&mut h);
+    include_str!("../fastforward/apart.rs").hash(&mut h);
     ABI.hash(&mut h);
     PRINT.hash(&mut h);
     PCH.hash(&mut h);
     FORCED.hash(&mut h);
     DISASM.hash(&mut h);
     // The check whose verdict the build keeps.
-    include_str!("checks.rs").hash(&mut h);
+    include_str!("../fastforward/checks.rs").hash(&mut h);
     f.generated.hash(&mut h);
     f.defines.hash(&mut h);
     // The user's files and include folders as Verilator is given them (absolute paths), so
@@ -513,8 +514,8 @@ fn verilate(
 
 /// What the harness may assume of the design (BoardModel::load reads the verdicts; the
 /// harness is given which variables a run observes through botsim_observed.h).
-fn analyse(step: &Step, delays: Option<&str>) -> Result<super::checks::Checked, BoardError> {
-    let mut checked = super::checks::Checked::of(&step.tmp.join("obj"));
+fn analyse(step: &Step, delays: Option<&str>) -> Result<crate::fastforward::checks::Checked, BoardError> {
+    let mut checked = crate::fastforward::checks::Checked::of(&step.tmp.join("obj"));
     if let Some(at) = delays {
         // Timed events wait in Verilator's own queue, outside the state the fast-forward
         // compares; every edge is evaluated.
@@ -526,7 +527,7 @@ fn analyse(step: &Step, delays: Option<&str>) -> Result<super::checks::Checked, 
     }
     step.write(
         "botsim_observed.h",
-        &super::observed::header(
+        &crate::fastforward::observed::header(
             &checked.members,
             &checked.counters,
             &checked.out_port_free,

@@ -21,7 +21,7 @@
 //! );
 //! ```
 
-use botsim_core::board::scan::{self, Module};
+use botsim_core::frontend::scan::{self, Module};
 
 /// What a file Verilator read is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -203,7 +203,7 @@ fn user_error(
             .iter()
             .any(|w| msg.contains(&format!("unexpected {w}")));
         if module_level {
-            if let Some((l, c)) = botsim_core::board::scan::unclosed_begin(&file.text, line) {
+            if let Some((l, c)) = botsim_core::frontend::scan::unclosed_begin(&file.text, line) {
                 return format!(
                     "{}:{l}:{c}: this `begin` has no `end` (Verilator stops later, {at}: {msg})",
                     file.shown

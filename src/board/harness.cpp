@@ -169,10 +169,10 @@ constexpr size_t kOldHints = 3;
 // by as many cycles (the bot simulates them, cheaply), and what the board showed in the
 // period (display and LED changes) is repeated into the records, so the records are the same
 // as the edge-by-edge run's. The build checks that Verilator's state is all in its root
-// object (src/board/checks.rs).
+// object (src/fastforward/checks.rs).
 //
 // A run that records only what the board shows (no waveform later, no VGA frames) compares
-// and puts back only the variables it observes (src/board/observed.rs); the parts nothing
+// and puts back only the variables it observes (src/fastforward/observed.rs); the parts nothing
 // recorded reads (a VGA timing generator) are left as they are, and clocks that drive only
 // such parts (its pixel clock) are not run. That lets a VGA design skip ahead too, as a
 // one-clock board: its frame and its display refresh never repeat together within a sample,
@@ -269,7 +269,7 @@ struct IssShim {
     size_t q_dly;
 };
 
-// A KCPSM6 model that may run apart from the board (src/board/apart.rs: what it shows between
+// A KCPSM6 model that may run apart from the board (src/fastforward/apart.rs: what it shows between
 // port accesses reaches nothing but its followers, the variables that only feed its own
 // `instruction` and `in_port`). While the host says it runs apart (from a mark on), neither
 // it nor its followers are compared: the host runs it on its own over a skip, up to just
@@ -287,7 +287,7 @@ struct ApartCore {
 // while the firmware waits). Such a part, closed but for constants, repeats its own cycle
 // forever, whatever the rest does; the rest sees only constants from it, so its period is
 // found without it. Its contact (what crosses between the two, by the reads of
-// src/board/observed.rs) stays as it was at every clock, it comes back to its bytes within
+// src/fastforward/observed.rs) stays as it was at every clock, it comes back to its bytes within
 // its cycle, the rest repeats its period: a skip then puts the part at its place in its cycle,
 // a table of its bytes at each clock since the cycle began. Found by watching which variables
 // change after a mark finds no period: those that change, joined with what reads them, in a

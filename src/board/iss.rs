@@ -20,10 +20,10 @@ use kcpsm6::source::SourceMap;
 use kcpsm6::trace::Tracer;
 use kcpsm6::Image;
 
-use super::apart::Ports;
-use super::counts::{Same, Watch};
 use super::replay::{DebugWords, Replay};
-use super::solo::Solo;
+use crate::fastforward::apart::Ports;
+use crate::fastforward::counts::{Same, Watch};
+use crate::fastforward::solo::Solo;
 
 use botsim_core::sim::iss::{IssBot, LazyBot};
 use botsim_core::World;
@@ -61,7 +61,7 @@ unsafe extern "C" fn apart_ffi(cpu: *mut IssCpu) -> c_int {
     unsafe { (*cpu).apart.on as c_int }
 }
 
-/// A core that may run apart from the board (super::apart: the design reads what it shows
+/// A core that may run apart from the board (crate::fastforward::apart: the design reads what it shows
 /// between port accesses only under a strobe or into its followers). While it only computes
 /// with its reset, sleep and interrupt low, the fast-forward leaves it out of the period it
 /// looks for and runs it on its own over a skip, up to just before its next port access,
@@ -295,7 +295,7 @@ impl IssCpu {
     }
 
     /// Every INPUT of the program reads a port at which the followers of the entry `entry`
-    /// (super::apart's, as botsim_observed.h lists it) written for some ports only are
+    /// (crate::fastforward::apart's, as botsim_observed.h lists it) written for some ports only are
     /// written: a constant port, one of theirs.
     fn inputs_written(&self, entry: &str) -> bool {
         let ports: Option<Vec<Ports>> =
@@ -799,7 +799,7 @@ impl Host {
     }
 
     /// Every KCPSM6 model is in its marked state (its cycle count aside), or in it but for a
-    /// count (firmware that counts, proven: [`super::counts`]).
+    /// count (firmware that counts, proven: [`crate::fastforward::counts`]).
     fn ff_same(&mut self) -> Same {
         let mut all = Same::Yes;
         for (_, c) in &mut self.cpus {
@@ -1025,10 +1025,10 @@ impl Host {
     /// The host for `plan`'s KCPSM6 instances, each with the program of the ROM wired to it;
     /// an instance whose ROM botsim cannot tell is an error (it can still run with the RTL core).
     pub fn for_plan(
-        plan: &botsim_core::board::plan::Plan,
+        plan: &botsim_core::frontend::plan::Plan,
         recording: bool,
-    ) -> Result<Box<Host>, botsim_core::board::BoardError> {
-        use botsim_core::board::BoardError;
+    ) -> Result<Box<Host>, botsim_core::frontend::BoardError> {
+        use botsim_core::frontend::BoardError;
         let mut programs = Vec::new();
         for site in &plan.cpus {
             let rom = site.rom.as_ref().map_err(|why| {

@@ -3,9 +3,9 @@
 //! registers and upd_sysregs: every change with its time) or in any port of any KCPSM6 in any
 //! cycle (the RTL cores through kcpsm6_probe.v, the models through their own record).
 
-use botsim_core::board::BoardError;
+use botsim_core::frontend::BoardError;
 
-use botsim_core::board::plan::BOT_CPU_INSTANCE;
+use botsim_core::frontend::plan::BOT_CPU_INSTANCE;
 
 use super::iss::{Host, Recorded};
 use super::model::{expand, BoardModel, Event, Lines, RawEvent, Stop, RECORDS};

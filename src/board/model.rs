@@ -4,13 +4,13 @@
 use std::ffi::{c_char, c_int, CStr, CString};
 use std::path::{Path, PathBuf};
 
-use botsim_core::board::BoardError;
+use botsim_core::frontend::BoardError;
 use botsim_core::{MotCtl, Registers, Snapshot};
 
-use super::checks::{self, Verdicts};
 use super::iss::{Host, RawHost};
-use super::observed::Unshown;
 use super::waveform;
+use crate::fastforward::checks::{self, Verdicts};
+use crate::fastforward::observed::Unshown;
 
 /// One record of the harness's buffer, as `board_abi.h` lays it out; [`Event::of`] reads it.
 #[repr(C)]
@@ -298,7 +298,7 @@ pub enum FastForward {
     Whole = 1,
     /// What a run records (the display, the LEDs, the bot, the models): the parts nothing
     /// recorded reads (a VGA timing generator) are left as they are, and clocks that drive
-    /// only such parts (its pixel clock) are not run (src/board/observed.rs). For runs
+    /// only such parts (its pixel clock) are not run (src/fastforward/observed.rs). For runs
     /// without a waveform or VGA frames.
     Recorded = 2,
 }
@@ -311,12 +311,12 @@ pub struct BoardModel {
     host: Option<Box<Host>>,
     /// The waveform's start and, once closed, its end (ps).
     vcd_span: Option<(u64, Option<u64>)>,
-    /// Why the build found this design cannot fast-forward (src/board/checks.rs).
+    /// Why the build found this design cannot fast-forward (src/fastforward/checks.rs).
     fast_forward_blocker: Option<String>,
     observed_unknown: Option<String>,
     fast_forward_mode: FastForward,
     /// The waveform's signals a [`FastForward::Recorded`] run cannot show, or why they are
-    /// not known (src/board/observed.rs).
+    /// not known (src/fastforward/observed.rs).
     unshown: Result<Vec<Unshown>, String>,
     /// A waveform opened in such a run: its file and the one Verilator writes.
     vcd_marking: Option<(PathBuf, PathBuf)>,
@@ -395,7 +395,7 @@ impl BoardModel {
         if ptr.is_null() {
             return Err(BoardError::at(path, 0, 0, "the built design could not be created"));
         }
-        // What the build found the design allows (src/board/checks.rs).
+        // What the build found the design allows (src/fastforward/checks.rs).
         let verdicts = Verdicts::load(path.parent().unwrap_or(Path::new(".")));
         // SAFETY: ptr is live.
         unsafe { (api.rising_edges_only)(ptr, verdicts.falling_edges.is_none() as c_int) };
@@ -480,7 +480,7 @@ impl BoardModel {
     }
 
     /// Why the variables a run observes are not known for this design (the build's analysis of
-    /// Verilator's output, src/board/observed.rs), or `None`.
+    /// Verilator's output, src/fastforward/observed.rs), or `None`.
     pub fn observed_unknown(&self) -> Option<&str> {
         self.observed_unknown.as_deref()
     }

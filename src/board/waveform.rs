@@ -6,7 +6,7 @@
 //! skipped, and does not run a clock that drives only them (a VGA design's pixel clock). A
 //! waveform it opens later shows the observed variables exactly, but the others (the VGA
 //! timing, the colour pipeline) with values no board had. The build lists those signals
-//! ([`super::observed::unshown`]); [`mark_unshown`] rewrites the waveform Verilator wrote so
+//! ([`crate::fastforward::observed::unshown`]); [`mark_unshown`] rewrites the waveform Verilator wrote so
 //! that they read `x` from its first moment to its last, with a comment that says why.
 //!
 //! Verilator's VCD writer names a signal by its trace code, in base 94 from `!`, the lowest
@@ -15,7 +15,7 @@
 //! traced one is an error: the numbering is not what this module reads.
 //!
 //! ```
-//! use botsim::board::observed::Unshown;
+//! use botsim::fastforward::observed::Unshown;
 //! let dir = tempfile::tempdir().unwrap();
 //! let (part, vcd) = (dir.path().join("w.part"), dir.path().join("w.vcd"));
 //! // Two signals: `led` (code 1, shown as `"`), `vga_r` (code 2, `#`).
@@ -30,7 +30,7 @@ use std::collections::HashMap;
 use std::io::{BufRead, BufReader, BufWriter, Write};
 use std::path::Path;
 
-use super::observed::Unshown;
+use crate::fastforward::observed::Unshown;
 
 /// Verilator's VCD name of the trace code `code` (its writer adds the model's base code, 1).
 fn vcd_id(code: u32) -> String {

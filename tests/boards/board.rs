@@ -793,7 +793,7 @@ fn a_vga_design_skips_what_repeats_of_what_the_run_records() {
     // The VGA example: the same system beside a 25 MHz pixel clock, a display timing generator
     // and a colour pipeline, whose frame (1.68 M clocks) and display refresh (2^20) repeat
     // together only every 13.7 G clocks. Nothing the run records reads the VGA part, so the
-    // fast-forward compares and puts back the rest (src/board/observed.rs) and skips as on the
+    // fast-forward compares and puts back the rest (src/fastforward/observed.rs) and skips as on the
     // one-clock design, with the same samples, display and pins as every edge simulated.
     fast_forward_against_every_edge("examples/nexys4_vga");
 }

@@ -326,8 +326,8 @@ fn rename_word(text: &str, from: &str, to: &str) -> String {
 }
 
 /// The package pin of the Nexys4 that is `f`.
-fn nexys4_pin(f: botsim_core::board::constraints::Function) -> &'static str {
-    use botsim_core::board::constraints::Board;
+fn nexys4_pin(f: botsim_core::frontend::constraints::Function) -> &'static str {
+    use botsim_core::frontend::constraints::Board;
     Board::Nexys4.pins().find(|(_, g)| *g == f).map(|(p, _)| p).unwrap_or_else(|| panic!("{f:?}"))
 }
 
@@ -336,8 +336,8 @@ fn the_console_with_every_pin_renamed_and_placed_by_its_xdc_runs_as_the_original
     // The package pins, not the names, say what a port is: every port of the console's top
     // is renamed (`RsRx` becomes `pin_9`) and an .xdc places each bit where the original's
     // name puts it. Greeting, echo, keys and display are the original's, to the line.
-    use botsim_core::board::constraints::Function as F;
-    use botsim_core::board::pins::{role, Role};
+    use botsim_core::frontend::constraints::Function as F;
+    use botsim_core::frontend::pins::{role, Role};
     let dir = tempfile::tempdir().unwrap();
     let renamed = dir.path().join("renamed");
     std::fs::create_dir(&renamed).unwrap();
@@ -347,7 +347,7 @@ fn the_console_with_every_pin_renamed_and_placed_by_its_xdc_runs_as_the_original
     }
     let top_file = renamed.join("nexys4fpga.v");
     let mut top = std::fs::read_to_string(&top_file).unwrap();
-    let module = botsim_core::board::scan::scan(&top).into_iter().find(|m| m.name == "nexys4fpga").unwrap();
+    let module = botsim_core::frontend::scan::scan(&top).into_iter().find(|m| m.name == "nexys4fpga").unwrap();
     let mut xdc = String::new();
     for (k, port) in module.ports.iter().enumerate() {
         let r = role(&port.name).unwrap_or_else(|| panic!("{}", port.name));

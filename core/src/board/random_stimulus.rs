@@ -7,7 +7,7 @@
 //! The same seed, pins and span give the same events, on every machine.
 //!
 //! ```
-//! use botsim_core::board::pins::Role;
+//! use botsim_core::frontend::pins::Role;
 //! use botsim_core::board::random_stimulus::random_stimulus;
 //! let pins = [Role::Clock, Role::Reset { active_low: true }, Role::Button(0), Role::Switches];
 //! let s = random_stimulus(7, &pins, 10_000_000_000);
@@ -18,8 +18,8 @@
 //! ```
 
 use super::keyboard::Key;
-use super::pins::{Peripheral, Role};
 use super::stimulus::{KeyPress, Press, Stimulus, POWER_ON_RESET_PS};
+use crate::frontend::pins::{Peripheral, Role};
 use crate::PS_PER_CYCLE;
 
 /// How many events a stimulus has besides its one certain CPU reset.

@@ -31,9 +31,9 @@
 use std::path::Path;
 
 use super::keyboard::{self, Key};
-use super::pins::BUTTONS;
 use super::uart::{quoted, unquote};
-use super::BoardError;
+use crate::frontend::pins::BUTTONS;
+use crate::frontend::BoardError;
 
 /// The board's tilt: what the accelerometer measures on x, y and z, in mg.
 pub type Tilt = [i32; 3];

@@ -15,7 +15,7 @@
 //! assert_eq!(line.text(), "A");
 //! ```
 
-/// The rates a measured bit time snaps to when it is within [`SNAP`] of one.
+/// The rates a measured bit time snaps to when it is within `SNAP` of one.
 pub const STANDARD_BAUDS: [u32; 15] =
     [300, 600, 1200, 2400, 4800, 9600, 14400, 19200, 28800, 38400, 57600, 115_200, 230_400, 460_800, 921_600];
 /// How close a measured rate must be to a standard one to be taken as it (4 %: a design's

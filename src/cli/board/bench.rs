@@ -8,7 +8,7 @@ use botsim::board::iss::Host;
 use botsim::board::model::{Event, FastForward, Printing, RawEvent, Stop, RECORDS};
 use botsim::{World, PS_PER_CYCLE};
 use botsim_core::board::display::Display;
-use botsim_core::board::plan::Rom;
+use botsim_core::frontend::plan::Rom;
 
 use super::prepare::{prepare, Prepared};
 use super::report::Busy;

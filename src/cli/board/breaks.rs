@@ -6,9 +6,9 @@ use std::path::Path;
 use botsim::files::write_atomic;
 use botsim::kcpsm6::source::SourceMap;
 use botsim_core::board::gtkw::View;
-use botsim_core::board::plan::Plan;
 use botsim_core::board::stimulus::parse_time;
 use botsim_core::debug::{cpu_signals, register_filters, Break, BreakSpec, Breaks};
+use botsim_core::frontend::plan::Plan;
 
 /// Where a `--break` stopped a run.
 #[derive(Clone, Debug)]

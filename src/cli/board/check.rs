@@ -13,7 +13,7 @@
 use std::path::Path;
 
 use botsim::board::build::{BotKind, CpuModel};
-use botsim_core::board::pins::Role;
+use botsim_core::frontend::pins::Role;
 
 use super::prepare::{self, Prepared};
 use super::{report, session, Args, BotArg, CpuArg};

@@ -28,9 +28,9 @@ use botsim::PS_PER_CYCLE;
 use botsim_core::board::audio::RATE;
 use botsim_core::board::display::Display;
 use botsim_core::board::keyboard::{self, Key};
-use botsim_core::board::pins::{Peripheral, Role};
 use botsim_core::board::stimulus::{parse_tilt, KeyPress, Press, Stimulus, FLAT, POWER_ON_RESET_PS};
 use botsim_core::board::vga::Capture;
+use botsim_core::frontend::pins::{Peripheral, Role};
 use botsim_live::protocol::{BoardView, BotView, Button, Command};
 use serde_json::json;
 
@@ -704,8 +704,8 @@ impl Board {
 /// Nexys4 DDR's upper-case names); its controls' counts, its buttons (botsim's names, which the
 /// commands use, with the board's labels: a Nexys3's centre button `BTNS` is its reset) and
 /// its name.
-fn face(plan: &botsim_core::board::plan::Plan) -> serde_json::Value {
-    use botsim_core::board::constraints::Board;
+fn face(plan: &botsim_core::frontend::plan::Plan) -> serde_json::Value {
+    use botsim_core::frontend::constraints::Board;
     let width = |role: Role| {
         plan.pins.iter().find(|(_, r)| *r == role).and_then(|(n, _)| plan.widths.get(n)).copied().unwrap_or(0)
     };

@@ -12,13 +12,13 @@ use botsim::firmware::{SOURCE, SOURCE_PATH};
 use botsim::kcpsm6::loader;
 use botsim::kcpsm6::source::SourceMap;
 use botsim::{Firmware, World, PS_PER_CYCLE};
-use botsim_core::board::ip::ClockSpec;
-use botsim_core::board::pins::{peripherals, Peripheral, Role};
-use botsim_core::board::plan::{Plan, Request};
 use botsim_core::board::random_stimulus::{merge, random_stimulus};
-use botsim_core::board::resolve::{resolve, Design, Options};
 use botsim_core::board::stimulus::{parse_press, parse_tilt, parse_time, Stimulus};
 use botsim_core::debug::{BreakSpec, Breaks};
+use botsim_core::frontend::ip::ClockSpec;
+use botsim_core::frontend::pins::{peripherals, Peripheral, Role};
+use botsim_core::frontend::plan::{Plan, Request};
+use botsim_core::frontend::resolve::{resolve, Design, Options};
 
 use super::breaks::{breakpoints, parse_mark, Mark};
 use super::{Args, BotArg, CpuArg, LONG_RUN_S};
@@ -292,7 +292,7 @@ fn find_design(a: &Args, inputs: &Inputs) -> Result<(Design, Plan), String> {
         // A parameter declaration the scanner could not read (`parameter SIMULATE <= 0;`) is
         // the design's mistake, at its line: the build says it (Verilator's syntax error in
         // the user's terms), not this.
-        let tokens: Vec<String> = botsim_core::board::scan::normalized(&src.text, top.span.clone())
+        let tokens: Vec<String> = botsim_core::frontend::scan::normalized(&src.text, top.span.clone())
             .split_whitespace()
             .map(str::to_string)
             .collect();

@@ -11,8 +11,8 @@ use super::prepare::Prepared;
 use super::session::{at_line_end, Outcome};
 use super::Args;
 use crate::cli::rows::{csv_row, CSV_HEADER};
-use botsim_core::board::pins::Role;
-use botsim_core::board::plan::BotSite;
+use botsim_core::frontend::pins::Role;
+use botsim_core::frontend::plan::BotSite;
 
 /// Below this fraction of its time skipped, a run says what kept it busy.
 const BUSY_SAID: f64 = 0.9;
@@ -42,8 +42,8 @@ pub fn busy_of(p: &Prepared, busy: &Option<(String, u64)>, cut: &Option<(String,
 
 impl Busy {
     pub fn of(p: &Prepared, verilator_name: &str, times: u64) -> Busy {
-        use botsim_core::board::locate::{declared, design_path};
-        use botsim_core::board::wrapper::{board_part, top_port};
+        use botsim_core::frontend::locate::{declared, design_path};
+        use botsim_core::frontend::wrapper::{board_part, top_port};
         if let Some(port) = top_port(&p.plan.pins, verilator_name) {
             // A pin of the user's top (the wire botsim's board connects to it, or the board's
             // output it drives): the port where the top declares it.

@@ -14,10 +14,10 @@ use botsim::board::model::{BoardModel, Device, Event, FastForward, Lines, Printi
 use botsim::files::write_atomic;
 use botsim::{Snapshot, World};
 use botsim_core::board::display::Display;
-use botsim_core::board::plan::Rom;
 use botsim_core::board::vga::Capture;
-use botsim_core::board::wrapper;
 use botsim_core::debug::{describe_pc, sample_state};
+use botsim_core::frontend::plan::Rom;
+use botsim_core::frontend::wrapper;
 
 use super::breaks::{save_file_view, write_save_file, BreakStop, Mark};
 use super::devices::{Feeder, Heard};

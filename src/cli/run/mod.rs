@@ -505,7 +505,7 @@ fn save_file(vcd: &std::path::Path, args: &Args, view: Option<View>) -> Result<P
             sig("RMDist_reg[7:0]", Radix::Decimal),
         ],
     );
-    let cpu = format!("{top}.{}", botsim_core::board::plan::BOT_CPU_INSTANCE);
+    let cpu = format!("{top}.{}", botsim_core::frontend::plan::BOT_CPU_INSTANCE);
     let labels = match source_map(args)? {
         Some(map) => {
             let file = side("labels.txt");

@@ -3,7 +3,7 @@
 //! committed (git) or changed. [`super::resolve`] chooses the design from it.
 //!
 //! ```no_run
-//! use botsim_core::board::repo::Repo;
+//! use botsim_core::frontend::repo::Repo;
 //! let repo = Repo::walk(&[std::path::PathBuf::from("my_clone")]).unwrap();
 //! println!("{} Verilog files, {} projects", repo.hdl.len(), repo.projects.len());
 //! ```
@@ -222,7 +222,7 @@ pub fn common_depth(a: &Path, b: &Path) -> usize {
 /// system (a `..` after a link would differ, which the repositories here do not have).
 ///
 /// ```
-/// use botsim_core::board::repo::tidy;
+/// use botsim_core::frontend::repo::tidy;
 /// use std::path::Path;
 /// assert_eq!(tidy(Path::new("p/ip/x/../../../coe/a.coe")), Path::new("coe/a.coe"));
 /// assert_eq!(tidy(Path::new("p/..")), Path::new("."));

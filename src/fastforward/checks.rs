@@ -30,7 +30,7 @@
 //!
 //! ```
 //! let header = "class Vboard___024root final : public VerilatedModule {\n  public:\n    CData/*0:0*/ x;\n    std::string name;\n};\n";
-//! let why = botsim::board::checks::root_blocker(header);
+//! let why = botsim::fastforward::checks::root_blocker(header);
 //! assert!(why.unwrap().contains("std::string name"));
 //! ```
 

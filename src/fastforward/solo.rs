@@ -11,7 +11,7 @@
 //! the next visit is compared with it.
 //!
 //! ```
-//! use botsim::board::solo::Solo;
+//! use botsim::fastforward::solo::Solo;
 //! use kcpsm6::iss::{Config, Cpu, NullBus};
 //! // A one-second delay as the KCPSM6 package writes it: three registers counted down.
 //! let p = kcpsm6::asm::assemble_str(

@@ -3,7 +3,7 @@
 //! (`SSB.refresh`), the module that declares it and the line.
 //!
 //! ```
-//! use botsim_core::board::locate::design_path;
+//! use botsim_core::frontend::locate::design_path;
 //! assert_eq!(design_path("botsim_board__DOT__user__DOT__SSB__DOT__refresh").as_deref(), Some("SSB.refresh"));
 //! assert_eq!(design_path("botsim_board__DOT__user__DOT__gen__BRA__1__KET____DOT__q").as_deref(), Some("gen[1].q"));
 //! assert_eq!(design_path("__VactIterCount"), None);
@@ -115,7 +115,7 @@ pub fn declared(design: &Design, top: &str, path: &str) -> Option<Declared> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::board::source::Source;
+    use crate::frontend::source::Source;
 
     #[test]
     fn a_variable_is_found_through_the_instances_and_generate_blocks() {

@@ -32,7 +32,7 @@
 //!      if ((1U & (IData)(({q} >> 0x1dU)))) {{\n        vlSelf->u__DOT__led = (0xffU & (IData)(({q} >> 0xdU)));\n    }}\n    \
 //!      botsim_iss_tick_TOP(vlSelf->u__DOT__cpu__DOT__botsim_iss_cpu, ((QData)((IData)(vlSelf->u__DOT__in_port)) << 0x12U), x);\n}}\n"
 //! );
-//! let apart = botsim::board::apart::cores_apart(root, &[&code]);
+//! let apart = botsim::fastforward::apart::cores_apart(root, &[&code]);
 //! assert_eq!(apart[0].core, "u__DOT__cpu");
 //! assert_eq!(apart[0].followers, ["u__DOT__in_port"]);
 //! ```

@@ -5,7 +5,7 @@
 //! `Implementation`) and the top module.
 //!
 //! ```
-//! use botsim_core::board::project::Project;
+//! use botsim_core::frontend::project::Project;
 //! use std::path::{Path, PathBuf};
 //! let xml = r#"<Project><FileSets><FileSet Name="sources_1" Type="DesignSrcs">
 //!   <File Path="$PSRCDIR/sources_1/new/top.v"/>

@@ -94,8 +94,8 @@ fn drives(role: Role, u: &str, w: u32) -> Vec<(&'static str, String)> {
 /// it drives (`an`, `led`, `vga_r`); `None` for every other name.
 ///
 /// ```
-/// use botsim_core::board::pins::Role;
-/// use botsim_core::board::wrapper::top_port;
+/// use botsim_core::frontend::pins::Role;
+/// use botsim_core::frontend::wrapper::top_port;
 /// let pins = vec![("AN".to_string(), Role::Anodes)];
 /// assert_eq!(top_port(&pins, "an"), Some("AN"));
 /// assert_eq!(top_port(&pins, "botsim_board__DOT__user_AN"), Some("AN"));
@@ -230,7 +230,7 @@ const DEVICES: [(&str, &str); 3] = [
 /// design and the rest of the wrapper.
 ///
 /// ```
-/// use botsim_core::board::wrapper::board_part;
+/// use botsim_core::frontend::wrapper::board_part;
 /// assert_eq!(board_part("botsim_board__DOT__accelerometer__DOT__since"), Some("the board's accelerometer"));
 /// assert_eq!(board_part("uart_room"), Some("the board's USB-UART"));
 /// assert_eq!(board_part("botsim_board__DOT__user__DOT__count"), None);
@@ -425,9 +425,9 @@ fn loaded_rom(module: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::board::plan::Request;
-    use crate::board::resolve::Design;
-    use crate::board::source::Source;
+    use crate::frontend::plan::Request;
+    use crate::frontend::resolve::Design;
+    use crate::frontend::source::Source;
 
     fn plan(top: &str) -> Plan {
         let text = format!("{top}\nbot b (.clk(clk100));\nendmodule\n");

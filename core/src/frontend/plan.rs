@@ -146,7 +146,7 @@ fn resolve_shared_nets(
     Some(e)
 }
 
-/// The most bots a design may have (the board's wrapper taps each: src/board/wrapper.rs).
+/// The most bots a design may have (the board's wrapper taps each: core/src/frontend/wrapper.rs).
 pub const MAX_BOTS: usize = 4;
 
 /// A bot of the design: its path from the top, its KCPSM6's, and its module when the team's.

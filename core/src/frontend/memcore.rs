@@ -7,7 +7,7 @@
 //! themselves are Xilinx's simulation code and never compiled: these stand for them.
 //!
 //! ```
-//! use botsim_core::board::memcore::parse_coe;
+//! use botsim_core::frontend::memcore::parse_coe;
 //! let coe = parse_coe("memory_initialization_radix=16;\nmemory_initialization_vector=\n0A, 1f 3,\n;").unwrap();
 //! assert_eq!(coe.words, [0x0A, 0x1F, 0x3]);
 //! assert!(coe.unterminated.is_none());
@@ -162,7 +162,7 @@ impl MemCore {
     /// `clkb`... a second port), read latency 1 as the generator's default.
     ///
     /// ```
-    /// use botsim_core::board::memcore::MemCore;
+    /// use botsim_core::frontend::memcore::MemCore;
     /// let dir = tempfile::tempdir().unwrap();
     /// let coe = dir.path().join("frt.coe");
     /// std::fs::write(&coe, "memory_initialization_radix=16;\nmemory_initialization_vector=\n000, 0F3, 7A1, 000;\n").unwrap();
@@ -200,7 +200,7 @@ impl MemCore {
     /// no initial file, with the ports the instance connects (as [`MemCore::from_coe`]).
     ///
     /// ```
-    /// use botsim_core::board::memcore::MemCore;
+    /// use botsim_core::frontend::memcore::MemCore;
     /// let ram = MemCore::zeroed("fb", &["clka", "wea", "addra", "dina", "douta"], 1 << 15, 8);
     /// assert!(ram.init.is_empty());
     /// assert!(ram.verilog().contains("if ((|wea)) mem[addra] <= dina;"));
@@ -686,7 +686,7 @@ pub fn parse_mif(text: &str) -> Result<Vec<u64>, (u32, String)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::board::scan::scan;
+    use crate::frontend::scan::scan;
 
     fn nowhere(_: &str) -> Option<PathBuf> {
         None

@@ -15,7 +15,7 @@
 //!   either way).
 //!
 //! ```
-//! use botsim_core::board::flops::blocking_flops;
+//! use botsim_core::frontend::flops::blocking_flops;
 //! let text = "module m(input clk, input [1:0] a, output reg [7:0] q, output reg [7:0] n);\n  reg [7:0] t;\n  always @(posedge clk) begin\n    case (a)\n      2'd0: q = 8'h55;\n      default: q = 8'h00;\n    endcase\n    t = q + 1;\n    n = n + 1;\n  end\nendmodule\n";
 //! let found = blocking_flops(text, 0..text.len());
 //! // q is read after its write (by `t = q + 1`), t is read nowhere but written: t and n qualify.

@@ -3,7 +3,7 @@
 //!
 //! A KCPSM6 shows sX on `out_port` in every cycle, not only in an OUTPUT's. A core counting in
 //! a software delay shows its count there; the board's fast-forward may skip the delay
-//! ([`super::counts`]) only if nothing in the design can tell what `out_port` shows between
+//! (`counts`) only if nothing in the design can tell what `out_port` shows between
 //! OUTPUTs. The course's designs read it as `if (write_strobe) case (port_id) ...` (or
 //! `k_write_strobe`, or through a wire `write_strobe & port_id[..]`): every read of
 //! `out_port`'s bits of kcpsm6_iss.v's outputs register (`botsim_iss_q`, bits 13-20) must sit
@@ -16,9 +16,9 @@
 //! ```
 //! let root = "class Vboard___024root final {\n  QData/*63:0*/ u__DOT__cpu__DOT__botsim_iss_q;\n  CData/*7:0*/ led;\n};\n";
 //! let gated = "void f(Vboard___024root* vlSelf) {\n    if ((1U & (IData)((vlSelf->u__DOT__cpu__DOT__botsim_iss_q >> 0x1dU)))) {\n        vlSelf->led = (0xffU & (IData)((vlSelf->u__DOT__cpu__DOT__botsim_iss_q >> 0xdU)));\n    }\n}\n";
-//! assert_eq!(botsim::board::strobes::out_port_free(root, &[gated]), ["u__DOT__cpu"]);
+//! assert_eq!(botsim::fastforward::strobes::out_port_free(root, &[gated]), ["u__DOT__cpu"]);
 //! let shown = "void f(Vboard___024root* vlSelf) {\n    vlSelf->led = (0xffU & (IData)((vlSelf->u__DOT__cpu__DOT__botsim_iss_q >> 0xdU)));\n}\n";
-//! assert!(botsim::board::strobes::out_port_free(root, &[shown]).is_empty());
+//! assert!(botsim::fastforward::strobes::out_port_free(root, &[shown]).is_empty());
 //! ```
 
 use std::collections::{BTreeMap, BTreeSet};

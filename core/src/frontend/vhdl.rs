@@ -3,7 +3,7 @@
 //! Debian's `ghdl` package), which then builds like the rest of the design.
 //!
 //! ```
-//! use botsim_core::board::vhdl::entities;
+//! use botsim_core::frontend::vhdl::entities;
 //! let vhd = "-- entity Old is\nlibrary ieee;\nENTITY AccelCtl IS\n  port (clk : in std_logic);\nend AccelCtl;\n";
 //! assert_eq!(entities(vhd), [("AccelCtl".to_string(), 3)]);
 //! ```

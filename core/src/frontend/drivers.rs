@@ -8,8 +8,8 @@
 //! the drivers agree on and 0 where they differ.
 //!
 //! ```
-//! use botsim_core::board::drivers::{rewrite, shared_nets};
-//! use botsim_core::board::scan::{scan, Dir};
+//! use botsim_core::frontend::drivers::{rewrite, shared_nets};
+//! use botsim_core::frontend::scan::{scan, Dir};
 //! let text = "module top(output [7:0] led);\n  wire [7:0] d;\n  src a (.q(d));\n  src b (.q(d));\n  assign led = d;\nendmodule\n";
 //! let m = &scan(text)[0];
 //! let dir = |module: &str, port: &str| (module == "src" && port == "q").then_some(Dir::Output);
@@ -121,7 +121,7 @@ pub fn rewrite(m: &Module, shared: &[SharedNet]) -> Vec<(Range<usize>, String)> 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::board::scan::scan;
+    use crate::frontend::scan::scan;
 
     fn dir(module: &str, port: &str) -> Option<Dir> {
         match (module, port) {

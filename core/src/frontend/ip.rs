@@ -8,7 +8,7 @@
 //! repository did not commit is never needed.
 //!
 //! ```
-//! use botsim_core::board::ip::{ClockCore, IpConfig};
+//! use botsim_core::frontend::ip::{ClockCore, IpConfig};
 //! let xco = "SELECT Clocking_Wizard xilinx.com:ip:clk_wiz:3.6\nCSET component_name=pix25\n\
 //!            CSET prim_in_freq=100.000\nCSET clkout1_requested_out_freq=25.000\nCSET use_locked=false\n";
 //! let ip = IpConfig::parse(std::path::Path::new("pix25.xco"), xco).unwrap();

@@ -5,7 +5,7 @@
 //! connections are ports it has.
 //!
 //! ```
-//! use botsim_core::board::course::stand_in;
+//! use botsim_core::frontend::course::stand_in;
 //! let (text, module) = stand_in("SevenSegment", &["d0", "d7"]).unwrap();
 //! assert!(text.contains("module SevenSegment #("));
 //! assert!(module.port("digits_out").is_some());
@@ -50,7 +50,7 @@ pub fn stand_in(name: &str, connected: &[&str]) -> Option<(String, Module)> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::board::scan::Dir;
+    use crate::frontend::scan::Dir;
 
     #[test]
     fn the_stand_ins_have_the_course_ports() {

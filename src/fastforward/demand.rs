@@ -12,14 +12,14 @@
 //! Verilator writes as a chain of choices, a sum shown on a digit).
 //!
 //! ```
-//! use botsim::board::cpp::tokens;
-//! use botsim::board::demand::{demands, Demand};
+//! use botsim::fastforward::cpp::tokens;
+//! use botsim::fastforward::demand::{demands, Demand};
 //! let code = "vlSelf->an = (0xffU & (vlSelf->sel ? vlSelf->cnt : vlSelf->other));\n\
 //!             if ((0x1fU == vlSelf->cnt)) { vlSelf->x = 1U; }\n";
 //! let toks = tokens(code).unwrap();
 //! let d = demands(&toks, &|name| (name == "an" || name == "x").then_some(8));
 //! let mut cnt: Vec<(usize, Demand)> =
-//!     d.into_iter().filter(|(i, _)| toks[*i + 2] == botsim::board::cpp::Tok::Id("cnt")).collect();
+//!     d.into_iter().filter(|(i, _)| toks[*i + 2] == botsim::fastforward::cpp::Tok::Id("cnt")).collect();
 //! cnt.sort_by_key(|(i, _)| *i);
 //! assert_eq!(cnt.iter().map(|(_, d)| *d).collect::<Vec<_>>(), [Demand::Bits(0xff), Demand::Compare(0x1f)]);
 //! ```
@@ -817,7 +817,7 @@ pub fn number(n: &str) -> Option<u64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::board::cpp::tokens;
+    use crate::fastforward::cpp::tokens;
 
     /// The demands of the reads of `x` in `code`, in order.
     fn of_x(code: &str, widths: &[(&str, u32)]) -> Vec<Demand> {
@@ -922,7 +922,7 @@ mod tests {
         // A mask, either side.
         assert_eq!(of_x("vlSelf->wide = (vlSelf->x & 0x80000U);", &w), [Demand::Bits(0x80000)]);
         // Plus a constant, masked, compared with another root variable: that variable bounds it.
-        let toks = crate::board::cpp::tokens(
+        let toks = crate::fastforward::cpp::tokens(
             "if (((0xffffffU & ((IData)(1U) + vlSelf->x)) >= vlSelf->half)) { vlSelf->an = 0U; }",
         )
         .unwrap();
@@ -932,7 +932,7 @@ mod tests {
         assert_eq!(d.get(&at("x")), Some(&Demand::CompareVar { bound_at: at("half"), offset: 1, wrap: 0xffffff }));
         assert_eq!(d.get(&at("half")), Some(&Demand::Bits(0xffffff)));
         // Two variables: each bounds the other.
-        let toks = crate::board::cpp::tokens("vlSelf->an = (vlSelf->x == vlSelf->half);").unwrap();
+        let toks = crate::fastforward::cpp::tokens("vlSelf->an = (vlSelf->x == vlSelf->half);").unwrap();
         let d = demands(&toks, &widths);
         assert_eq!(d.get(&2), None);
         assert_eq!(d.get(&5), Some(&Demand::CompareVar { bound_at: 9, offset: 0, wrap: u64::MAX }));

@@ -30,7 +30,7 @@
 //! ```
 //! let root = "class Vboard___024root final : public VerilatedModule {\n  public:\n    struct {\n        VL_IN8(clk,0,0);\n        VL_OUT8(an,7,0);\n        IData/*17:0*/ refresh;\n    };\n};\n";
 //! let nba = "void f(Vboard___024root* vlSelf) {\n    vlSelf->refresh = (0x3ffffU & ((IData)(1U) + vlSelf->refresh));\n    vlSelf->an = (7U & (vlSelf->refresh >> 0xfU));\n}\n";
-//! let found = botsim::board::counters::find(root, &[nba], &["f".to_string()], &[], &|_| true);
+//! let found = botsim::fastforward::counters::find(root, &[nba], &["f".to_string()], &[], &|_| true);
 //! assert_eq!(found.len(), 1);
 //! assert_eq!((found[0].name.as_str(), found[0].bits, found[0].step, found[0].shift), ("refresh", 18, 1, Some(15)));
 //! ```
@@ -97,7 +97,7 @@ pub enum GuardedBy {
 /// the counter apart only at the constant, which bounds its interval at any split.)
 ///
 /// ```
-/// use botsim::board::counters::split;
+/// use botsim::fastforward::counters::split;
 /// // A PWM reads bits 0-7, an LED bit 26: the low byte repeats, the rest counts.
 /// assert_eq!(split(32, &[(0, 7), (26, 26)]), Some((8, Some(26))));
 /// // A shift by 4 reads bits 4-31: it straddles bit 8.
@@ -410,7 +410,7 @@ fn scan(
             i = b + 1;
             continue;
         }
-        // A read: the bits of it that matter there (src/board/demand.rs).
+        // A read: the bits of it that matter there (src/fastforward/demand.rs).
         let bits = widths[name];
         match reads.get(&i) {
             Some(Demand::Compare(c)) => s.consts.push(*c),

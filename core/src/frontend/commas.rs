@@ -6,7 +6,7 @@
 //! is Verilog's way of leaving a port open.
 //!
 //! ```
-//! use botsim_core::board::commas::trailing_commas;
+//! use botsim_core::frontend::commas::trailing_commas;
 //! let text = "module top(input clk, output [1:0] led,\n);\n  game #(.W(4),) g (\n    .clk(clk),\n    .over(led[0]),\n  );\n  $display(\"a\",);\nendmodule\n";
 //! let found = trailing_commas(text);
 //! let lists: Vec<(u32, &str)> = found.iter().map(|c| (c.line, c.list.as_str())).collect();

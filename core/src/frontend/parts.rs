@@ -85,7 +85,7 @@ pub fn own_ports(name: &str) -> Vec<String> {
 /// `world_if` with a configuration port), kept as committed. The first such port.
 ///
 /// ```
-/// use botsim_core::board::{parts::foreign_port, scan};
+/// use botsim_core::frontend::{parts::foreign_port, scan};
 /// let m = &scan::scan("module bot(input clk, input [7:0] Bot_Config_reg); endmodule")[0];
 /// assert_eq!(foreign_port(m), Some("Bot_Config_reg"));
 /// let m = &scan::scan("module bot(input clk, output upd_sysregs); endmodule")[0];

@@ -46,7 +46,7 @@ pub(crate) struct Watch {
     /// Counting may be proven (off while the model is traced, has breakpoints, is recorded
     /// or shows its registers to a waveform).
     pub enabled: bool,
-    /// The design reads `out_port` only under a write strobe (src/board/strobes.rs).
+    /// The design reads `out_port` only under a write strobe (src/fastforward/strobes.rs).
     pub out_port_free: bool,
     recording: bool,
     inputs: Vec<u8>,

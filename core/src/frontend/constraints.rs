@@ -7,7 +7,7 @@
 //! the ones the course's constraint files carry (board.md §1).
 //!
 //! ```
-//! use botsim_core::board::constraints::{placements, Board, Function};
+//! use botsim_core::frontend::constraints::{placements, Board, Function};
 //! let ucf = "NET \"uart_rx\" LOC = N17 | IOSTANDARD = LVCMOS33;\n# NET \"led<0>\" LOC = U16;\nNet \"sw<3>\" LOC=M8;\n";
 //! let p = placements(ucf);
 //! assert_eq!((p[0].port.as_str(), p[0].bit, p[0].pin.as_str(), p[0].line), ("uart_rx", None, "N17", 1));
@@ -515,7 +515,7 @@ fn vector(bits: Vec<(Option<u32>, Option<Function>)>) -> Option<Role> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::board::scan;
+    use crate::frontend::scan;
 
     #[test]
     fn ucf_and_xdc_lines_as_teams_write_them() {

@@ -2,7 +2,7 @@
 //! space or comments. Shared by [`super::checks`] and [`super::observed`].
 //!
 //! ```
-//! use botsim::board::cpp;
+//! use botsim::fastforward::cpp;
 //! let code = "void f(int x) {\n    x = 1; /* set */\n}\n";
 //! assert_eq!(cpp::functions(code), [("f", "    x = 1; /* set */")]);
 //! assert_eq!(cpp::squeeze(&cpp::strip_comments("    x = 1; /* set */")), "x=1;");

@@ -7,7 +7,7 @@
 //! understand: a construct it cannot read is simply not reported.
 //!
 //! ```
-//! use botsim_core::board::scan::scan;
+//! use botsim_core::frontend::scan::scan;
 //! let src = "module top(input wire clk, output wire [7:0] led);\n  blink #(.N(3)) u1 (.clk(clk), .q(led));\nendmodule\n";
 //! let modules = scan(src);
 //! assert_eq!(modules[0].name, "top");
@@ -275,7 +275,7 @@ pub enum RefKind {
 /// and `$readmemb` (comments skipped).
 ///
 /// ```
-/// use botsim_core::board::scan::{file_references, RefKind};
+/// use botsim_core::frontend::scan::{file_references, RefKind};
 /// let src = "`include \"defs.vh\"\n// $readmemh(\"old.mem\", m);\ninitial $readmemh( \"icon.mem\", rom);\n";
 /// let r = file_references(src);
 /// assert_eq!((r[0].kind, r[0].name.as_str(), r[0].line), (RefKind::Include, "defs.vh", 1));
@@ -1255,7 +1255,7 @@ pub const SV_KEYWORDS: &[&str] = &[
 /// (`\bit `) they stay names for a SystemVerilog parser too.
 ///
 /// ```
-/// use botsim_core::board::scan::sv_keywords_as_names;
+/// use botsim_core::frontend::scan::sv_keywords_as_names;
 /// let found = sv_keywords_as_names("wire [7:0] byte = x; // int\nassign y = byte;");
 /// let words: Vec<_> = found.iter().map(|(at, line, _, w)| (at.start, *line, w.as_str())).collect();
 /// assert_eq!(words, [(11, 1, "byte"), (39, 2, "byte")]);
@@ -1289,7 +1289,7 @@ pub struct Redeclared {
 /// Every [`Redeclared`] port of `src`.
 ///
 /// ```
-/// use botsim_core::board::scan::redeclared_ansi_ports;
+/// use botsim_core::frontend::scan::redeclared_ansi_ports;
 /// let src = "module spi(input clk, output SS, output SCLK);\n  wire SS, x, SCLK;\nendmodule\n";
 /// let r = redeclared_ansi_ports(src);
 /// assert_eq!((r[0].line, r[0].names.clone()), (2, vec!["SS".to_string(), "SCLK".to_string()]));
@@ -1479,7 +1479,7 @@ pub struct Oversized {
 /// Every oversized literal of `src` (comments and strings skipped).
 ///
 /// ```
-/// use botsim_core::board::scan::oversized_literals;
+/// use botsim_core::frontend::scan::oversized_literals;
 /// // 6'hFF and 4'b0_1010 fit (their extra bits are in a digit the width needs, or zeros).
 /// let o = oversized_literals("assign a = 8'h1FF; // 8'h1FF\nassign b = 6'hFF + 4'b0_1010 + 4'b1_1010;");
 /// let fixed: Vec<_> = o.iter().map(|o| (o.line, o.text.as_str(), o.fixed.as_str())).collect();
@@ -1504,7 +1504,7 @@ pub fn oversized_literals(src: &str) -> Vec<Oversized> {
 /// scanner's tokens, so comments and strings do not count.
 ///
 /// ```
-/// use botsim_core::board::scan::unclosed_begin;
+/// use botsim_core::frontend::scan::unclosed_begin;
 /// let text = "module m(input a);\n  reg x; // begin\n  always @* begin\n    if (a) begin x = 1; end\n    $display(\"end\");\n  /* end */\nendmodule\n";
 /// assert_eq!(unclosed_begin(text, 7), Some((3, 13)));
 /// assert_eq!(unclosed_begin("module m;\n always @* begin\n end\nendmodule\n", 4), None);

@@ -19,11 +19,11 @@
 //! could not read, and the board runs every edge (exact, slower).
 //!
 //! ```
-//! use botsim::board::dialect;
+//! use botsim::fastforward::dialect;
 //! let code = "void Vboard___024root___eval_triggers_vec__act(Vboard___024root* vlSelf) {\n    auto& vlSelfRef = std::ref(*vlSelf).get();\n    vlSelfRef.__VactTriggered[0U] = (QData)((IData)(((((IData)(vlSelfRef.q) & (~ (IData)(vlSelfRef.__Vtrigprevexpr___TOP__q__0))) << 1U) | ((IData)(vlSelfRef.clk) & (~ (IData)(vlSelfRef.__Vtrigprevexpr___TOP__clk__0))))));\n}\n";
 //! let (_, code) = dialect::to_5006("", &[code.to_string()]);
 //! assert!(code[0].contains("void Vboard___024root___eval_triggers__act(Vboard___024root* vlSelf) {"));
-//! let flat = botsim::board::cpp::squeeze(&code[0]);
+//! let flat = botsim::fastforward::cpp::squeeze(&code[0]);
 //! assert!(flat.contains("vlSelf->__VactTriggered.at(0U)=((IData)(vlSelf->clk)&(~(IData)(vlSelf->__Vtrigprevexpr___TOP__clk__0)));"));
 //! assert!(flat.contains("vlSelf->__VactTriggered.at(1U)=((IData)(vlSelf->q)&(~(IData)(vlSelf->__Vtrigprevexpr___TOP__q__0)));"));
 //! ```
@@ -374,7 +374,7 @@ fn scheduler(code: &mut [String]) {
             return;
         }
     }
-    let mut body = String::from("    // The regions, as Verilator 5.006 calls them (src/board/dialect.rs).\n");
+    let mut body = String::from("    // The regions, as Verilator 5.006 calls them (src/fastforward/dialect.rs).\n");
     for region in ["ico", "act", "nba"] {
         for f in [format!("Vboard___024root___eval_triggers__{region}"), format!("Vboard___024root___eval_{region}")] {
             if all.contains(&f) {
@@ -392,11 +392,11 @@ fn scheduler(code: &mut [String]) {
 
 #[cfg(test)]
 mod tests {
-    use crate::board::checks::Checked;
+    use crate::fastforward::checks::Checked;
     use std::path::Path;
 
     fn checked(version: &str) -> Checked {
-        Checked::of(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src/board/fixtures").join(version))
+        Checked::of(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src/fastforward/fixtures").join(version))
     }
 
     /// The same design from Verilator 5.006 and 5.048: the same verdicts, the same observed

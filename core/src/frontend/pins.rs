@@ -11,7 +11,7 @@ use super::scan::{Dir, Module};
 /// The peripherals the pins reach, each with its pins' names, in the order of [`Peripheral`].
 ///
 /// ```
-/// use botsim_core::board::pins::{peripherals, role, Peripheral};
+/// use botsim_core::frontend::pins::{peripherals, role, Peripheral};
 /// let pins: Vec<(String, _)> = ["RsTx", "clk", "PS2_CLK"].iter().map(|n| (n.to_string(), role(n).unwrap())).collect();
 /// let p = peripherals(&pins);
 /// assert_eq!(p, [(Peripheral::Uart, vec!["RsTx".to_string()]), (Peripheral::Keyboard, vec!["PS2_CLK".to_string()])]);

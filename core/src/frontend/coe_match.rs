@@ -6,7 +6,7 @@
 //! `Player1_wins_final.coe`.
 //!
 //! ```
-//! use botsim_core::board::coe_match::resemblance;
+//! use botsim_core::frontend::coe_match::resemblance;
 //! assert!(resemblance("player1wins", "Player1_wins_final") > resemblance("player1wins", "Player2_wins_final"));
 //! assert!(resemblance("tie", "tie_final") >= 0.5);
 //! assert!(resemblance("game_init", "start_screen_key") < 0.5);
@@ -178,7 +178,7 @@ pub fn offer<'a>(module: &str, shape: &Shape, coes: impl IntoIterator<Item = &'a
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::board::scan::scan;
+    use crate::frontend::scan::scan;
 
     fn coe(words: usize, max: u64) -> Coe {
         let mut w = vec![0; words];

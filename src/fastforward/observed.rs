@@ -753,6 +753,8 @@ impl<'a> Parser<'a, '_> {
         }
     }
 
+    /// The statement at `*at`, by its kind, leaving `*at` past it; `ctrl`: the variables
+    /// the conditions around it read.
     fn statement(&mut self, at: &mut usize, ctrl: &[usize]) -> Result<(), String> {
         match self.tok(*at) {
             Tok::P("{") => self.body(at, ctrl),
@@ -760,60 +762,9 @@ impl<'a> Parser<'a, '_> {
                 *at += 1;
                 Ok(())
             }
-            Tok::Id("if") | Tok::Id("while") => {
-                let mut inner = ctrl.to_vec();
-                loop {
-                    if self.tok(*at + 1) != Tok::P("(") {
-                        return Err(self.unknown(*at));
-                    }
-                    let end = self.close(*at + 1)?;
-                    let cond = self.named(*at + 2, end - 1)?;
-                    self.effects(&cond, &[], ctrl);
-                    inner.extend(cond.vars.iter().copied());
-                    *at = end;
-                    self.body(at, &inner)?;
-                    if self.tok(*at) != Tok::Id("else") {
-                        return Ok(());
-                    }
-                    *at += 1;
-                    if self.tok(*at) != Tok::Id("if") {
-                        return self.body(at, &inner);
-                    }
-                }
-            }
-            Tok::Id("for") => {
-                if self.tok(*at + 1) != Tok::P("(") {
-                    return Err(self.unknown(*at));
-                }
-                let end = self.close(*at + 1)?;
-                // The loop's own variables are declared in its head; each depends on all of it.
-                let mut i = *at + 2;
-                while i < end - 1 {
-                    if let Tok::Id(t) = self.tok(i) {
-                        if TYPES.contains(&t) {
-                            if let Tok::Id(n) = self.tok(i + 1) {
-                                self.locals.insert(n);
-                            }
-                        }
-                    }
-                    i += 1;
-                }
-                let head = self.named(*at + 2, end - 1)?;
-                let vars = head.vars.clone();
-                self.effects(&head, &vars, ctrl);
-                let mut inner = ctrl.to_vec();
-                inner.extend(head.vars.iter().copied());
-                *at = end;
-                self.body(at, &inner)
-            }
-            Tok::Id("return") => {
-                let end = self.end(*at)?;
-                let named = self.named(*at + 1, end - 1)?;
-                let ret = self.g.node(&format!("r:{}", self.fun));
-                self.effects(&named, &[ret], ctrl);
-                *at = end;
-                Ok(())
-            }
+            Tok::Id("if" | "while") => self.conditional(at, ctrl),
+            Tok::Id("for") => self.for_loop(at, ctrl),
+            Tok::Id("return") => self.return_value(at, ctrl),
             Tok::Id("VL_DEBUG_IF") => {
                 *at = self.end(*at)?;
                 Ok(())
@@ -830,6 +781,63 @@ impl<'a> Parser<'a, '_> {
         }
     }
 
+    /// `if (c) ... else if (d) ... else ...` or `while (c) ...`: each condition feeds what
+    /// its body and every later branch assign.
+    fn conditional(&mut self, at: &mut usize, ctrl: &[usize]) -> Result<(), String> {
+        let mut inner = ctrl.to_vec();
+        loop {
+            if self.tok(*at + 1) != Tok::P("(") {
+                return Err(self.unknown(*at));
+            }
+            let end = self.close(*at + 1)?;
+            let cond = self.named(*at + 2, end - 1)?;
+            self.effects(&cond, &[], ctrl);
+            inner.extend(cond.vars.iter().copied());
+            *at = end;
+            self.body(at, &inner)?;
+            if self.tok(*at) != Tok::Id("else") {
+                return Ok(());
+            }
+            *at += 1;
+            if self.tok(*at) != Tok::Id("if") {
+                return self.body(at, &inner);
+            }
+        }
+    }
+
+    /// `for (init; cond; step) ...`: the loop's own variables are declared in its head, and
+    /// each depends on all of it, as does its body.
+    fn for_loop(&mut self, at: &mut usize, ctrl: &[usize]) -> Result<(), String> {
+        if self.tok(*at + 1) != Tok::P("(") {
+            return Err(self.unknown(*at));
+        }
+        let end = self.close(*at + 1)?;
+        for i in *at + 2..end - 1 {
+            if let (Tok::Id(t), Tok::Id(n)) = (self.tok(i), self.tok(i + 1)) {
+                if TYPES.contains(&t) {
+                    self.locals.insert(n);
+                }
+            }
+        }
+        let head = self.named(*at + 2, end - 1)?;
+        let vars = head.vars.clone();
+        self.effects(&head, &vars, ctrl);
+        let mut inner = ctrl.to_vec();
+        inner.extend(head.vars.iter().copied());
+        *at = end;
+        self.body(at, &inner)
+    }
+
+    /// `return x;`: what the function returns depends on `x`.
+    fn return_value(&mut self, at: &mut usize, ctrl: &[usize]) -> Result<(), String> {
+        let end = self.end(*at)?;
+        let named = self.named(*at + 1, end - 1)?;
+        let ret = self.g.node(&format!("r:{}", self.fun));
+        self.effects(&named, &[ret], ctrl);
+        *at = end;
+        Ok(())
+    }
+
     /// The index just past the `;` that ends the statement at `from`.
     fn end(&self, from: usize) -> Result<usize, String> {
         let mut i = from;
@@ -844,7 +852,8 @@ impl<'a> Parser<'a, '_> {
         Err(self.unknown(from))
     }
 
-    /// A declaration, an assignment or a call: tokens `from..to` (the `;` excluded).
+    /// A declaration, an assignment or a call: tokens `from..to` (the `;` excluded). In a
+    /// waveform function, a dump of a signal.
     fn simple(&mut self, from: usize, to: usize, ctrl: &[usize]) -> Result<(), String> {
         if self.dumps.is_some() {
             if let (Tok::Id("bufp"), Tok::P("->"), Tok::Id(f), Tok::P("(")) =
@@ -855,41 +864,9 @@ impl<'a> Parser<'a, '_> {
                 }
             }
         }
-        // The top-level assignment operator, if any.
-        let mut op = None;
-        let mut i = from;
-        while i < to {
-            match self.tok(i) {
-                Tok::P("(" | "[" | "{") => {
-                    i = self.close(i)?;
-                    continue;
-                }
-                Tok::P(p) if ASSIGN.contains(&p) => {
-                    op = Some(i);
-                    break;
-                }
-                _ => {}
-            }
-            i += 1;
-        }
-        let declaration = matches!(self.tok(from), Tok::Id(t) if TYPES.contains(&t));
-        if declaration {
-            let name_end = op.unwrap_or(to);
-            let name = self.toks[from..name_end]
-                .iter()
-                .rev()
-                .find_map(|t| match t {
-                    Tok::Id(n) if !n.starts_with("VL_") && *n != "__restrict" && *n != "const" => Some(*n),
-                    _ => None,
-                })
-                .ok_or_else(|| self.unknown(from))?;
-            self.locals.insert(name);
-            if let Some(op) = op {
-                let target = self.g.node(&format!("l:{}:{name}", self.fun));
-                let rhs = self.named(op + 1, to)?;
-                self.effects(&rhs, &[target], ctrl);
-            }
-            return Ok(());
+        let op = self.assignment_operator(from, to)?;
+        if matches!(self.tok(from), Tok::Id(t) if TYPES.contains(&t)) {
+            return self.declaration(from, to, op, ctrl);
         }
         match op {
             Some(op) => {
@@ -908,6 +885,42 @@ impl<'a> Parser<'a, '_> {
                 let targets = named.vars.clone();
                 self.effects(&named, &targets, ctrl);
             }
+        }
+        Ok(())
+    }
+
+    /// The top-level assignment operator of tokens `from..to` (outside brackets), if any.
+    fn assignment_operator(&self, from: usize, to: usize) -> Result<Option<usize>, String> {
+        let mut i = from;
+        while i < to {
+            match self.tok(i) {
+                Tok::P("(" | "[" | "{") => {
+                    i = self.close(i)?;
+                    continue;
+                }
+                Tok::P(p) if ASSIGN.contains(&p) => return Ok(Some(i)),
+                _ => {}
+            }
+            i += 1;
+        }
+        Ok(None)
+    }
+
+    /// A local declaration, `T name [= value]`: the local, fed by its value.
+    fn declaration(&mut self, from: usize, to: usize, op: Option<usize>, ctrl: &[usize]) -> Result<(), String> {
+        let name = self.toks[from..op.unwrap_or(to)]
+            .iter()
+            .rev()
+            .find_map(|t| match t {
+                Tok::Id(n) if !n.starts_with("VL_") && *n != "__restrict" && *n != "const" => Some(*n),
+                _ => None,
+            })
+            .ok_or_else(|| self.unknown(from))?;
+        self.locals.insert(name);
+        if let Some(op) = op {
+            let target = self.g.node(&format!("l:{}:{name}", self.fun));
+            let rhs = self.named(op + 1, to)?;
+            self.effects(&rhs, &[target], ctrl);
         }
         Ok(())
     }

@@ -115,48 +115,46 @@ pub(super) fn guards(bodies: &[Vec<Tok>], q: &str, strobes: u64) -> BTreeSet<Str
     }
 }
 
-/// Every read of `out_port`'s bits of `q` in the function `t` is under a strobe's `if`.
+/// Every read of `out_port`'s bits of `q` in the function `t` is under a strobe's `if`:
+/// walked token by token, with a stack of the open blocks (whether each runs only under a
+/// strobe), each `if`'s condition checked as a read and then opening its block.
 fn gated(t: &[Tok], q: &str, guards: &BTreeSet<String>, widths: &BTreeMap<String, u32>) -> bool {
     let width = |n: &str| widths.get(n).copied();
     let reads = demands(t, &width);
-    // One entry per open brace: whether its block runs only under a strobe.
     let mut blocks: Vec<bool> = Vec::new();
     let mut i = 0;
     while i < t.len() {
         match t[i] {
             Tok::Id("if") if t.get(i + 1) == Some(&Tok::P("(")) => {
                 let Some(close) = closing(t, i + 1) else { return false };
-                // The condition's own reads, then its block.
-                for j in i + 2..close {
-                    if !read_ok(t, j, q, &reads, &blocks) {
-                        return false;
-                    }
+                if !(i + 2..close).all(|j| read_ok(t, j, q, &reads, &blocks)) {
+                    return false;
                 }
                 if t.get(close + 1) == Some(&Tok::P("{")) {
                     blocks.push(strobe(&parse(&t[i + 2..close], q), guards, STROBES));
                     i = close + 2;
-                    continue;
+                } else {
+                    i = close + 1;
                 }
-                i = close + 1;
                 continue;
             }
             Tok::P("{") => blocks.push(false),
             Tok::P("}") => {
                 blocks.pop();
             }
-            _ => {
-                // The register's own delayed copy (`__Vdly__q = vlSelf->q;`) is no read.
-                let own = i >= 2
-                    && t[i - 1] == Tok::P("=")
-                    && matches!(t[i - 2], Tok::Id(n) if n.strip_prefix("__Vdly__") == Some(q));
-                if !own && !read_ok(t, i, q, &reads, &blocks) {
-                    return false;
-                }
-            }
+            _ if own_delayed_copy(t, i, q) => {}
+            _ if !read_ok(t, i, q, &reads, &blocks) => return false,
+            _ => {}
         }
         i += 1;
     }
     true
+}
+
+/// The token at `i` is the register's own delayed copy being taken (`__Vdly__q = vlSelf->q;`),
+/// which is no read.
+fn own_delayed_copy(t: &[Tok], i: usize, q: &str) -> bool {
+    i >= 2 && t[i - 1] == Tok::P("=") && matches!(t[i - 2], Tok::Id(n) if n.strip_prefix("__Vdly__") == Some(q))
 }
 
 /// The token at `i` is no read of `q`'s `out_port` bits, or one under a strobe.

@@ -209,62 +209,137 @@ pub struct UserFile {
 }
 
 impl Plan {
-    /// Plan the build of the design the resolver found ([`super::resolve`]) for `req`.
+    /// Plan the build of the design the resolver found ([`super::resolve`]) for `req`: each
+    /// module's one definition, the hierarchy from the top, its bots, what botsim
+    /// substitutes, the program ROMs, the user's files as compiled, the board's pins.
     pub fn new(design: &Design, req: &Request) -> Result<Plan, BoardError> {
-        let sources = &design.sources;
-        let include_dirs = design.include_dirs.clone();
-        let mut defined: BTreeMap<&str, (&Source, &Module)> = BTreeMap::new();
-        for s in sources {
-            for m in &s.modules {
-                if let Some((other, om)) = defined.get(m.name.as_str()) {
-                    return Err(BoardError::at(
-                        &s.path,
-                        m.line,
-                        m.col,
-                        format!("module `{}` is defined twice (also at {}:{})", m.name, other.path.display(), om.line),
-                    ));
-                }
-                defined.insert(&m.name, (s, m));
-            }
-        }
-        // botsim's own names the team's modules take here (other ports): kept, and walked.
-        let kept: BTreeSet<String> = OWN_MODULES
-            .iter()
-            .filter(|(n, _)| defined.get(n).is_some_and(|(_, m)| foreign_port(m).is_some()))
-            .map(|(n, _)| n.to_string())
-            .collect();
-        let own_name =
-            |n: &str| (OWN_MODULES.iter().any(|(m, _)| *m == n) && !kept.contains(n)) || HELPERS.contains(&n);
+        let defined = definitions(&design.sources)?;
+        let kept = kept_own_names(&defined);
         let top = design.top.clone();
         if !defined.contains_key(top.as_str()) {
             return Err(BoardError::plain(format!("the top module `{top}` is not in the design's sources")));
         }
+        let mut h = Hierarchy::walk(&defined, &kept, &top)?;
+        let own_bot = !h.bot_paths.is_empty();
+        let mut bots = h.bots(req, &top)?.into_iter();
+        let (bot_path, bot_cpu, team_bot) = match bots.next() {
+            Some(b) => (Some(b.path), b.cpu, b.team),
+            None => (None, None, None),
+        };
+        let other_bots: Vec<BotSite> = bots.collect();
+        let mut replaced = own_replacements(&defined, &kept, &h.used, own_bot);
+        let mut warnings = Vec::new();
+        let roms = program_roms(&defined, &h.used, own_bot, req, &mut replaced, &mut warnings)?;
+        let files = user_files(&design.sources, &defined, &kept, &h.used, &roms, &mut warnings);
+        let (top_src, top_module) = defined[top.as_str()];
+        let mapped = pins::map(top_module, design.placed.as_ref()).map_err(|e| {
+            BoardError::at(&top_src.path, top_module.line, top_module.col, format!("port `{}` {}", e.port, e.reason))
+        })?;
+        for w in &mapped.misdirected {
+            warnings.push(format!("{}:{}:{}: {}", top_src.path.display(), w.line, w.col, w.message(&top)));
+        }
+        let ports = |dir: Dir| top_module.ports.iter().filter(|p| p.dir == dir).map(|p| p.name.clone()).collect();
+        Ok(Plan {
+            files,
+            include_dirs: design.include_dirs.clone(),
+            roms,
+            used_outputs: std::mem::take(&mut h.used_outputs),
+            replaced,
+            warnings,
+            pins: mapped.roles,
+            unknown_pins: mapped.unknown,
+            board: design.placed.as_ref().map(|p| p.board),
+            widths: top_module.ports.iter().map(|p| (p.name.clone(), p.width)).collect(),
+            inputs: ports(Dir::Input),
+            inouts: ports(Dir::Inout),
+            top,
+            bot_path,
+            bot_cpu,
+            team_bot,
+            other_bots,
+            kept,
+            loc_y_reg: h.loc_y_reg,
+            cpus: h.cpus,
+        })
+    }
+}
 
-        // Walk the hierarchy from the top: every module used, missing ones, the bot's path.
-        let mut used = BTreeSet::new();
-        let mut bot_paths = Vec::new();
-        let mut team_bots: Vec<(String, TeamBot)> = Vec::new();
-        let mut loc_y_reg = false;
-        let mut used_outputs: BTreeMap<String, u8> = BTreeMap::new();
+/// Each module of the design's sources by name, with its file; a module defined twice is an
+/// error at its second definition.
+type Defined<'a> = BTreeMap<&'a str, (&'a Source, &'a Module)>;
+
+fn definitions(sources: &[Source]) -> Result<Defined<'_>, BoardError> {
+    let mut defined: Defined = BTreeMap::new();
+    for s in sources {
+        for m in &s.modules {
+            if let Some((other, om)) = defined.get(m.name.as_str()) {
+                return Err(BoardError::at(
+                    &s.path,
+                    m.line,
+                    m.col,
+                    format!("module `{}` is defined twice (also at {}:{})", m.name, other.path.display(), om.line),
+                ));
+            }
+            defined.insert(&m.name, (s, m));
+        }
+    }
+    Ok(defined)
+}
+
+/// botsim's own names the team's modules take here with other ports: kept, and walked.
+fn kept_own_names(defined: &Defined) -> BTreeSet<String> {
+    OWN_MODULES
+        .iter()
+        .filter(|(n, _)| defined.get(n).is_some_and(|(_, m)| foreign_port(m).is_some()))
+        .map(|(n, _)| n.to_string())
+        .collect()
+}
+
+/// Is `n` a module botsim brings (its own, not kept as the team's, or a helper)?
+fn own_name(kept: &BTreeSet<String>, n: &str) -> bool {
+    (OWN_MODULES.iter().any(|(m, _)| *m == n) && !kept.contains(n)) || HELPERS.contains(&n)
+}
+
+/// The hierarchy from the top: every module used, the bots' paths, the KCPSM6s, the
+/// primitives' outputs in use.
+struct Hierarchy {
+    used: BTreeSet<String>,
+    /// botsim's BotSim 2.0 bots.
+    bot_paths: Vec<String>,
+    team_bots: Vec<(String, TeamBot)>,
+    loc_y_reg: bool,
+    used_outputs: BTreeMap<String, u8>,
+    cpus: Vec<CpuSite>,
+}
+
+impl Hierarchy {
+    fn walk(defined: &Defined, kept: &BTreeSet<String>, top: &str) -> Result<Hierarchy, BoardError> {
+        let mut h = Hierarchy {
+            used: BTreeSet::new(),
+            bot_paths: Vec::new(),
+            team_bots: Vec::new(),
+            loc_y_reg: false,
+            used_outputs: BTreeMap::new(),
+            cpus: Vec::new(),
+        };
         let mut missing: Option<BoardError> = None;
-        let mut cpus = Vec::new();
-        let mut stack: Vec<(String, String)> = vec![(top.clone(), String::new())];
+        let mut stack: Vec<(String, String)> = vec![(top.to_string(), String::new())];
         let mut depth_guard = 0;
         while let Some((name, path)) = stack.pop() {
             depth_guard += 1;
             if depth_guard > 100_000 {
                 return Err(BoardError::plain("the module hierarchy does not end (a module instantiates itself?)"));
             }
-            used.insert(name.clone());
+            h.used.insert(name.clone());
             if name == "bot" && !kept.contains("bot") {
-                bot_paths.push(path.clone());
+                h.bot_paths.push(path.clone());
                 continue;
             }
             if let Some((src, m)) =
-                defined.get(name.as_str()).filter(|(_, m)| is_bot(m) && !path.is_empty() && !own_name(&name))
+                defined.get(name.as_str()).filter(|(_, m)| is_bot(m) && !path.is_empty() && !own_name(kept, &name))
             {
                 let config = m.ports.iter().map(|p| p.name.as_str()).find(|p| p.eq_ignore_ascii_case("Bot_Config_reg"));
-                team_bots.push((
+                h.team_bots.push((
                     path.clone(),
                     TeamBot {
                         module: name.clone(),
@@ -275,7 +350,7 @@ impl Plan {
                     },
                 ));
             }
-            if own_name(&name) {
+            if own_name(kept, &name) {
                 continue;
             }
             let Some((src, m)) = defined.get(name.as_str()) else { continue };
@@ -285,20 +360,20 @@ impl Plan {
             for inst in &m.instances {
                 let child_path = if path.is_empty() { inst.name.clone() } else { format!("{path}.{}", inst.name) };
                 if inst.module == "bot" && inst.connections.iter().any(|(p, _)| p == "Loc_Y_reg") {
-                    loc_y_reg = true;
+                    h.loc_y_reg = true;
                 }
                 if inst.module == "kcpsm6" {
                     let rom = rom_of(inst, m, |n| defined.get(n).is_some_and(|(_, d)| is_program_rom(d)));
                     let at = format!("{}:{}", src.path.display(), inst.line);
-                    cpus.push(CpuSite { path: child_path.clone(), rom, at });
+                    h.cpus.push(CpuSite { path: child_path.clone(), rom, at });
                 }
                 if let Some((_, outs)) = PRIMITIVES.iter().find(|(p, _)| *p == inst.module) {
-                    used.insert(inst.module.clone());
-                    let mask = used_outputs.entry(inst.module.clone()).or_insert(0);
+                    h.used.insert(inst.module.clone());
+                    let mask = h.used_outputs.entry(inst.module.clone()).or_insert(0);
                     *mask |= connected_mask(inst, outs);
                     continue;
                 }
-                if !defined.contains_key(inst.module.as_str()) && !own_name(&inst.module) {
+                if !defined.contains_key(inst.module.as_str()) && !own_name(kept, &inst.module) {
                     missing.get_or_insert_with(|| {
                         BoardError::at(
                             &src.path,
@@ -315,22 +390,27 @@ impl Plan {
                 stack.push((inst.module.clone(), child_path));
             }
         }
-        if let Some(e) = missing {
-            return Err(e);
+        match missing {
+            Some(e) => Err(e),
+            None => Ok(h),
         }
-        // Every bot, botsim's BotSim 2.0 ones first, each kind in the order of its path: the
-        // first is the one options about "the bot" mean.
-        bot_paths.sort();
-        team_bots.sort_by(|a, b| a.0.cmp(&b.0));
+    }
+
+    /// Every bot, botsim's BotSim 2.0 ones first, each kind in the order of its path, the
+    /// one `--bot-at` names first: the first is the one options about "the bot" mean. Adds
+    /// botsim's bots' KCPSM6s to the CPUs.
+    fn bots(&mut self, req: &Request, top: &str) -> Result<Vec<BotSite>, BoardError> {
+        self.bot_paths.sort();
+        self.team_bots.sort_by(|a, b| a.0.cmp(&b.0));
         let mut bots: Vec<BotSite> = Vec::new();
-        for one in &bot_paths {
+        for one in &self.bot_paths {
             let cpu = format!("{one}.{BOT_CPU_INSTANCE}");
-            cpus.push(CpuSite { path: cpu.clone(), rom: Ok("bot_pgm".into()), at: "botsim's bot".into() });
+            self.cpus.push(CpuSite { path: cpu.clone(), rom: Ok("bot_pgm".into()), at: "botsim's bot".into() });
             bots.push(BotSite { path: one.clone(), cpu: Some(cpu), team: None });
         }
-        for (path, team) in &team_bots {
+        for (path, team) in &self.team_bots {
             let inside = format!("{path}.");
-            let cpu = cpus.iter().find(|c| c.path.starts_with(&inside)).map(|c| c.path.clone());
+            let cpu = self.cpus.iter().find(|c| c.path.starts_with(&inside)).map(|c| c.path.clone());
             bots.push(BotSite { path: path.clone(), cpu, team: Some(team.clone()) });
         }
         if let Some(name) = &req.first_bot {
@@ -353,208 +433,188 @@ impl Plan {
                 paths.join(", ")
             )));
         }
-        let mut bots = bots.into_iter();
-        let (bot_path, bot_cpu, team_bot) = match bots.next() {
-            Some(b) => (Some(b.path), b.cpu, b.team),
-            None => (None, None, None),
-        };
-        let other_bots: Vec<BotSite> = bots.collect();
-        let own_bot = !bot_paths.is_empty();
-
-        // Substitutions.
-        let mut replaced = Vec::new();
-        let mut warnings = Vec::new();
-        // botsim's own modules are always in the build (a bot has them all); the user's
-        // copies are reported, those of a design without a bot where it uses them.
-        for &(name, _) in OWN_MODULES.iter().filter(|(n, _)| !kept.contains(*n)) {
-            let from = defined.get(name).map(|(s, m)| format!("{}:{}", s.path.display(), m.line)).unwrap_or_default();
-            if !from.is_empty() && (own_bot || used.contains(name)) {
-                replaced.push(Replacement { module: name.to_string(), from, with: format!("botsim's {name}") });
-            } else if from.is_empty() && used.contains(name) {
-                // Not committed (the team relied on the course folder): said, as the course's
-                // other modules are.
-                replaced.push(Replacement {
-                    module: name.to_string(),
-                    from,
-                    with: format!("botsim's {name} (the repository has none)"),
-                });
-            }
-        }
-        for (name, _) in PRIMITIVES {
-            if used.contains(name) {
-                let from =
-                    defined.get(name).map(|(s, m)| format!("{}:{}", s.path.display(), m.line)).unwrap_or_default();
-                replaced.push(Replacement {
-                    module: name.to_string(),
-                    from,
-                    with: format!("botsim's behavioural {name}"),
-                });
-            }
-        }
-
-        // Program ROMs.
-        let mut roms = Vec::new();
-        let mut programs: Vec<(PathBuf, Image, bool)> =
-            req.programs.iter().map(|(p, i)| (p.clone(), i.clone(), false)).collect();
-        let rom_modules: Vec<(&Source, &Module)> = defined
-            .values()
-            .filter(|(_, m)| (is_program_rom(m) && used.contains(&m.name)) || (m.name == "bot_pgm" && own_bot))
-            .copied()
-            .collect();
-        let team_roms = rom_modules.iter().filter(|(_, m)| m.name != "bot_pgm").count();
-        for (src, m) in &rom_modules {
-            // A ROM botsim wrote from a `.psm` (the repository has no Verilog of it) is that file.
-            let at = if src.generated {
-                src.path.with_extension("psm").display().to_string()
-            } else {
-                format!("{}:{}", src.path.display(), m.line)
-            };
-            if m.name == "bot_pgm" && req.force_own_firmware {
-                continue;
-            }
-            // The program named for this ROM: by file stem, or the only one for the only ROM.
-            let named = programs.iter().position(|(p, _, _)| p.file_stem().is_some_and(|s| s == m.name.as_str()));
-            let named = named.or_else(|| (m.name != "bot_pgm" && team_roms == 1 && programs.len() == 1).then_some(0));
-            let own_text = &src.text[m.span.clone()];
-            let padded = format!("{}{own_text}", "\n".repeat(m.line.saturating_sub(1) as usize));
-            let from_init = Image::parse_verilog(&src.path, &padded);
-            let psm = |p: &Path| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("psm")).then(|| p.to_path_buf());
-            let (image, origin, source) = match (named, from_init) {
-                (Some(k), Ok(init)) => {
-                    programs[k].2 = true;
-                    if let Some(a) = first_difference(&programs[k].1, &init) {
-                        warnings.push(format!(
-                            "{} differs from the INIT strings of `{}` ({at}) from address {a:03X}: running {}",
-                            programs[k].0.display(),
-                            m.name,
-                            programs[k].0.display()
-                        ));
-                    }
-                    (programs[k].1.clone(), programs[k].0.display().to_string(), psm(&programs[k].0))
-                }
-                (Some(k), Err(_)) => {
-                    programs[k].2 = true;
-                    (programs[k].1.clone(), programs[k].0.display().to_string(), psm(&programs[k].0))
-                }
-                (None, Ok(init)) => {
-                    let source = source_beside(&src.path, &m.name, &init, &mut warnings);
-                    let origin =
-                        if src.generated { format!("{at}, assembled") } else { format!("its own contents ({at})") };
-                    (init, origin, source)
-                }
-                (None, Err(e)) => {
-                    return Err(BoardError::plain(format!(
-                        "{at}: the program ROM `{}` holds no program ({}); name its .psm with --program",
-                        m.name, e.message
-                    )))
-                }
-            };
-            replaced.push(Replacement {
-                module: m.name.clone(),
-                from: at,
-                with: format!("a behavioural ROM holding the program from {origin}"),
-            });
-            roms.push(Rom { module: m.name.clone(), image, origin, source });
-        }
-        if own_bot && !roms.iter().any(|r| r.module == "bot_pgm") {
-            let why = if req.force_own_firmware {
-                "botsim's firmware with the constants asked for"
-            } else {
-                "botsim's firmware (the sources have no bot_pgm)"
-            };
-            replaced.push(Replacement { module: "bot_pgm".into(), from: String::new(), with: why.into() });
-            roms.push(Rom {
-                module: "bot_pgm".into(),
-                image: req.bot_firmware.clone(),
-                origin: why.into(),
-                source: None,
-            });
-        }
-        if let Some((p, _, _)) = programs.iter().find(|(_, _, used)| !used) {
-            return Err(BoardError::plain(format!(
-                "--program {}: no program ROM module named `{}` in the design (ROMs: {})",
-                p.display(),
-                p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
-                rom_modules.iter().map(|(_, m)| m.name.as_str()).collect::<Vec<_>>().join(", ")
-            )));
-        }
-
-        // The user's files, with replaced modules blanked (lines kept, so messages still
-        // point at the user's lines).
-        let replaced_names: BTreeSet<String> = OWN_MODULES
-            .iter()
-            .filter(|(m, _)| !kept.contains(*m))
-            .map(|(m, _)| m.to_string())
-            .chain(PRIMITIVES.iter().map(|(p, _)| p.to_string()))
-            .chain(roms.iter().map(|r| r.module.clone()))
-            .collect();
-        let mut files = Vec::new();
-        let own_modules: BTreeMap<&str, Module> =
-            OWN_MODULES.iter().filter_map(|(n, _)| Some((*n, own_module(n)?))).collect();
-        let dir = |module: &str, port: &str| -> Option<Dir> {
-            let m = match own_name(module) {
-                true => own_modules.get(module)?,
-                false => defined.get(module)?.1,
-            };
-            m.port(port).map(|p| p.dir)
-        };
-        for s in sources {
-            let resolved =
-                resolve_shared_nets(s, &|m| used.contains(m) && !replaced_names.contains(m), &dir, &mut warnings);
-            let s = resolved.as_ref().unwrap_or(s);
-            let drop: Vec<std::ops::Range<usize>> =
-                s.modules.iter().filter(|m| replaced_names.contains(&m.name)).map(|m| m.span.clone()).collect();
-            if drop.is_empty() && s.dropped.is_empty() && !s.edited {
-                files.push(UserFile { path: s.path.clone(), filtered: None, generated: false, converted_from: None });
-                continue;
-            }
-            if drop.len() == s.modules.len() && !s.text.contains("`define") {
-                continue; // nothing of the user's is left in it
-            }
-            files.push(UserFile {
-                path: s.path.clone(),
-                filtered: Some(s.compiled_text(&drop)),
-                generated: s.generated,
-                converted_from: s.converted_from.clone(),
-            });
-        }
-
-        let top_module = defined[top.as_str()].1;
-        let top_src = defined[top.as_str()].0;
-        let mapped = pins::map(top_module, design.placed.as_ref()).map_err(|e| {
-            let (s, m) = defined[top.as_str()];
-            BoardError::at(&s.path, m.line, m.col, format!("port `{}` {}", e.port, e.reason))
-        })?;
-        for w in &mapped.misdirected {
-            warnings.push(format!("{}:{}:{}: {}", top_src.path.display(), w.line, w.col, w.message(&top)));
-        }
-        let (pins, unknown_pins) = (mapped.roles, mapped.unknown);
-        let widths = top_module.ports.iter().map(|p| (p.name.clone(), p.width)).collect();
-        let inputs = top_module.ports.iter().filter(|p| p.dir == Dir::Input).map(|p| p.name.clone()).collect();
-        let inouts = top_module.ports.iter().filter(|p| p.dir == Dir::Inout).map(|p| p.name.clone()).collect();
-        Ok(Plan {
-            top,
-            files,
-            include_dirs,
-            roms,
-            used_outputs,
-            replaced,
-            warnings,
-            pins,
-            unknown_pins,
-            board: design.placed.as_ref().map(|p| p.board),
-            widths,
-            inputs,
-            inouts,
-            bot_path,
-            bot_cpu,
-            team_bot,
-            other_bots,
-            kept,
-            loc_y_reg,
-            cpus,
-        })
+        Ok(bots)
     }
+}
+
+/// botsim's own modules (always in the build: a bot has them all) and the primitives the
+/// design uses, as replacements of the user's copies: those of a design without a bot where
+/// it uses them.
+fn own_replacements(
+    defined: &Defined,
+    kept: &BTreeSet<String>,
+    used: &BTreeSet<String>,
+    own_bot: bool,
+) -> Vec<Replacement> {
+    let at =
+        |name: &str| defined.get(name).map(|(s, m)| format!("{}:{}", s.path.display(), m.line)).unwrap_or_default();
+    let mut replaced = Vec::new();
+    for &(name, _) in OWN_MODULES.iter().filter(|(n, _)| !kept.contains(*n)) {
+        let from = at(name);
+        if !from.is_empty() && (own_bot || used.contains(name)) {
+            replaced.push(Replacement { module: name.to_string(), from, with: format!("botsim's {name}") });
+        } else if from.is_empty() && used.contains(name) {
+            // Not committed (the team relied on the course folder): said, as the course's
+            // other modules are.
+            replaced.push(Replacement {
+                module: name.to_string(),
+                from,
+                with: format!("botsim's {name} (the repository has none)"),
+            });
+        }
+    }
+    for (name, _) in PRIMITIVES {
+        if used.contains(name) {
+            replaced.push(Replacement {
+                module: name.to_string(),
+                from: at(name),
+                with: format!("botsim's behavioural {name}"),
+            });
+        }
+    }
+    replaced
+}
+
+/// The program of every ROM the design uses (and the bot's firmware): `--program`'s file
+/// named for it, else its own contents; each a replacement.
+fn program_roms(
+    defined: &Defined,
+    used: &BTreeSet<String>,
+    own_bot: bool,
+    req: &Request,
+    replaced: &mut Vec<Replacement>,
+    warnings: &mut Vec<String>,
+) -> Result<Vec<Rom>, BoardError> {
+    let mut roms = Vec::new();
+    let mut programs: Vec<(PathBuf, Image, bool)> =
+        req.programs.iter().map(|(p, i)| (p.clone(), i.clone(), false)).collect();
+    let rom_modules: Vec<(&Source, &Module)> = defined
+        .values()
+        .filter(|(_, m)| (is_program_rom(m) && used.contains(&m.name)) || (m.name == "bot_pgm" && own_bot))
+        .copied()
+        .collect();
+    let team_roms = rom_modules.iter().filter(|(_, m)| m.name != "bot_pgm").count();
+    for (src, m) in &rom_modules {
+        // A ROM botsim wrote from a `.psm` (the repository has no Verilog of it) is that file.
+        let at = if src.generated {
+            src.path.with_extension("psm").display().to_string()
+        } else {
+            format!("{}:{}", src.path.display(), m.line)
+        };
+        if m.name == "bot_pgm" && req.force_own_firmware {
+            continue;
+        }
+        // The program named for this ROM: by file stem, or the only one for the only ROM.
+        let named = programs.iter().position(|(p, _, _)| p.file_stem().is_some_and(|s| s == m.name.as_str()));
+        let named = named.or_else(|| (m.name != "bot_pgm" && team_roms == 1 && programs.len() == 1).then_some(0));
+        let own_text = &src.text[m.span.clone()];
+        let padded = format!("{}{own_text}", "\n".repeat(m.line.saturating_sub(1) as usize));
+        let from_init = Image::parse_verilog(&src.path, &padded);
+        let psm = |p: &Path| p.extension().is_some_and(|e| e.eq_ignore_ascii_case("psm")).then(|| p.to_path_buf());
+        let (image, origin, source) = match (named, from_init) {
+            (Some(k), Ok(init)) => {
+                programs[k].2 = true;
+                if let Some(a) = first_difference(&programs[k].1, &init) {
+                    warnings.push(format!(
+                        "{} differs from the INIT strings of `{}` ({at}) from address {a:03X}: running {}",
+                        programs[k].0.display(),
+                        m.name,
+                        programs[k].0.display()
+                    ));
+                }
+                (programs[k].1.clone(), programs[k].0.display().to_string(), psm(&programs[k].0))
+            }
+            (Some(k), Err(_)) => {
+                programs[k].2 = true;
+                (programs[k].1.clone(), programs[k].0.display().to_string(), psm(&programs[k].0))
+            }
+            (None, Ok(init)) => {
+                let source = source_beside(&src.path, &m.name, &init, warnings);
+                let origin =
+                    if src.generated { format!("{at}, assembled") } else { format!("its own contents ({at})") };
+                (init, origin, source)
+            }
+            (None, Err(e)) => {
+                return Err(BoardError::plain(format!(
+                    "{at}: the program ROM `{}` holds no program ({}); name its .psm with --program",
+                    m.name, e.message
+                )))
+            }
+        };
+        replaced.push(Replacement {
+            module: m.name.clone(),
+            from: at,
+            with: format!("a behavioural ROM holding the program from {origin}"),
+        });
+        roms.push(Rom { module: m.name.clone(), image, origin, source });
+    }
+    if own_bot && !roms.iter().any(|r| r.module == "bot_pgm") {
+        let why = if req.force_own_firmware {
+            "botsim's firmware with the constants asked for"
+        } else {
+            "botsim's firmware (the sources have no bot_pgm)"
+        };
+        replaced.push(Replacement { module: "bot_pgm".into(), from: String::new(), with: why.into() });
+        roms.push(Rom { module: "bot_pgm".into(), image: req.bot_firmware.clone(), origin: why.into(), source: None });
+    }
+    if let Some((p, _, _)) = programs.iter().find(|(_, _, used)| !used) {
+        return Err(BoardError::plain(format!(
+            "--program {}: no program ROM module named `{}` in the design (ROMs: {})",
+            p.display(),
+            p.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_default(),
+            rom_modules.iter().map(|(_, m)| m.name.as_str()).collect::<Vec<_>>().join(", ")
+        )));
+    }
+    Ok(roms)
+}
+
+/// The user's files, with replaced modules blanked (lines kept, so messages still point at
+/// the user's lines) and nets with several drivers resolved.
+fn user_files(
+    sources: &[Source],
+    defined: &Defined,
+    kept: &BTreeSet<String>,
+    used: &BTreeSet<String>,
+    roms: &[Rom],
+    warnings: &mut Vec<String>,
+) -> Vec<UserFile> {
+    let replaced_names: BTreeSet<String> = OWN_MODULES
+        .iter()
+        .filter(|(m, _)| !kept.contains(*m))
+        .map(|(m, _)| m.to_string())
+        .chain(PRIMITIVES.iter().map(|(p, _)| p.to_string()))
+        .chain(roms.iter().map(|r| r.module.clone()))
+        .collect();
+    let own_modules: BTreeMap<&str, Module> =
+        OWN_MODULES.iter().filter_map(|(n, _)| Some((*n, own_module(n)?))).collect();
+    let dir = |module: &str, port: &str| -> Option<Dir> {
+        let m = match own_name(kept, module) {
+            true => own_modules.get(module)?,
+            false => defined.get(module)?.1,
+        };
+        m.port(port).map(|p| p.dir)
+    };
+    let mut files = Vec::new();
+    for s in sources {
+        let resolved = resolve_shared_nets(s, &|m| used.contains(m) && !replaced_names.contains(m), &dir, warnings);
+        let s = resolved.as_ref().unwrap_or(s);
+        let drop: Vec<std::ops::Range<usize>> =
+            s.modules.iter().filter(|m| replaced_names.contains(&m.name)).map(|m| m.span.clone()).collect();
+        if drop.is_empty() && s.dropped.is_empty() && !s.edited {
+            files.push(UserFile { path: s.path.clone(), filtered: None, generated: false, converted_from: None });
+            continue;
+        }
+        if drop.len() == s.modules.len() && !s.text.contains("`define") {
+            continue; // nothing of the user's is left in it
+        }
+        files.push(UserFile {
+            path: s.path.clone(),
+            filtered: Some(s.compiled_text(&drop)),
+            generated: s.generated,
+            converted_from: s.converted_from.clone(),
+        });
+    }
+    files
 }
 
 /// The program ROM wired to the KCPSM6 instance `cpu` of module `m`: the one ROM instance of

@@ -622,211 +622,25 @@ pub fn scan(src: &str) -> Vec<Module> {
     modules
 }
 
+/// One module, from its `module` keyword: its header, then its body item by item, up to
+/// its `endmodule` (or where a file cut short ends it).
 fn module(p: &mut Parser) -> Option<Module> {
     let start = p.t[p.i].at;
     p.i += 1;
     let name_tok = p.t.get(p.i)?.clone();
     let name = p.ident(0)?.to_string();
     p.i += 1;
-    let mut params = Vec::new();
-    let mut ports = Vec::new();
-    let mut port_order: Vec<String> = Vec::new();
-    if p.is(0, '#') && p.is(1, '(') {
-        let end = p.skip_group(p.i + 1);
-        params.extend(param_names(p, p.i + 2, end - 1));
-        p.i = end;
-    }
-    if p.is(0, '(') {
-        let end = p.skip_group(p.i);
-        ansi_ports(p, p.i + 1, end - 1, &mut ports, &mut port_order);
-        p.i = end;
-    }
-    let header_end = match p.t.get(p.i) {
-        Some(t) if t.tok == Tok::Punct(';') => t.at + 1,
-        Some(t) => t.at,
-        None => p.src.len(),
-    };
-    let mut nets = Vec::new();
-    let mut assigns = Vec::new();
-    // Body: up to endmodule.
-    let mut instances = Vec::new();
-    let body_start = p.i;
-    let mut j = body_start;
-    // A module ends at its `endmodule`; a file cut short ends it at the next `module` or the
-    // end of the file.
-    while j < p.t.len()
-        && p.t[j].tok != Tok::Ident("endmodule".into())
-        && !matches!(&p.t[j].tok, Tok::Ident(w) if w == "module" || w == "macromodule")
-    {
-        j += 1;
-    }
-    let body_end = j;
-    let unterminated = p.t.get(j).map(|t| &t.tok) != Some(&Tok::Ident("endmodule".into()));
-    let end = match p.t.get(body_end) {
-        Some(t) if unterminated => t.at,
-        Some(t) => t.at + "endmodule".len(),
-        None => p.src.len(),
-    };
-    p.i = body_start;
-    let mut stmt_start = true;
-    let mut logic = false;
-    // Inside `begin`/`end`, `generate` or `case` (`nest`), or in a statement after `if`,
-    // `else` or `for` (`guarded`): an item there is one alternative of several, or repeated.
-    let mut nest = 0i32;
-    let mut guarded = false;
-    while p.i < body_end {
-        match p.peek(0) {
-            Some(Tok::Punct(';')) => {
-                p.i += 1;
-                stmt_start = true;
-                guarded &= nest > 0;
-                continue;
-            }
-            Some(Tok::Ident(w)) if matches!(w.as_str(), "input" | "output" | "inout") && stmt_start => {
-                let dir = direction(w);
-                let semi = (p.i..body_end).find(|&k| p.t[k].tok == Tok::Punct(';')).unwrap_or(body_end);
-                non_ansi_ports(p, dir, p.i + 1, semi, &mut ports);
-                p.i = semi;
-                continue;
-            }
-            Some(Tok::Ident(w)) if matches!(w.as_str(), "wire" | "reg" | "logic" | "tri") && stmt_start => {
-                let semi = (p.i..body_end).find(|&k| p.t[k].tok == Tok::Punct(';')).unwrap_or(body_end);
-                let (names, range) = declared_names(p, p.i + 1, semi);
-                let end = p.t.get(semi).map_or(p.src.len(), |t| t.at + 1);
-                nets.extend(names.into_iter().map(|name| Net { name, range: range.clone(), end }));
-                // A declaration: a name, then another where a `,`, `=` or `;` should be (a
-                // stray `wire` before an instance) is said here, before the instance is lost.
-                let mut k = p.i + 1;
-                while let Some(t) = p.t.get(k) {
-                    match &t.tok {
-                        Tok::Ident(n) if NET_WORDS.contains(&n.as_str()) => k += 1,
-                        Tok::Punct('[') => k = p.skip_group(k),
-                        _ => break,
-                    }
-                }
-                if let (Some(name), Some(next)) = (p.ident_at(k), p.t.get(k + 1)) {
-                    // Another name, or an instance's `#(`/`(`, where the declaration needs a
-                    // `,`, `=`, `[` or `;`.
-                    let what = match &next.tok {
-                        Tok::Ident(other) if !other.starts_with('`') => Some(format!("`{other}`")),
-                        Tok::Punct(c @ ('#' | '(')) => Some(format!("`{c}`")),
-                        _ => None,
-                    };
-                    if let (Some(what), None) = (what, &p.trouble) {
-                        p.trouble = Some((
-                            next.line,
-                            next.col,
-                            format!("{what} right after `{name}` in a declaration (a `,` or `;` missing, or a stray `{w}`?): this does not parse"),
-                        ));
-                    }
-                }
-                p.i += 1;
-                stmt_start = false;
-                continue;
-            }
-            Some(Tok::Ident(w)) if matches!(w.as_str(), "parameter" | "localparam") && stmt_start => {
-                let semi = (p.i..body_end).find(|&k| p.t[k].tok == Tok::Punct(';')).unwrap_or(body_end);
-                if w == "parameter" {
-                    params.extend(param_names(p, p.i, semi));
-                }
-                p.i = semi;
-                continue;
-            }
-            Some(Tok::Ident(w))
-                if stmt_start
-                    && !KEYWORDS.contains(&w.as_str())
-                    && !w.starts_with('$')
-                    && !w.starts_with('`')
-                    && (p.is(1, '#') || p.is(1, '(') || (p.ident(1).is_some() && (p.is(2, '(') || p.is(2, '[')))) =>
-            {
-                let before = instances.len();
-                let semi = instance_statement(p, body_end, &mut instances);
-                for i in &mut instances[before..] {
-                    i.guarded = nest > 0 || guarded;
-                }
-                p.i = semi;
-                continue;
-            }
-            Some(Tok::Ident(w))
-                if matches!(
-                    w.as_str(),
-                    "begin" | "else" | "generate" | "end" | "endgenerate" | "endcase" | "endfunction" | "endtask"
-                ) =>
-            {
-                match w.as_str() {
-                    "begin" | "generate" => nest += 1,
-                    "end" | "endgenerate" | "endcase" => nest = (nest - 1).max(0),
-                    "else" => guarded = true,
-                    _ => {}
-                }
-                // `begin : label` — skip the label.
-                p.i += 1;
-                if p.is(0, ':') && p.ident(1).is_some() {
-                    p.i += 2;
-                }
-                stmt_start = true;
-                continue;
-            }
-            Some(Tok::Ident(w))
-                if matches!(
-                    w.as_str(),
-                    "assign"
-                        | "always"
-                        | "always_ff"
-                        | "always_comb"
-                        | "always_latch"
-                        | "initial"
-                        | "function"
-                        | "task"
-                        | "generate"
-                ) =>
-            {
-                logic = true;
-                let alone = nest == 0 && !guarded;
-                if let (true, Some(target), true) = (w == "assign" && alone, p.ident(1), p.is(2, '=')) {
-                    let semi = (p.i..body_end).find(|&k| p.t[k].tok == Tok::Punct(';')).unwrap_or(body_end);
-                    let tristate = p.t[p.i + 3..semi]
-                        .iter()
-                        .any(|t| matches!(&t.tok, Tok::Num(n) if n.split_once('\'').is_some_and(|(_, v)| v.contains(['z', 'Z', '?']))));
-                    let t = &p.t[p.i + 1];
-                    assigns.push(Assign {
-                        target: target.to_string(),
-                        at: t.at..t.at + target.len(),
-                        line: t.line,
-                        col: t.col,
-                        tristate,
-                    });
-                }
-            }
-            Some(Tok::Punct('=')) => logic = true,
-            Some(Tok::Ident(w)) if matches!(w.as_str(), "if" | "for" | "case") => {
-                guarded = true;
-                nest += i32::from(w == "case");
-                // generate if/for headers: skip the condition.
-                p.i += 1;
-                if p.is(0, '(') {
-                    p.i = p.skip_group(p.i);
-                }
-                stmt_start = true;
-                continue;
-            }
-            Some(Tok::Punct('(')) | Some(Tok::Punct('[')) | Some(Tok::Punct('{')) => {
-                p.i = p.skip_group(p.i);
-                stmt_start = false;
-                continue;
-            }
-            _ => {}
-        }
-        stmt_start = false;
-        p.i += 1;
-    }
-    p.i = if unterminated { body_end } else { body_end + 1 };
+    let mut header = header(p);
+    let extent = extent(p);
+    p.i = extent.body_start;
+    let body = Body::read(p, extent.body_end, &mut header);
+    p.i = if extent.unterminated { extent.body_end } else { extent.body_end + 1 };
+    let Header { params, mut ports, port_order, end: header_end } = header;
     // Keep the declared order of a non-ANSI port list.
     if !port_order.is_empty() {
         ports.sort_by_key(|pt: &Port| port_order.iter().position(|n| *n == pt.name).unwrap_or(usize::MAX));
         ports.retain(|pt| port_order.contains(&pt.name));
     }
-    let empty = !logic && instances.is_empty();
     let unreadable = ports
         .iter()
         .find(|pt| KEYWORDS.contains(&pt.name.as_str()))
@@ -836,17 +650,305 @@ fn module(p: &mut Parser) -> Option<Module> {
         name,
         line: name_tok.line,
         col: name_tok.col,
-        span: start..end,
+        span: start..extent.end,
         params,
         ports,
-        instances,
-        empty,
-        unterminated,
-        nets,
-        assigns,
+        empty: !body.logic && body.instances.is_empty(),
+        instances: body.instances,
+        unterminated: extent.unterminated,
+        nets: body.nets,
+        assigns: body.assigns,
         header_end,
         unreadable,
     })
+}
+
+/// A module's header: its parameters (`#(...)`, and later `parameter`s of its body), its
+/// ports (and the order a non-ANSI list names them in), the byte past its `;`.
+struct Header {
+    params: Vec<String>,
+    ports: Vec<Port>,
+    port_order: Vec<String>,
+    end: usize,
+}
+
+fn header(p: &mut Parser) -> Header {
+    let mut h = Header { params: Vec::new(), ports: Vec::new(), port_order: Vec::new(), end: p.src.len() };
+    if p.is(0, '#') && p.is(1, '(') {
+        let end = p.skip_group(p.i + 1);
+        h.params.extend(param_names(p, p.i + 2, end - 1));
+        p.i = end;
+    }
+    if p.is(0, '(') {
+        let end = p.skip_group(p.i);
+        ansi_ports(p, p.i + 1, end - 1, &mut h.ports, &mut h.port_order);
+        p.i = end;
+    }
+    h.end = match p.t.get(p.i) {
+        Some(t) if t.tok == Tok::Punct(';') => t.at + 1,
+        Some(t) => t.at,
+        None => p.src.len(),
+    };
+    h
+}
+
+/// Where a module's body is: from the token after its header to its `endmodule` (token
+/// indices), or, in a file cut short, to the next `module` or the end of the file; `end`
+/// is the byte past the module.
+struct Extent {
+    body_start: usize,
+    body_end: usize,
+    unterminated: bool,
+    end: usize,
+}
+
+fn extent(p: &Parser) -> Extent {
+    let body_start = p.i;
+    let is_end = |t: &Token| t.tok == Tok::Ident("endmodule".into());
+    let is_next = |t: &Token| matches!(&t.tok, Tok::Ident(w) if w == "module" || w == "macromodule");
+    let body_end = (body_start..p.t.len()).find(|&j| is_end(&p.t[j]) || is_next(&p.t[j])).unwrap_or(p.t.len());
+    let unterminated = !p.t.get(body_end).is_some_and(is_end);
+    let end = match p.t.get(body_end) {
+        Some(t) if unterminated => t.at,
+        Some(t) => t.at + "endmodule".len(),
+        None => p.src.len(),
+    };
+    Extent { body_start, body_end, unterminated, end }
+}
+
+/// What the token at a body's cursor starts, as the body reader acts on it.
+enum Item {
+    /// `;`: the statement ends.
+    Semicolon,
+    /// `input`/`output`/`inout` at a statement's start: a non-ANSI port declaration.
+    PortDeclaration(Dir),
+    /// `wire`/`reg`/`logic`/`tri` at a statement's start.
+    NetDeclaration,
+    /// `parameter` (true) or `localparam` (false) at a statement's start.
+    Parameter(bool),
+    /// A name then `#(`, `(`, or a name and `(`/`[`, at a statement's start.
+    Instance,
+    /// `begin`, `else`, `generate`, `end`, `endgenerate`, `endcase`, `endfunction`, `endtask`.
+    Block,
+    /// `assign` (true), `always`..., `initial`, `function`, `task`: logic of its own.
+    Process(bool),
+    /// `=`: an assignment, logic of its own.
+    Equals,
+    /// `if`, `for`, `case` (true): what follows is one alternative, or repeated.
+    Condition(bool),
+    /// `(`, `[`, `{`: a group skipped whole.
+    Group,
+    Other,
+}
+
+impl Item {
+    fn at(p: &Parser, stmt_start: bool) -> Item {
+        let word = match p.peek(0) {
+            Some(Tok::Punct(';')) => return Item::Semicolon,
+            Some(Tok::Punct('=')) => return Item::Equals,
+            Some(Tok::Punct('(' | '[' | '{')) => return Item::Group,
+            Some(Tok::Ident(w)) => w.as_str(),
+            _ => return Item::Other,
+        };
+        match word {
+            "input" | "output" | "inout" if stmt_start => Item::PortDeclaration(direction(word)),
+            "wire" | "reg" | "logic" | "tri" if stmt_start => Item::NetDeclaration,
+            "parameter" | "localparam" if stmt_start => Item::Parameter(word == "parameter"),
+            w if stmt_start
+                && !KEYWORDS.contains(&w)
+                && !w.starts_with('$')
+                && !w.starts_with('`')
+                && (p.is(1, '#') || p.is(1, '(') || (p.ident(1).is_some() && (p.is(2, '(') || p.is(2, '[')))) =>
+            {
+                Item::Instance
+            }
+            "begin" | "else" | "generate" | "end" | "endgenerate" | "endcase" | "endfunction" | "endtask" => {
+                Item::Block
+            }
+            "assign" | "always" | "always_ff" | "always_comb" | "always_latch" | "initial" | "function" | "task" => {
+                Item::Process(word == "assign")
+            }
+            "if" | "for" | "case" => Item::Condition(word == "case"),
+            _ => Item::Other,
+        }
+    }
+}
+
+/// A module's body as read so far.
+struct Body {
+    nets: Vec<Net>,
+    assigns: Vec<Assign>,
+    instances: Vec<Instance>,
+    /// The cursor is at the start of a statement.
+    stmt_start: bool,
+    /// It has logic of its own (an assignment, a process): it is no black box.
+    logic: bool,
+    /// Inside `begin`/`end`, `generate` or `case` (`nest`), or in a statement after `if`,
+    /// `else` or `for` (`guarded`): an item there is one alternative of several, or repeated.
+    nest: i32,
+    guarded: bool,
+}
+
+impl Body {
+    /// Read the body from the cursor up to the token `body_end`; its port declarations and
+    /// parameters go into the header.
+    fn read(p: &mut Parser, body_end: usize, header: &mut Header) -> Body {
+        let mut b = Body {
+            nets: Vec::new(),
+            assigns: Vec::new(),
+            instances: Vec::new(),
+            stmt_start: true,
+            logic: false,
+            nest: 0,
+            guarded: false,
+        };
+        let semi = |p: &Parser| (p.i..body_end).find(|&k| p.t[k].tok == Tok::Punct(';')).unwrap_or(body_end);
+        while p.i < body_end {
+            // Each item either leaves the cursor where the next begins (`true`), or is one
+            // token that is no statement's start.
+            let placed = match Item::at(p, b.stmt_start) {
+                Item::Semicolon => {
+                    p.i += 1;
+                    b.stmt_start = true;
+                    b.guarded &= b.nest > 0;
+                    true
+                }
+                Item::PortDeclaration(dir) => {
+                    let end = semi(p);
+                    non_ansi_ports(p, dir, p.i + 1, end, &mut header.ports);
+                    p.i = end;
+                    true
+                }
+                Item::NetDeclaration => {
+                    b.net_declaration(p, semi(p));
+                    true
+                }
+                Item::Parameter(named) => {
+                    let end = semi(p);
+                    if named {
+                        header.params.extend(param_names(p, p.i, end));
+                    }
+                    p.i = end;
+                    true
+                }
+                Item::Instance => {
+                    let before = b.instances.len();
+                    p.i = instance_statement(p, body_end, &mut b.instances);
+                    let guarded = b.nest > 0 || b.guarded;
+                    for i in &mut b.instances[before..] {
+                        i.guarded = guarded;
+                    }
+                    true
+                }
+                Item::Block => {
+                    b.block_word(p);
+                    true
+                }
+                Item::Process(assign) => {
+                    b.logic = true;
+                    if assign && b.nest == 0 && !b.guarded {
+                        b.whole_assign(p, semi(p));
+                    }
+                    false
+                }
+                Item::Equals => {
+                    b.logic = true;
+                    false
+                }
+                Item::Condition(case) => {
+                    b.guarded = true;
+                    b.nest += i32::from(case);
+                    // generate if/for headers: skip the condition.
+                    p.i += 1;
+                    if p.is(0, '(') {
+                        p.i = p.skip_group(p.i);
+                    }
+                    b.stmt_start = true;
+                    true
+                }
+                Item::Group => {
+                    p.i = p.skip_group(p.i);
+                    b.stmt_start = false;
+                    true
+                }
+                Item::Other => false,
+            };
+            if !placed {
+                b.stmt_start = false;
+                p.i += 1;
+            }
+        }
+        b
+    }
+
+    /// `wire [7:0] a, b;`: its names with their range. A name, then another where a `,`,
+    /// `=` or `;` should be (a stray `wire` before an instance), is said here, before the
+    /// instance is lost.
+    fn net_declaration(&mut self, p: &mut Parser, semi: usize) {
+        let (names, range) = declared_names(p, p.i + 1, semi);
+        let end = p.t.get(semi).map_or(p.src.len(), |t| t.at + 1);
+        self.nets.extend(names.into_iter().map(|name| Net { name, range: range.clone(), end }));
+        let mut k = p.i + 1;
+        while let Some(t) = p.t.get(k) {
+            match &t.tok {
+                Tok::Ident(n) if NET_WORDS.contains(&n.as_str()) => k += 1,
+                Tok::Punct('[') => k = p.skip_group(k),
+                _ => break,
+            }
+        }
+        if let (Some(name), Some(next)) = (p.ident_at(k), p.t.get(k + 1)) {
+            // Another name, or an instance's `#(`/`(`, where the declaration needs a `,`,
+            // `=`, `[` or `;`.
+            let what = match &next.tok {
+                Tok::Ident(other) if !other.starts_with('`') => Some(format!("`{other}`")),
+                Tok::Punct(c @ ('#' | '(')) => Some(format!("`{c}`")),
+                _ => None,
+            };
+            if let (Some(what), None) = (what, &p.trouble) {
+                let word = p.ident(0).unwrap_or_default();
+                p.trouble = Some((
+                    next.line,
+                    next.col,
+                    format!("{what} right after `{name}` in a declaration (a `,` or `;` missing, or a stray `{word}`?): this does not parse"),
+                ));
+            }
+        }
+        p.i += 1;
+        self.stmt_start = false;
+    }
+
+    /// `begin` (with its label), `generate`, `end`..., `else`: the nesting they open or close.
+    fn block_word(&mut self, p: &mut Parser) {
+        match p.ident(0) {
+            Some("begin" | "generate") => self.nest += 1,
+            Some("end" | "endgenerate" | "endcase") => self.nest = (self.nest - 1).max(0),
+            Some("else") => self.guarded = true,
+            _ => {}
+        }
+        // `begin : label` — skip the label.
+        p.i += 1;
+        if p.is(0, ':') && p.ident(1).is_some() {
+            p.i += 2;
+        }
+        self.stmt_start = true;
+    }
+
+    /// `assign NAME = ...;` outside any alternative: an assignment to the whole net, and
+    /// whether it can float (`'bz`).
+    fn whole_assign(&mut self, p: &Parser, semi: usize) {
+        let (Some(target), true) = (p.ident(1), p.is(2, '=')) else { return };
+        let tristate = p.t[p.i + 3..semi].iter().any(
+            |t| matches!(&t.tok, Tok::Num(n) if n.split_once('\'').is_some_and(|(_, v)| v.contains(['z', 'Z', '?']))),
+        );
+        let t = &p.t[p.i + 1];
+        self.assigns.push(Assign {
+            target: target.to_string(),
+            at: t.at..t.at + target.len(),
+            line: t.line,
+            col: t.col,
+            tristate,
+        });
+    }
 }
 
 fn direction(w: &str) -> Dir {

@@ -34,6 +34,7 @@ import csv
 import json
 import os
 import re
+import shutil
 import signal
 import subprocess
 import sys
@@ -255,6 +256,24 @@ def live(clone, repo, simulate):
     return {"ok": True, "real": float(m.group(1)), "frames": float(m.group(2)) if m.group(2) else None}
 
 
+FRAMES_SECONDS = "0.1"
+
+
+def frames(clone, repo, simulate):
+    """`--frames` for FRAMES_SECONDS of board time under `--bench`: the VGA frames a second
+    this run simulates and writes, and the all-RTL board's, side by side."""
+    out_dir = tempfile.mkdtemp(prefix=f"corpus-frames-{repo['name']}-")
+    try:
+        args = base_args(clone, repo, simulate) + repo.get("args", [])
+        code, out, err, secs = run_botsim(args + ["--seconds", FRAMES_SECONDS, "--frames", out_dir, "--bench", "--json"])
+        if code != 0:
+            return {"ok": False, "said": error_line(err)}
+        j = json.loads(out.strip().splitlines()[-1])
+        return {"ok": True, "frames": j.get("vga_frames"), "per_s": j.get("frames_per_s"), "rtl_per_s": j.get("rtl_frames_per_s")}
+    finally:
+        shutil.rmtree(out_dir, ignore_errors=True)
+
+
 def seed_of(seed, name):
     """The random stimulus's seed for a repository: the check's seed and its name."""
     return (seed * 1_000_003 + zlib.crc32(name.encode())) % (1 << 32)
@@ -312,6 +331,8 @@ def check(args):
         if verdict == "ok" and repo["expect"] != "refused" and not args.no_speed:
             entry["speed"] = {str(s): bench(clone, repo, s) for s in ([1, 0] if simulate is not None else [None])}
             entry["live"] = live(clone, repo, simulate)
+            if entry["live"].get("frames") is not None:
+                entry["frames"] = frames(clone, repo, simulate)
         if verdict == "ok" and repo["expect"] != "refused":
             entry["differential"] = differential(clone, repo, simulate, seed_of(args.seed, repo["name"]))
         record.append(entry)
@@ -342,6 +363,8 @@ def merged(path, record):
             n["speed"] = e["speed"]
             if "live" in e:
                 n["live"] = e["live"]
+            if "frames" in e:
+                n["frames"] = e["frames"]
         out.append(n)
     return out + list(new.values())
 
@@ -357,7 +380,7 @@ def fmt(v, unit=""):
 
 
 def write_table(path, record):
-    head = "| repository | first run | expect | = all-RTL | x all-RTL (S=1 / S=0) | x real time | skipped | live `--speed max` | what kept it busy |\n|---|---|---|---|---|---|---|---|---|\n"
+    head = "| repository | first run | expect | = all-RTL | x all-RTL (S=1 / S=0) | x real time | skipped | live `--speed max`; frames simulated | what kept it busy |\n|---|---|---|---|---|---|---|---|---|\n"
     body = ""
     for e in record:
         sp = e.get("speed", {})
@@ -375,6 +398,9 @@ def write_table(path, record):
             live_cell = "did not run: " + here.sub("", lv.get("said", "")).replace("|", "/")[:60]
         else:
             live_cell = f"{lv['real']:g} x" + (f", {lv['frames']:g} VGA frames/s" if lv.get("frames") is not None else "")
+        fr = e.get("frames")
+        if fr and fr.get("ok") and fr.get("per_s") is not None:
+            live_cell += f"; `--frames` {fr['per_s']:.3g}/s (all-RTL {fr['rtl_per_s']:.3g}/s)"
         df = e.get("differential")
         if not df:
             same = "-"

@@ -170,6 +170,18 @@ fn the_bench_measures_a_design_without_a_bot() {
     let bench = run(dir.path(), &["--seconds", "0.05", "--bench"]);
     assert_eq!(bench["skips"], plain["fast_forward"]["skips"], "{bench}\n{plain}");
     assert!(bench["rtl_mcycles_per_s"].as_f64() > Some(0.0), "{bench}");
+    assert!(bench["frames_per_s"].is_null() && bench["vga_frames"] == 0, "no frames asked for: {bench}");
+    // With --frames: the frames a second each board simulates and writes, the run's the
+    // same frames as the plain run's.
+    let frames = dir.path().join("frames");
+    let f = frames.to_str().unwrap();
+    let plain = run(dir.path(), &["--seconds", "0.05", "--frames", f]);
+    let bench = run(dir.path(), &["--seconds", "0.05", "--frames", f, "--bench"]);
+    assert_eq!(bench["vga_frames"], plain["vga_frames"], "{bench}\n{plain}");
+    assert!(plain["vga_frames"].as_u64() >= Some(2), "{plain}");
+    for board in ["frames_per_s", "rtl_frames_per_s"] {
+        assert!(bench[board].as_f64() > Some(0.0), "{board}: {bench}");
+    }
 }
 
 #[test]

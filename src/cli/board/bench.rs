@@ -43,6 +43,7 @@ fn against_rtl(a: &Args, p: &Prepared) -> Result<(), String> {
     let rtl = prepare(&rtl_args)?;
     let run_args = quiet(a.clone());
     let (mut fast, mut slow, mut ratios, mut overhead) = (vec![], vec![], vec![], vec![]);
+    let (mut frames_fast, mut frames_slow) = (vec![], vec![]);
     let mut last = None;
     for _ in 0..RUN_ROUNDS {
         let t = Instant::now();
@@ -50,14 +51,19 @@ fn against_rtl(a: &Args, p: &Prepared) -> Result<(), String> {
         overhead.push(t.elapsed().as_secs_f64() - o.wall_seconds);
         let r = simulate(&rtl_args, &rtl)?;
         let rate = |o: &Outcome| o.sim_ps as f64 / 1e4 / o.wall_seconds.max(1e-9) / 1e6;
+        let frame_rate = |o: &Outcome| o.rec.frames_seen as f64 / o.wall_seconds.max(1e-9);
         let (f, s) = (rate(&o), rate(&r));
         fast.push(f);
         slow.push(s);
         ratios.push(f / s);
+        frames_fast.push(frame_rate(&o));
+        frames_slow.push(frame_rate(&r));
         last = Some(o);
     }
     let o = last.expect("at least one round");
     let (f, s, x, ov) = (median(&mut fast), median(&mut slow), median(&mut ratios), median(&mut overhead));
+    // With --frames: VGA frames simulated (and written) a second of wall time, each board's.
+    let frames = (o.rec.frames_seen > 0).then(|| (median(&mut frames_fast), median(&mut frames_slow)));
     let skipped = if o.sim_ps == 0 { 0.0 } else { o.skipped_ps as f64 / o.sim_ps as f64 };
     let busy = super::report::busy_of(p, &o.busy, &o.cut);
     if a.json {
@@ -69,6 +75,8 @@ fn against_rtl(a: &Args, p: &Prepared) -> Result<(), String> {
                 "skips": o.skips, "skipped_fraction": skipped, "evaluations": o.evaluations,
                 "overhead_seconds": ov, "off_because": o.fast_forward_off,
                 "kept_busy_by": busy.as_ref().map(Busy::json),
+                "vga_frames": o.rec.frames_seen,
+                "frames_per_s": frames.map(|f| f.0), "rtl_frames_per_s": frames.map(|f| f.1),
             })
         );
         return Ok(());
@@ -84,6 +92,12 @@ fn against_rtl(a: &Args, p: &Prepared) -> Result<(), String> {
         o.skips
     );
     println!("  all-RTL board  {s:9.2} Mcycles/s  {:7.3} x real time", s / 100.0);
+    if let Some((ff, fs)) = frames {
+        println!(
+            "  VGA frames     {ff:9.2} a second simulated and written by this run, {fs:.2} by the all-RTL board ({} in the run; a monitor shows 60)",
+            o.rec.frames_seen
+        );
+    }
     println!("  {x:.2} x the all-RTL board (the median of the rounds' ratios); besides its simulation, a run took {ov:.3} s (loading the model, the records)");
     if let Some(why) = &o.fast_forward_off {
         println!("  no fast-forward: {why}");

@@ -130,7 +130,8 @@ fn two_bots_driving_the_same_wires_are_warned_and_resolved_alike_on_every_board(
 /// stimulus of their seed: one of each way the generator gives a net several drivers (the
 /// second bot's distances on the team bot's wires, an `assign` to the bot's output, two
 /// `assign`s to one wire), the first of each from `BOTSIM_DIFFERENTIAL_SEED` (default 1) on,
-/// and `BOTSIM_DIFFERENTIAL_DESIGNS` (default 0) designs of any kind from there. Each is kept
+/// the first with a game (a frame tick interrupting the CPU, a raster it reads), and
+/// `BOTSIM_DIFFERENTIAL_DESIGNS` (default 0) designs of any kind from there. Each is kept
 /// in target/random-differential/<seed>/.
 #[test]
 fn random_designs_with_shared_nets_equal_the_all_rtl_board() {
@@ -144,6 +145,11 @@ fn random_designs_with_shared_nets_equal_the_all_rtl_board() {
         if !seeds.contains(&seed) {
             seeds.push(seed);
         }
+    }
+    // And the first with a game's logic and firmware.
+    let game = (first..first + 5_000).find(|s| generate(*s).game).expect("no design with a game");
+    if !seeds.contains(&game) {
+        seeds.push(game);
     }
     let check = |seed: u64| -> Result<(), String> {
         let d = generate(seed);

@@ -12,7 +12,10 @@
 //! `BOTSIM_RANDOM_DESIGNS` (default 2) designs from seed `BOTSIM_RANDOM_SEED` (default 1) on,
 //! and the seeds of `BOTSIM_RANDOM_ALSO` (default 28, 316, 3086, 88 and 123: a second bot and a
 //! watchdog, a nested delay, a team's VGA timing generator, a watchdog whose heartbeat clears
-//! it in the middle of a period, two free parts); seed 1 has a second KCPSM6 in nested delays;
+//! it in the middle of a period, two free parts), and the first `BOTSIM_RANDOM_GAMES`
+//! (default 1) from the first seed on with a game (seed 17: a frame tick whose limit the game's
+//! state chooses interrupts the team CPU, whose firmware places a sprite and reads a
+//! collision flag and the raster's comparison); seed 1 has a second KCPSM6 in nested delays;
 //! each design is kept in target/random-designs/<seed>/ (its parts listed in parts.txt), and
 //! its runs' outputs beside it when they differ (a design whose LEDs show an LFSR writes
 //! gigabytes of pin changes: kept only when there is something to look at).
@@ -238,7 +241,16 @@ fn random_designs_record_what_every_edge_does_and_skip_what_repeats() {
     let count = env("BOTSIM_RANDOM_DESIGNS", 2);
     let also = std::env::var("BOTSIM_RANDOM_ALSO").unwrap_or_else(|_| ALSO.into());
     let also: Vec<u64> = also.split(',').filter_map(|s| s.trim().parse().ok()).collect();
-    let seeds: Vec<u64> = (first..first + count).chain(also).collect();
+    // And the first `BOTSIM_RANDOM_GAMES` (default 1) designs from there with a game's logic
+    // and firmware (never quiet: a frame tick interrupting the CPU, a raster it reads).
+    let games = env("BOTSIM_RANDOM_GAMES", 1) as usize;
+    let games = (first..first + 5_000).filter(|s| generate(*s).game).take(games);
+    let mut seeds: Vec<u64> = (first..first + count).chain(also).collect();
+    for g in games {
+        if !seeds.contains(&g) {
+            seeds.push(g);
+        }
+    }
     // Every design is tried, as many at once as the machine has cores (each run is one
     // thread: a design's build and its runs leave the other cores idle); the failures are
     // listed at the end, by seed.

@@ -75,6 +75,8 @@ pub struct Design {
     /// Then the same top with the net's resolution written out (each driver on a wire of its
     /// own, the net their AND: the bits they agree on, as botsim resolves it).
     pub resolved: Option<String>,
+    /// It has a game's logic beside its parts and the game's firmware ([`game_part`]).
+    pub game: bool,
     /// The folder its sources are in, under the run's: often none, else named as users
     /// name folders (spaces, commas, `&`, parentheses, accents; [`folder`]).
     pub folder: String,
@@ -364,6 +366,16 @@ pub fn generate(seed: u64) -> Design {
         parts.push(part);
     }
 
+    // A game's logic beside them, sometimes (a stream of its own: a seed's other parts are
+    // as they were), and then the game's firmware in place of the team program.
+    let mut game_stream = Rng::new(seed ^ 0x4741_4D45);
+    let game = game_stream.chance(12).then(|| {
+        let part = game_part(&mut game_stream, parts.len());
+        parts_text.push(format!("part {} on clk: {}", parts.len(), part.text));
+        parts.push(part);
+        0x20 + parts.len() as u8 - 1
+    });
+
     // The port interface's read mux, as many teams write it: combinational (`always @(*)`),
     // so what the CPU reads is the logic's value at the edge itself.
     let comb_mux = style_stream.chance(40);
@@ -389,6 +401,7 @@ pub fn generate(seed: u64) -> Design {
         Program::Countdown(_) => Program::Delay(Delay::draw(&mut r, tame)),
         k => k,
     };
+    let kind = game.map_or(kind, Program::Game);
     parts_text.push(format!("team program: {kind:?}"));
     let program = program(kind);
 
@@ -858,6 +871,7 @@ endmodule
         parts_text.push(format!("its sources in the folder {folder:?}"));
     }
     Design {
+        game: game.is_some(),
         folder,
         seed,
         top,
@@ -888,6 +902,11 @@ enum Program {
     Countdown(u64),
     /// A software delay, then toggles an LED and a digit.
     Delay(Delay),
+    /// A game's firmware: at each interrupt of the game's frame tick, moves the sprite by the
+    /// left button (writing its place to the game's port), reads the game's status (its
+    /// score, the raster at the sprite and obstacle, its state, the collision flag) from the
+    /// same port and shows it on the LEDs and a digit.
+    Game(u8),
 }
 
 /// How a software delay counts.
@@ -1207,6 +1226,40 @@ main:       LOAD    s3, 00
             }
             body
         }
+        Program::Game(port) => format!(
+            "CONSTANT PA_GAME, {port:02X}
+            ADDRESS 000
+main:       LOAD    s0, 00
+            STORE   s0, SEM
+            LOAD    s5, 04
+            ENABLE  INTERRUPT
+wait:       FETCH   s0, SEM
+            COMPARE s0, 00
+            JUMP    Z, wait
+            LOAD    s0, 00
+            STORE   s0, SEM
+            INPUT   s1, PA_PBTNS
+            TEST    s1, 08
+            JUMP    Z, right
+            SUB     s5, 01
+            JUMP    moved
+right:      ADD     s5, 01
+moved:      AND     s5, 1F
+            OUTPUT  s5, PA_GAME
+            INPUT   s2, PA_GAME
+            OUTPUT  s2, PA_LEDS
+            OUTPUT  s2, PA_DIG0
+            JUMP    wait
+
+            ADDRESS 300
+isr:        LOAD    s0, 01
+            STORE   s0, SEM
+            RETURNI ENABLE
+
+            ADDRESS 3FF
+            JUMP    isr
+"
+        ),
         Program::Countdown(n) => format!(
             "            ADDRESS 000
 main:       LOAD    s3, 00
@@ -1229,7 +1282,7 @@ delay:      SUB     s2, 01
 /// the state repeats after.
 fn program_period(kind: Program) -> u64 {
     match kind {
-        Program::Semaphore | Program::PollSwitches => 6,
+        Program::Semaphore | Program::PollSwitches | Program::Game(_) => 6,
         // LOAD, N x (SUB, JUMP), XOR, OUTPUT, OUTPUT, JUMP; s3 toggles: two trips.
         Program::Countdown(n) => 2 * 2 * (1 + 2 * n + 4),
         // The loop's turn: the count is moved on whole, up to its end.
@@ -1634,6 +1687,89 @@ endmodule
 /// period that saw its first clear moved the count by what looks like a drift no later
 /// period repeats (the fast-forward then needs a second period's proof). Not claimed within
 /// reach.
+/// A game's logic as final projects write it, on the board clock: a frame tick whose
+/// terminal count the game's state chooses (two limits, compared with `<=` in one always
+/// block and `==` in the next), which interrupts the team CPU; a raster scanned on the clock;
+/// an obstacle an LFSR places at every tick; the sprite's place, which the firmware writes at
+/// every tick ([`Program::Game`]); a collision flag when the raster is at both, a score
+/// counted at each collision (the state flipping with it), the raster's comparison itself:
+/// all read by the firmware through the game's port.
+fn game_part(r: &mut Rng, i: usize) -> Part {
+    let n = format!("gm{i}");
+    let port = 0x20 + i;
+    let (slow, fast) = (r.range(300, 3000), r.range(60, 299));
+    let (h, v) = (r.range(8, 40), r.range(6, 30));
+    let (width, taps): (u32, [u32; 2]) = *r.pick(&[(5, [4, 2]), (7, [6, 5]), (9, [8, 4])]);
+    let reset = r.chance(40);
+    let reset_if = if reset {
+        format!("        if (sysreset) begin {n}_score <= 8'd0; {n}_state <= 1'b0; {n}_hit <= 1'b0; end else\n")
+    } else {
+        String::new()
+    };
+    let verilog = format!(
+        "    // A game: its frame tick ({fast} or {slow} clocks, by its state), a {h} x {v} raster, an obstacle
+    // from a {width}-bit LFSR, the sprite the firmware places, a collision flag and a score.
+    reg        {n}_state = 1'b0;
+    reg [11:0] {n}_cnt = 12'd0;
+    reg        {n}_tick = 1'b0;
+    always @(posedge clk) begin
+        if ({n}_cnt <= ({n}_state ? 12'd{slow} : 12'd{fast})) {n}_cnt <= {n}_cnt + 12'd1;
+        else {n}_cnt <= 12'd0;
+    end
+    always @(posedge clk) {n}_tick <= {n}_cnt == ({n}_state ? 12'd{slow} : 12'd{fast});
+    always @(posedge clk) begin
+        if (interrupt_ack | sysreset) interrupt <= 1'b0;
+        else if ({n}_tick) interrupt <= 1'b1;
+    end
+    reg [5:0] {n}_h = 6'd0;
+    reg [4:0] {n}_v = 5'd0;
+    always @(posedge clk) begin
+        if ({n}_h == 6'd{h1}) begin
+            {n}_h <= 6'd0;
+            {n}_v <= ({n}_v == 5'd{v1}) ? 5'd0 : {n}_v + 5'd1;
+        end else {n}_h <= {n}_h + 6'd1;
+    end
+    reg [5:0] {n}_x = 6'd4;
+    always @(posedge clk) if (write_strobe && port_id == 8'h{port:02X}) {n}_x <= out_port[5:0];
+    reg [{w1}:0] {n}_lfsr = {{{width}{{1'b1}}}};
+    reg [7:0] {n}_score = 8'd0;
+    reg       {n}_hit = 1'b0;
+    wire      {n}_at = ({n}_h == {n}_x) && ({n}_v == {n}_lfsr[4:0]);
+    always @(posedge clk) begin
+{reset_if}        if ({n}_tick) begin
+            {n}_lfsr <= {{{n}_lfsr[{w2}:0], {n}_lfsr[{t0}] ^ {n}_lfsr[{t1}]}};
+            {n}_hit <= 1'b0;
+        end else if ({n}_at && !{n}_hit) begin
+            {n}_hit <= 1'b1;
+            {n}_score <= {n}_score + 8'd1;
+            {n}_state <= ~{n}_state;
+        end
+    end
+",
+        h1 = h - 1,
+        v1 = v - 1,
+        w1 = width - 1,
+        w2 = width - 2,
+        t0 = taps[0],
+        t1 = taps[1],
+    );
+    Part {
+        verilog,
+        bit: format!("{n}_hit"),
+        value: format!("{{{n}_score[4:0], {n}_at, {n}_state, {n}_hit}}"),
+        shape: Shape::Unknown("a game: its score, obstacle and sprite change at every frame tick"),
+        clock: 0,
+        text: format!(
+            "a game: a frame tick every {fast} or {slow} clocks by its state (interrupting the CPU), a {h} x {v} raster, an obstacle from a {width}-bit LFSR, the sprite the firmware moves by btnL, a collision flag and a score{}",
+            if reset { ", reset" } else { "" }
+        ),
+        fast: false,
+        module: String::new(),
+        resets: None,
+        program: None,
+    }
+}
+
 fn watchdog(r: &mut Rng, i: usize, clock: usize) -> Part {
     let clk = format!("@CLK{clock}@");
     let n = format!("wd{i}");

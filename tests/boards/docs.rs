@@ -2,7 +2,7 @@
 //! the `sh` blocks are read, and each `botsim ...` (or `cargo run --release -- ...`) command
 //! runs in a folder holding `my_clone`, a repository of the guide's shape (a Vivado project
 //! with a VGA display and its IP as configurations: tests/board_designs/repos/vivado_ip),
-//! `my_game`, a final project without a bot (tests/board_designs/game), `my_console`, one with
+//! `my_game`, a final project without a bot (examples/nexys4_game), `my_console`, one with
 //! the board's UART and keyboard (tests/board_designs/console), and the examples;
 //! the README's own picture is what its first command draws.
 

@@ -1,4 +1,4 @@
-//! Final projects: designs without a bot on the virtual board. tests/board_designs/game (a
+//! Final projects: designs without a bot on the virtual board. examples/nexys4_game (a
 //! VGA game: a box that bounces by itself, steered by the buttons, its bounces counted on the
 //! display and its place on the LEDs; the team's PicoBlaze interrupted at each vertical
 //! sync) is checked against a model of game.psm written from its header: every LED write of

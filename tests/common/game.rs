@@ -1,8 +1,8 @@
-//! tests/board_designs/game, a final project without a bot: its program's rules (game.psm's
+//! examples/nexys4_game, a final project without a bot: its program's rules (game.psm's
 //! header) and its picture.
 
 /// The design's folder, from the repository's root.
-pub const GAME: &str = "tests/board_designs/game";
+pub const GAME: &str = "examples/nexys4_game";
 
 /// game.psm as its header states it: places in 4-pixel steps, x 0-156 and y 0-116, one step
 /// a frame in each; a step toward an edge the box is at turns it around first and counts a

@@ -256,7 +256,7 @@ fn peripherals_the_design_lacks_are_one_line_each() {
     ];
     for (name, extra, stimulus, want) in cases {
         std::fs::write(&stim, stimulus).unwrap();
-        let d = design(name);
+        let d = if name == "game" { root().join(common::game::GAME) } else { design(name) };
         let o = board_in(dir.path(), &[&[d.to_str().unwrap(), "--stimulus", stim.to_str().unwrap()], extra].concat());
         let e = stderr(&o);
         assert!(!o.status.success() && e.lines().last().unwrap_or("").contains(want), "{name} {extra:?}: {e}");

@@ -220,7 +220,9 @@ fn a_repository_of_the_teams_own_files_says_all_it_lacks_at_once_and_runs_with_t
     assert_eq!(lines[0], "2 modules of the design are missing:", "{e}");
     assert!(lines[1].starts_with("  hdl/nexys4fpga.v:38:5: `uart_tx` (instance `DEBUG_UART` in `nexys4fpga`): add its file, or tie it off with --stub uart_tx"), "{e}");
     assert!(lines[2].starts_with("  hdl/nexys4fpga.v:42:5: `clk_wiz_0` (instance `CLKGEN` in `nexys4fpga`): a clock core with no configuration (ports clk_in1, clk_out1, reset, locked): give its frequencies with --clock clk_wiz_0.clk_out1=25MHz"), "{e}");
-    assert_eq!(lines.len(), 3, "{e}");
+    // The last line has every step, ready to paste.
+    assert_eq!(lines[3], "  --stub uart_tx --clock clk_wiz_0.clk_out1=25MHz gets past all 2", "{e}");
+    assert_eq!(lines.len(), 4, "{e}");
     // With them: the stand-ins said, and the frames are the display's own.
     let (frames, csv) = (c.join("frames"), c.join("t.csv"));
     let args = [

@@ -110,7 +110,8 @@ pub struct Args {
     #[arg(long, value_name = "MODULE")]
     stub: Vec<String>,
     /// A memory core committed without its configuration: the .coe that holds its contents
-    /// (its depth and width follow), when the file is not named after the module
+    /// (its depth and width follow), when the file is not named after the module and is not
+    /// the one that fits and whose name is the closest
     #[arg(long, value_name = "MODULE=FILE")]
     memory: Vec<String>,
     /// The bot's registers at every upd_sysregs (the columns of `botsim run`)

@@ -1797,6 +1797,29 @@ mod tests {
     }
 
     #[test]
+    fn a_frame_buffer_without_a_coe_is_a_zeroed_ram_when_its_widths_are_read_and_missing_when_not() {
+        let top = |addr: &str| {
+            format!(
+                "module top(input clk, input [15:0] sw, output [15:0] led);\n  parameter W = 8;\n  wire [{addr}] a = sw[9:0];\n  wire [W-1:0] q;\n  fb F (.clka(clk), .wea(sw[15]), .addra(a), .dina(sw[7:0]), .douta(q));\n  assign led = q;\nendmodule\n"
+            )
+        };
+        // The address read from its declaration, the data from the input's part select.
+        let t = tree(&[("top.v", &top("9:0"))]);
+        let d = resolve(&[t.path().to_path_buf()], &Options::default()).unwrap();
+        let core = d.sources.iter().find(|s| s.module("fb").is_some()).unwrap();
+        assert!(core.text.contains("reg [7:0] mem [0:1023];"), "{}", core.text);
+        assert!(
+            d.notes.iter().any(|n| n.contains("a RAM of 1024 x 8 bits") && n.contains("starting at zero")),
+            "{:?}",
+            d.notes
+        );
+        // An address whose width is a parameter's: not guessed.
+        let t = tree(&[("top.v", &top("W+1:0"))]);
+        let e = resolve(&[t.path().to_path_buf()], &Options::default()).unwrap_err().to_string();
+        assert!(e.contains("`fb` (instance `F` in `top`): a memory core with no configuration and no fb.coe: add its .xci or .coe, or tie it off with --stub fb"), "{e}");
+    }
+
+    #[test]
     fn every_missing_module_at_once_with_what_gets_past_it() {
         let t = tree(&[(
             "top.v",

@@ -488,6 +488,15 @@ fn block_ports(connected: &[&str]) -> Kind {
     Kind::Block { a: port("a"), b }
 }
 
+/// Does a core without configuration have a write port, by the pins the instance connects
+/// (`wea`/`dina`, or port B's)?
+pub fn writable(connected: &[&str]) -> bool {
+    match block_ports(connected) {
+        Kind::Block { a, b } => a.write || b.is_some_and(|b| b.write),
+        Kind::Distributed { writable, .. } => writable,
+    }
+}
+
 fn addr_width(depth: u32) -> u32 {
     (32 - depth.saturating_sub(1).leading_zeros()).max(1)
 }

@@ -28,7 +28,7 @@ use super::constraints::{self, ConstraintFile, Placed};
 use super::course;
 use super::flops;
 use super::ip::{ClockCore, ClockSpec, IpConfig, CLOCK_CORES};
-use super::memcore::{library_model, parse_coe, Coe, MemCore, MEMORY_CORES};
+use super::memcore::{self, library_model, parse_coe, Coe, MemCore, MEMORY_CORES};
 use super::parts::{self, foreign_port, is_program_rom, Replacement, HELPERS, OWN_MODULES, PRIMITIVES};
 use super::pins::{self, Role};
 use super::project::Project;
@@ -1040,7 +1040,7 @@ impl<'a> Walk<'a> {
         let shown = |p: &Path| memory_arg(repo, p);
         let fitting = shape.describe();
         let lead = format!("a memory core with no configuration and no {name}.coe");
-        let writes = ["wea", "web", "dina", "dinb"].iter().any(|p| connected.iter().any(|c| c.eq_ignore_ascii_case(p)));
+        let writes = memcore::writable(&connected);
         // A file named after another module the repository instantiates is that module's.
         let others: BTreeSet<String> = self
             .pool
